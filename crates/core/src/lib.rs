@@ -1,0 +1,19 @@
+//! The hub of stljit: the dialect-neutral IR ([`ir::Program`]), the CPU profiles that fix area
+//! ranges and timer resolutions ([`profile::CpuProfile`]), the flat memory-image layout every engine
+//! addresses ([`layout::Layout`]) and the status and error codes engines report ([`codes`]).
+//!
+//! This crate has no dependencies and no behaviour beyond arithmetic on offsets: front ends build
+//! [`ir::Program`]s, engines execute them, and both agree on bytes through [`layout::Layout`].
+
+pub mod area;
+pub mod codes;
+pub mod index;
+pub mod ir;
+pub mod layout;
+pub mod profile;
+
+pub use area::{Area, Width};
+pub use codes::{ErrorCode, FatalCode, ScanStatus};
+pub use index::{CounterId, EdgeSlot, FileId, LabelId, OpIdx, PouId, TimerId};
+pub use layout::Layout;
+pub use profile::{CpuProfile, ProfileId};
