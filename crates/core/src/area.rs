@@ -131,12 +131,17 @@ impl Area {
 
     /// Inverse of [`Area::pointer_code`].
     pub fn from_pointer_code(code: u8) -> Option<Area> {
-        Area::ALL.into_iter().find(|a| a.pointer_code() == Some(code))
+        Area::ALL
+            .into_iter()
+            .find(|a| a.pointer_code() == Some(code))
     }
 
     /// Whether the area is byte-addressable memory whose bits use `byte.bit` syntax.
     pub fn has_bit_syntax(self) -> bool {
-        matches!(self, Area::I | Area::Q | Area::M | Area::S | Area::SM | Area::V | Area::L)
+        matches!(
+            self,
+            Area::I | Area::Q | Area::M | Area::S | Area::SM | Area::V | Area::L
+        )
     }
 
     /// The area's prefix in STL text (`V`, `SM`, `AI`, `T`, ...).

@@ -121,7 +121,11 @@ mod tests {
         ] {
             assert_eq!(ErrorCode::try_from(e as u16), Ok(e));
         }
-        for e in [FatalCode::Watchdog, FatalCode::CompareIndirect, FatalCode::CompareNaN] {
+        for e in [
+            FatalCode::Watchdog,
+            FatalCode::CompareIndirect,
+            FatalCode::CompareNaN,
+        ] {
             assert_eq!(FatalCode::try_from(e as u16), Ok(e));
         }
         assert_eq!(ScanStatus::try_from(9), Err(9));

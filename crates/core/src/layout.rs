@@ -241,7 +241,12 @@ mod tests {
             blocks.push((l.phys_out, p.outputs));
             blocks.sort();
             for w in blocks.windows(2) {
-                assert!(w[0].0 + w[0].1 <= w[1].0, "{id}: {:?} overlaps {:?}", w[0], w[1]);
+                assert!(
+                    w[0].0 + w[0].1 <= w[1].0,
+                    "{id}: {:?} overlaps {:?}",
+                    w[0],
+                    w[1]
+                );
             }
             let last = blocks.last().unwrap();
             assert!(last.0 + last.1 <= l.size);

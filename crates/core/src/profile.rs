@@ -173,9 +173,24 @@ pub static A5: CpuProfile = CpuProfile {
     max_call_depth: 8,
     max_for_depth: 8,
     timer_table: &[
-        TimerRange { first: 0, last: 1, kinds: ALL_TIMER_KINDS, resolution: Resolution::Ms1 },
-        TimerRange { first: 2, last: 19, kinds: ALL_TIMER_KINDS, resolution: Resolution::Ms10 },
-        TimerRange { first: 20, last: 63, kinds: ALL_TIMER_KINDS, resolution: Resolution::Ms100 },
+        TimerRange {
+            first: 0,
+            last: 1,
+            kinds: ALL_TIMER_KINDS,
+            resolution: Resolution::Ms1,
+        },
+        TimerRange {
+            first: 2,
+            last: 19,
+            kinds: ALL_TIMER_KINDS,
+            resolution: Resolution::Ms10,
+        },
+        TimerRange {
+            first: 20,
+            last: 63,
+            kinds: ALL_TIMER_KINDS,
+            resolution: Resolution::Ms100,
+        },
     ],
 };
 
@@ -203,18 +218,78 @@ pub static S7_200: CpuProfile = CpuProfile {
     max_call_depth: 8,
     max_for_depth: 8,
     timer_table: &[
-        TimerRange { first: 0, last: 0, kinds: TONR, resolution: Resolution::Ms1 },
-        TimerRange { first: 1, last: 4, kinds: TONR, resolution: Resolution::Ms10 },
-        TimerRange { first: 5, last: 31, kinds: TONR, resolution: Resolution::Ms100 },
-        TimerRange { first: 32, last: 32, kinds: TON_TOF, resolution: Resolution::Ms1 },
-        TimerRange { first: 33, last: 36, kinds: TON_TOF, resolution: Resolution::Ms10 },
-        TimerRange { first: 37, last: 63, kinds: TON_TOF, resolution: Resolution::Ms100 },
-        TimerRange { first: 64, last: 64, kinds: TONR, resolution: Resolution::Ms1 },
-        TimerRange { first: 65, last: 68, kinds: TONR, resolution: Resolution::Ms10 },
-        TimerRange { first: 69, last: 95, kinds: TONR, resolution: Resolution::Ms100 },
-        TimerRange { first: 96, last: 96, kinds: TON_TOF, resolution: Resolution::Ms1 },
-        TimerRange { first: 97, last: 100, kinds: TON_TOF, resolution: Resolution::Ms10 },
-        TimerRange { first: 101, last: 255, kinds: TON_TOF, resolution: Resolution::Ms100 },
+        TimerRange {
+            first: 0,
+            last: 0,
+            kinds: TONR,
+            resolution: Resolution::Ms1,
+        },
+        TimerRange {
+            first: 1,
+            last: 4,
+            kinds: TONR,
+            resolution: Resolution::Ms10,
+        },
+        TimerRange {
+            first: 5,
+            last: 31,
+            kinds: TONR,
+            resolution: Resolution::Ms100,
+        },
+        TimerRange {
+            first: 32,
+            last: 32,
+            kinds: TON_TOF,
+            resolution: Resolution::Ms1,
+        },
+        TimerRange {
+            first: 33,
+            last: 36,
+            kinds: TON_TOF,
+            resolution: Resolution::Ms10,
+        },
+        TimerRange {
+            first: 37,
+            last: 63,
+            kinds: TON_TOF,
+            resolution: Resolution::Ms100,
+        },
+        TimerRange {
+            first: 64,
+            last: 64,
+            kinds: TONR,
+            resolution: Resolution::Ms1,
+        },
+        TimerRange {
+            first: 65,
+            last: 68,
+            kinds: TONR,
+            resolution: Resolution::Ms10,
+        },
+        TimerRange {
+            first: 69,
+            last: 95,
+            kinds: TONR,
+            resolution: Resolution::Ms100,
+        },
+        TimerRange {
+            first: 96,
+            last: 96,
+            kinds: TON_TOF,
+            resolution: Resolution::Ms1,
+        },
+        TimerRange {
+            first: 97,
+            last: 100,
+            kinds: TON_TOF,
+            resolution: Resolution::Ms10,
+        },
+        TimerRange {
+            first: 101,
+            last: 255,
+            kinds: TON_TOF,
+            resolution: Resolution::Ms100,
+        },
     ],
 };
 
@@ -278,11 +353,23 @@ mod tests {
     #[test]
     fn s7_200_table_fixes_kind_family() {
         let p = ProfileId::S7_200.profile();
-        assert_eq!(p.timer_resolution(37, TimerKind::On), Some(Resolution::Ms100));
+        assert_eq!(
+            p.timer_resolution(37, TimerKind::On),
+            Some(Resolution::Ms100)
+        );
         assert_eq!(p.timer_resolution(37, TimerKind::Retentive), None);
-        assert_eq!(p.timer_resolution(0, TimerKind::Retentive), Some(Resolution::Ms1));
-        assert_eq!(p.timer_resolution(97, TimerKind::Off), Some(Resolution::Ms10));
-        assert_eq!(p.timer_resolution(255, TimerKind::On), Some(Resolution::Ms100));
+        assert_eq!(
+            p.timer_resolution(0, TimerKind::Retentive),
+            Some(Resolution::Ms1)
+        );
+        assert_eq!(
+            p.timer_resolution(97, TimerKind::Off),
+            Some(Resolution::Ms10)
+        );
+        assert_eq!(
+            p.timer_resolution(255, TimerKind::On),
+            Some(Resolution::Ms100)
+        );
         for n in 0..256 {
             assert!(!p.timer_kinds(n).is_empty(), "T{n} has no kind");
         }

@@ -1,0 +1,47 @@
+//! The `stljit` command line. Each subcommand lives in its own module with its own `Args`;
+//! this file only dispatches. Exit codes: 0 success, 1 program errors, 2 usage or input errors,
+//! 3 the PLC stopped on a fatal runtime error.
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+mod check;
+
+/// Compile PLC statement-list programs to native code, run them on virtual time, and prove the
+/// JIT equal to the reference interpreter.
+#[derive(Parser)]
+#[command(name = "stljit", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Check programs and report every diagnostic.
+    Check(check::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            };
+        }
+    };
+    let result = match cli.command {
+        Command::Check(args) => check::main(args),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
