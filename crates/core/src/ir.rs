@@ -678,3 +678,19 @@ pub enum BoxOp {
         output: u32,
     },
 }
+
+/// An address named outside a program (stimulus files, watch lists, HMI writes): a bit or a
+/// value of a width. Parsed by the front end (`stljit_syntax::parse_address`), applied by the
+/// runtime's simulation driver.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Address {
+    /// `I0.3`, `M1.0`, `T37` (the timer bit).
+    Bit(BitLoc),
+    /// `IB1`, `VW100`, `VD50`, `AIW0`, `AC0`.
+    Value {
+        /// Where.
+        loc: Loc,
+        /// How wide.
+        width: Width,
+    },
+}
