@@ -1,0 +1,1 @@
+//! The reference interpreter (work in progress).
