@@ -10,8 +10,10 @@
 pub mod counter;
 pub mod edge;
 pub mod engine;
+pub mod ffi;
 pub mod image;
 pub mod mem;
+pub mod pointer;
 pub mod scan;
 pub mod timer;
 
