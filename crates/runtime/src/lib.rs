@@ -1,16 +1,23 @@
 //! The runtime every stljit engine shares: the memory [`Image`], the scan cycle around the
 //! program body ([`scan`]), timers, counters and edge detectors ([`timer`], [`counter`],
-//! [`edge`]), pointer resolution ([`pointer`]) and the [`Engine`] trait.
+//! [`edge`]), pointer resolution ([`pointer`]), the intricate instructions ([`arith`], [`bitops`],
+//! [`block`], [`compare`], [`convert`], with the SMB1 rules in [`flags`]) and the [`Engine`] trait.
 //!
 //! Everything is a function on the image bytes (`&mut [u8]` plus its [`Layout`]), so the
 //! interpreter calls it directly and the Cranelift JIT calls the same code through the
 //! `extern "C"` shims of [`ffi`]. Semantics that both engines must agree on bit for bit exist once,
 //! here.
 
+pub mod arith;
+pub mod bitops;
+pub mod block;
+pub mod compare;
+pub mod convert;
 pub mod counter;
 pub mod edge;
 pub mod engine;
 pub mod ffi;
+pub mod flags;
 pub mod image;
 pub mod mem;
 pub mod pointer;
