@@ -1,0 +1,322 @@
+//! Coverage counters: how often each mnemonic and each operand kind was generated, so that a
+//! campaign shows what it exercised (and what it never reached).
+
+use std::collections::BTreeMap;
+use stljit_core::ir::{BoxOp, CmpType, Contact, Conversion, Op, Operand, Program};
+use stljit_core::{Area, Width};
+
+/// Counts per mnemonic (`LD`, `LDW>=`, `MOVD`, `TONR`, ...) and per operand kind (`V`, `*VD`, `&`,
+/// `const`, ...).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Coverage {
+    /// Generated instructions per mnemonic.
+    pub mnemonics: BTreeMap<&'static str, u64>,
+    /// Generated operands per kind.
+    pub operands: BTreeMap<String, u64>,
+}
+
+impl Coverage {
+    /// Counts every op of `program`.
+    pub fn add_program(&mut self, program: &Program) {
+        for pou in &program.pous {
+            for op in &pou.ops {
+                *self.mnemonics.entry(mnemonic(op)).or_default() += 1;
+                for_each_operand(op, |o| {
+                    *self.operands.entry(operand_kind(o)).or_default() += 1;
+                });
+            }
+        }
+    }
+
+    /// Adds another coverage (from a worker thread).
+    pub fn merge(&mut self, other: &Coverage) {
+        for (k, v) in &other.mnemonics {
+            *self.mnemonics.entry(k).or_default() += v;
+        }
+        for (k, v) in &other.operands {
+            *self.operands.entry(k.clone()).or_default() += v;
+        }
+    }
+
+    /// Mnemonics of [`ALL_MNEMONICS`] never generated.
+    pub fn missing(&self) -> Vec<&'static str> {
+        ALL_MNEMONICS
+            .iter()
+            .copied()
+            .filter(|m| !self.mnemonics.contains_key(m))
+            .collect()
+    }
+}
+
+/// Every mnemonic [`mnemonic`] can return (compare contacts count per type, not per relation).
+pub const ALL_MNEMONICS: &[&str] = &[
+    "LD", "LDN", "A", "AN", "O", "ON", "LDI", "LDNI", "AI", "ANI", "OI", "ONI", "LDB", "LDW",
+    "LDD", "LDR", "AB", "AW", "AD", "AR", "OB", "OW", "OD", "OR", "NOT", "ALD", "OLD", "LPS",
+    "LRD", "LPP", "LDS", "AENO", "EU", "ED", "=", "=I", "S", "R", "SI", "RI", "R T", "R C", "TON",
+    "TONR", "TOF", "CTU", "CTD", "CTUD", "MOVB", "MOVW", "MOVD", "SWAP", "BMB", "BMW", "BMD",
+    "FILL", "+I", "-I", "*I", "/I", "+D", "-D", "*D", "/D", "MUL", "DIV", "+R", "-R", "*R", "/R",
+    "SQRT", "LN", "EXP", "SIN", "COS", "TAN", "INCB", "DECB", "INCW", "DECW", "INCD", "DECD",
+    "ANDB", "ORB", "XORB", "ANDW", "ORW", "XORW", "ANDD", "ORD", "XORD", "INVB", "INVW", "INVD",
+    "SLB", "SLW", "SLD", "SRB", "SRW", "SRD", "RLB", "RLW", "RLD", "RRB", "RRW", "RRD", "SHRB",
+    "BTI", "ITB", "ITD", "DTI", "DTR", "ROUND", "TRUNC", "BCDI", "IBCD", "DECO", "ENCO", "SEG",
+    "BIR", "BIW", "JMP", "LBL", "CALL", "CRET", "RET", "END", "MEND", "STOP", "WDR", "NOP", "FOR",
+    "NEXT", "LSCR", "SCRT", "CSCRE", "SCRE",
+];
+
+fn contact_mnemonic(prefix: usize, c: &Contact) -> &'static str {
+    // prefix: 0 = LD, 1 = A, 2 = O.
+    match c {
+        Contact::Bit { negated, .. } => {
+            ["LD", "LDN", "A", "AN", "O", "ON"][prefix * 2 + usize::from(*negated)]
+        }
+        Contact::ImmediateInput { negated, .. } => {
+            ["LDI", "LDNI", "AI", "ANI", "OI", "ONI"][prefix * 2 + usize::from(*negated)]
+        }
+        Contact::Compare { ty, .. } => {
+            let t = match ty {
+                CmpType::Byte => 0,
+                CmpType::Int => 1,
+                CmpType::DInt => 2,
+                CmpType::Real => 3,
+            };
+            [
+                "LDB", "LDW", "LDD", "LDR", "AB", "AW", "AD", "AR", "OB", "OW", "OD", "OR",
+            ][prefix * 4 + t]
+        }
+    }
+}
+
+fn by_width(w: Width, names: [&'static str; 3]) -> &'static str {
+    match w {
+        Width::Byte => names[0],
+        Width::Word => names[1],
+        Width::DWord => names[2],
+    }
+}
+
+/// The STL mnemonic of an op (compare relations folded into the type, e.g. `LDW`).
+pub fn mnemonic(op: &Op) -> &'static str {
+    match op {
+        Op::Load(c) => contact_mnemonic(0, c),
+        Op::And(c) => contact_mnemonic(1, c),
+        Op::Or(c) => contact_mnemonic(2, c),
+        Op::Not => "NOT",
+        Op::AndBlock => "ALD",
+        Op::OrBlock => "OLD",
+        Op::Dup => "LPS",
+        Op::ReadSecond => "LRD",
+        Op::Pop => "LPP",
+        Op::Pick(_) => "LDS",
+        Op::AndEno => "AENO",
+        Op::Edge { falling, .. } => {
+            if *falling {
+                "ED"
+            } else {
+                "EU"
+            }
+        }
+        Op::Assign { immediate, .. } => {
+            if *immediate {
+                "=I"
+            } else {
+                "="
+            }
+        }
+        Op::SetRange {
+            value, immediate, ..
+        } => match (value, immediate) {
+            (true, false) => "S",
+            (false, false) => "R",
+            (true, true) => "SI",
+            (false, true) => "RI",
+        },
+        Op::ResetTimers { .. } => "R T",
+        Op::ResetCounters { .. } => "R C",
+        Op::Timer { kind, .. } => kind.mnemonic(),
+        Op::Counter { kind, .. } => kind.mnemonic(),
+        Op::Box(b) => box_mnemonic(b),
+        Op::Jump(_) => "JMP",
+        Op::Label(_) => "LBL",
+        Op::Call(_) => "CALL",
+        Op::Return { conditional } => {
+            if *conditional {
+                "CRET"
+            } else {
+                "RET"
+            }
+        }
+        Op::End { conditional } => {
+            if *conditional {
+                "END"
+            } else {
+                "MEND"
+            }
+        }
+        Op::Stop => "STOP",
+        Op::Wdr => "WDR",
+        Op::Nop => "NOP",
+        Op::For { .. } => "FOR",
+        Op::Next { .. } => "NEXT",
+        Op::ScrBegin { .. } => "LSCR",
+        Op::ScrTransition { .. } => "SCRT",
+        Op::ScrCondEnd { .. } => "CSCRE",
+        Op::ScrEnd => "SCRE",
+    }
+}
+
+fn box_mnemonic(b: &BoxOp) -> &'static str {
+    use stljit_core::ir::{ArithOp as A, LogicOp as L, RealFn as F};
+    match b {
+        BoxOp::Move { width, .. } => by_width(*width, ["MOVB", "MOVW", "MOVD"]),
+        BoxOp::Swap { .. } => "SWAP",
+        BoxOp::BlockMove { width, .. } => by_width(*width, ["BMB", "BMW", "BMD"]),
+        BoxOp::Fill { .. } => "FILL",
+        BoxOp::IntArith { op, width, .. } => {
+            let i = match op {
+                A::Add => 0,
+                A::Sub => 1,
+                A::Mul => 2,
+                A::Div => 3,
+            };
+            if *width == Width::DWord {
+                ["+D", "-D", "*D", "/D"][i]
+            } else {
+                ["+I", "-I", "*I", "/I"][i]
+            }
+        }
+        BoxOp::MulWide { .. } => "MUL",
+        BoxOp::DivWide { .. } => "DIV",
+        BoxOp::RealArith { op, .. } => match op {
+            A::Add => "+R",
+            A::Sub => "-R",
+            A::Mul => "*R",
+            A::Div => "/R",
+        },
+        BoxOp::RealFunc { func, .. } => match func {
+            F::Sqrt => "SQRT",
+            F::Ln => "LN",
+            F::Exp => "EXP",
+            F::Sin => "SIN",
+            F::Cos => "COS",
+            F::Tan => "TAN",
+        },
+        BoxOp::Step { width, up, .. } => {
+            if *up {
+                by_width(*width, ["INCB", "INCW", "INCD"])
+            } else {
+                by_width(*width, ["DECB", "DECW", "DECD"])
+            }
+        }
+        BoxOp::Logic { op, width, .. } => match op {
+            L::And => by_width(*width, ["ANDB", "ANDW", "ANDD"]),
+            L::Or => by_width(*width, ["ORB", "ORW", "ORD"]),
+            L::Xor => by_width(*width, ["XORB", "XORW", "XORD"]),
+        },
+        BoxOp::Invert { width, .. } => by_width(*width, ["INVB", "INVW", "INVD"]),
+        BoxOp::Shift { left, width, .. } => {
+            if *left {
+                by_width(*width, ["SLB", "SLW", "SLD"])
+            } else {
+                by_width(*width, ["SRB", "SRW", "SRD"])
+            }
+        }
+        BoxOp::Rotate { left, width, .. } => {
+            if *left {
+                by_width(*width, ["RLB", "RLW", "RLD"])
+            } else {
+                by_width(*width, ["RRB", "RRW", "RRD"])
+            }
+        }
+        BoxOp::ShiftRegister { .. } => "SHRB",
+        BoxOp::Convert { conv, .. } => match conv {
+            Conversion::ByteToInt => "BTI",
+            Conversion::IntToByte => "ITB",
+            Conversion::IntToDInt => "ITD",
+            Conversion::DIntToInt => "DTI",
+            Conversion::DIntToReal => "DTR",
+            Conversion::Round => "ROUND",
+            Conversion::Trunc => "TRUNC",
+            Conversion::BcdToInt => "BCDI",
+            Conversion::IntToBcd => "IBCD",
+            Conversion::Decode => "DECO",
+            Conversion::Encode => "ENCO",
+            Conversion::Segment => "SEG",
+        },
+        BoxOp::ImmediateRead { .. } => "BIR",
+        BoxOp::ImmediateWrite { .. } => "BIW",
+    }
+}
+
+/// Calls `f` on every value operand of `op`.
+pub fn for_each_operand(op: &Op, mut f: impl FnMut(&Operand)) {
+    let contact = |c: &Contact, f: &mut dyn FnMut(&Operand)| {
+        if let Contact::Compare { lhs, rhs, .. } = c {
+            f(lhs);
+            f(rhs);
+        }
+    };
+    match op {
+        Op::Load(c) | Op::And(c) | Op::Or(c) => contact(c, &mut f),
+        Op::SetRange { count, .. }
+        | Op::ResetTimers { count, .. }
+        | Op::ResetCounters { count, .. } => f(count),
+        Op::Timer { preset, .. } | Op::Counter { preset, .. } => f(preset),
+        Op::For {
+            index, init, limit, ..
+        } => {
+            f(index);
+            f(init);
+            f(limit);
+        }
+        Op::Box(b) => match b {
+            BoxOp::Move { src, dst, .. }
+            | BoxOp::IntArith { src, dst, .. }
+            | BoxOp::MulWide { src, dst }
+            | BoxOp::DivWide { src, dst }
+            | BoxOp::RealArith { src, dst, .. }
+            | BoxOp::RealFunc { src, dst, .. }
+            | BoxOp::Logic { src, dst, .. }
+            | BoxOp::Convert { src, dst, .. } => {
+                f(src);
+                f(dst);
+            }
+            BoxOp::Swap { dst } | BoxOp::Step { dst, .. } | BoxOp::Invert { dst, .. } => f(dst),
+            BoxOp::BlockMove {
+                src, dst, count, ..
+            }
+            | BoxOp::Fill { src, dst, count } => {
+                f(src);
+                f(dst);
+                f(count);
+            }
+            BoxOp::Shift { dst, count, .. } | BoxOp::Rotate { dst, count, .. } => {
+                f(dst);
+                f(count);
+            }
+            BoxOp::ShiftRegister { len, .. } => f(len),
+            BoxOp::ImmediateRead { dst, .. } => f(dst),
+            BoxOp::ImmediateWrite { src, .. } => f(src),
+        },
+        _ => {}
+    }
+}
+
+/// A short name for an operand's kind: the area (`V`, `AC`, `T`), `*VD`/`*LD`/`*AC`, `&V`, `const`.
+pub fn operand_kind(o: &Operand) -> String {
+    match o {
+        Operand::Mem(l) => area_name(l.area).to_string(),
+        Operand::Const(_) => "const".into(),
+        Operand::Indirect(l) => format!("*{}", area_name(l.area)),
+        Operand::AddressOf(l) => format!("&{}", area_name(l.area)),
+    }
+}
+
+fn area_name(a: Area) -> &'static str {
+    match a {
+        Area::TimerValue => "T",
+        Area::CounterValue => "C",
+        Area::TimerBit => "T-bit",
+        Area::CounterBit => "C-bit",
+        other => other.prefix(),
+    }
+}

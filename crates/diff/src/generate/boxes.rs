@@ -1,0 +1,325 @@
+//! Box instructions (spec §4.7–§4.12): every [`BoxOp`] with operands of its classes.
+//!
+//! Direct operands of block moves, FILL and SHRB are placed so that constant counts fit their
+//! area; variable counts and pointers are what reach the run-time range errors.
+
+use super::Gen;
+use super::operands::Class;
+use stljit_core::ir::{ArithOp, BitLoc, BoxOp, Conversion, Loc, LogicOp, Operand, RealFn};
+use stljit_core::{Area, Width};
+
+/// The three access widths.
+pub(crate) const WIDTHS: [Width; 3] = [Width::Byte, Width::Word, Width::DWord];
+const ARITH: [ArithOp; 4] = [ArithOp::Add, ArithOp::Sub, ArithOp::Mul, ArithOp::Div];
+const LOGIC: [LogicOp; 3] = [LogicOp::And, LogicOp::Or, LogicOp::Xor];
+const REAL_FNS: [RealFn; 6] = [
+    RealFn::Sqrt,
+    RealFn::Ln,
+    RealFn::Exp,
+    RealFn::Sin,
+    RealFn::Cos,
+    RealFn::Tan,
+];
+const CONVERSIONS: [Conversion; 12] = [
+    Conversion::ByteToInt,
+    Conversion::IntToByte,
+    Conversion::IntToDInt,
+    Conversion::DIntToInt,
+    Conversion::DIntToReal,
+    Conversion::Round,
+    Conversion::Trunc,
+    Conversion::BcdToInt,
+    Conversion::IntToBcd,
+    Conversion::Decode,
+    Conversion::Encode,
+    Conversion::Segment,
+];
+
+/// Areas a block move, FILL or SHRB may name directly.
+const BLOCK_AREAS: [Area; 7] = [
+    Area::V,
+    Area::M,
+    Area::Q,
+    Area::I,
+    Area::S,
+    Area::L,
+    Area::SM,
+];
+
+impl Gen<'_, '_> {
+    /// Any box instruction.
+    pub(crate) fn box_op(&mut self) -> BoxOp {
+        match self
+            .c
+            .weighted(&[10, 1, 2, 1, 10, 2, 2, 1, 3, 1, 2, 1, 3, 5, 1, 1])
+        {
+            0 => self.move_box(),
+            1 => BoxOp::Swap {
+                dst: self.value(Width::Word, Class::OUT),
+            },
+            2 => self.block_move(),
+            3 => self.fill(),
+            4 => self.arith_box(),
+            5 => {
+                let w = self.c.pick(&WIDTHS);
+                BoxOp::Step {
+                    width: w,
+                    up: self.c.chance(1, 2),
+                    dst: self.value(w, Class::OUT),
+                }
+            }
+            6 => {
+                let w = self.c.pick(&WIDTHS);
+                BoxOp::Logic {
+                    op: self.c.pick(&LOGIC),
+                    width: w,
+                    src: self.value(w, Class::IN),
+                    dst: self.value(w, Class::OUT),
+                }
+            }
+            7 => {
+                let w = self.c.pick(&WIDTHS);
+                BoxOp::Invert {
+                    width: w,
+                    dst: self.value(w, Class::OUT),
+                }
+            }
+            8 => {
+                let w = self.c.pick(&WIDTHS);
+                let left = self.c.chance(1, 2);
+                let dst = self.value(w, Class::OUT);
+                let count = self.shift_count(w);
+                if self.c.chance(1, 2) {
+                    BoxOp::Shift {
+                        left,
+                        width: w,
+                        dst,
+                        count,
+                    }
+                } else {
+                    BoxOp::Rotate {
+                        left,
+                        width: w,
+                        dst,
+                        count,
+                    }
+                }
+            }
+            9 => self.shift_register(),
+            10 => self.real_box(),
+            11 => BoxOp::ImmediateRead {
+                input: self.c.below(self.p.inputs),
+                dst: self.value(Width::Byte, Class::OUT),
+            },
+            12 => self.convert(),
+            13 => self.real_box(),
+            14 => BoxOp::ImmediateWrite {
+                src: self.value(Width::Byte, Class::IN),
+                output: self.c.below(self.p.outputs),
+            },
+            _ => self.move_box(),
+        }
+    }
+
+    fn move_box(&mut self) -> BoxOp {
+        match self.c.weighted(&[3, 4, 3, 2]) {
+            0 => BoxOp::Move {
+                width: Width::Byte,
+                src: self.value(Width::Byte, Class::IN),
+                dst: self.value(Width::Byte, Class::OUT),
+            },
+            1 => BoxOp::Move {
+                width: Width::Word,
+                src: self.value(Width::Word, Class::IN),
+                dst: self.value(
+                    Width::Word,
+                    Class {
+                        aq: true,
+                        ..Class::OUT
+                    },
+                ),
+            },
+            2 => BoxOp::Move {
+                width: Width::DWord,
+                src: self.value(
+                    Width::DWord,
+                    Class {
+                        addr: true,
+                        ..Class::IN
+                    },
+                ),
+                dst: self.value(Width::DWord, Class::OUT),
+            },
+            // MOVR: the same op, with real operands.
+            _ => BoxOp::Move {
+                width: Width::DWord,
+                src: self.value(Width::DWord, Class::REAL_IN),
+                dst: self.value(Width::DWord, Class::REAL_OUT),
+            },
+        }
+    }
+
+    /// Integer arithmetic, the box most likely to set SMB1 flags.
+    pub(crate) fn arith_box(&mut self) -> BoxOp {
+        match self.c.weighted(&[6, 4, 1, 1, 3]) {
+            0 => BoxOp::IntArith {
+                op: self.c.pick(&ARITH),
+                width: Width::Word,
+                src: self.value(Width::Word, Class::IN),
+                dst: self.value(Width::Word, Class::OUT),
+            },
+            1 => BoxOp::IntArith {
+                op: self.c.pick(&ARITH),
+                width: Width::DWord,
+                src: self.value(Width::DWord, Class::IN),
+                dst: self.value(Width::DWord, Class::OUT),
+            },
+            2 => BoxOp::MulWide {
+                src: self.value(Width::Word, Class::IN),
+                dst: self.value(Width::DWord, Class::OUT),
+            },
+            3 => BoxOp::DivWide {
+                src: self.value(Width::Word, Class::IN),
+                dst: self.value(Width::DWord, Class::OUT),
+            },
+            _ => self.real_box(),
+        }
+    }
+
+    fn real_box(&mut self) -> BoxOp {
+        if self.c.chance(2, 3) {
+            BoxOp::RealArith {
+                op: self.c.pick(&ARITH),
+                src: self.value(Width::DWord, Class::REAL_IN),
+                dst: self.value(Width::DWord, Class::REAL_OUT),
+            }
+        } else {
+            BoxOp::RealFunc {
+                func: self.c.pick(&REAL_FNS),
+                src: self.value(Width::DWord, Class::REAL_IN),
+                dst: self.value(Width::DWord, Class::REAL_OUT),
+            }
+        }
+    }
+
+    fn shift_count(&mut self, w: Width) -> Operand {
+        if self.c.chance(5, 6) {
+            let n = match self.c.weighted(&[6, 1, 1, 1]) {
+                0 => self.c.range(1, w.bits() - 1),
+                1 => 0,
+                2 => w.bits(),
+                _ => self.c.range(w.bits(), 255),
+            };
+            Operand::Const(n)
+        } else {
+            self.value(Width::Byte, Class::IN)
+        }
+    }
+
+    fn convert(&mut self) -> BoxOp {
+        let conv = self.c.pick(&CONVERSIONS);
+        let (wi, wo, ri, ro) = match conv {
+            Conversion::ByteToInt | Conversion::Decode => (Width::Byte, Width::Word, false, false),
+            Conversion::IntToByte | Conversion::Encode => (Width::Word, Width::Byte, false, false),
+            Conversion::IntToDInt => (Width::Word, Width::DWord, false, false),
+            Conversion::DIntToInt => (Width::DWord, Width::Word, false, false),
+            Conversion::DIntToReal => (Width::DWord, Width::DWord, false, true),
+            Conversion::Round | Conversion::Trunc => (Width::DWord, Width::DWord, true, false),
+            Conversion::Segment => (Width::Byte, Width::Byte, false, false),
+            Conversion::BcdToInt | Conversion::IntToBcd => {
+                // In place: the front end lowers `BCDI OUT` to src == dst.
+                let dst = self.value(Width::Word, Class::OUT);
+                return BoxOp::Convert {
+                    conv,
+                    src: dst,
+                    dst,
+                };
+            }
+        };
+        let src = self.value(wi, if ri { Class::REAL_IN } else { Class::IN });
+        let dst = self.value(wo, if ro { Class::REAL_OUT } else { Class::OUT });
+        BoxOp::Convert { conv, src, dst }
+    }
+
+    /// A start operand for `n` elements of `w` bytes: a direct location where they fit, or a
+    /// pointer. Returns the operand and how many elements fit after it.
+    fn block_operand(&mut self, w: Width, out: bool, want: u32) -> (Operand, u32) {
+        if self.c.chance(1, 6) {
+            return (Operand::Indirect(self.pointer_cell()), want);
+        }
+        // SM is read-only below SMB30; only sources read it.
+        let area = BLOCK_AREAS[self.c.weighted(&[8, 3, 2, 1, 1, 2, u32::from(!out)])];
+        let size = self.p.area_size(area);
+        let fit = (size / w.bytes()).min(want).max(1);
+        let room = size - fit * w.bytes();
+        let offset = match self.c.weighted(&[6, 1, 1]) {
+            0 => self.c.below(room.min(48) + 1),
+            1 => room,
+            _ => self.c.below(room + 1),
+        };
+        (Operand::Mem(Loc { area, offset }), fit)
+    }
+
+    fn block_count(&mut self, n: u32) -> Operand {
+        if self.c.chance(5, 6) {
+            Operand::Const(n)
+        } else {
+            self.value(Width::Byte, Class::IN)
+        }
+    }
+
+    fn block_move(&mut self) -> BoxOp {
+        let w = self.c.pick(&WIDTHS);
+        let want = if self.c.chance(1, 10) {
+            self.c.range(1, 255)
+        } else {
+            self.c.range(1, 8)
+        };
+        let (src, a) = self.block_operand(w, false, want);
+        let (dst, b) = self.block_operand(w, true, a);
+        let n = a.min(b);
+        BoxOp::BlockMove {
+            width: w,
+            src,
+            dst,
+            count: self.block_count(n),
+        }
+    }
+
+    fn fill(&mut self) -> BoxOp {
+        let want = self.c.range(1, 10);
+        let src = self.value(Width::Word, Class::IN);
+        let (dst, n) = self.block_operand(Width::Word, true, want);
+        BoxOp::Fill {
+            src,
+            dst,
+            count: self.block_count(n),
+        }
+    }
+
+    /// `SHRB DATA, S_BIT, N` with the register inside its area for constant `N`.
+    fn shift_register(&mut self) -> BoxOp {
+        let data = self.bit_in();
+        let area = [Area::V, Area::M, Area::Q][self.c.weighted(&[3, 3, 1])];
+        let len = self.c.range(1, 64);
+        let bits = self.p.area_size(area) * 8;
+        let first = if self.c.chance(5, 6) {
+            self.c.below(bits.min(128).saturating_sub(len) + 1)
+        } else {
+            bits - len
+        };
+        let start = BitLoc {
+            area,
+            byte: first / 8,
+            bit: (first % 8) as u8,
+        };
+        let len = if self.c.chance(1, 8) {
+            self.value(Width::Byte, Class::IN)
+        } else if self.c.chance(1, 3) {
+            Operand::Const((len as u8).wrapping_neg().into())
+        } else {
+            Operand::Const(len)
+        };
+        BoxOp::ShiftRegister { data, start, len }
+    }
+}

@@ -1,0 +1,296 @@
+//! The generator of valid random programs and stimulus.
+//!
+//! Programs are built directly as IR, valid by construction for the chosen profile: direct operands
+//! fit their areas, read-only areas are never written, each timer and counter number keeps one
+//! kind, labels, FOR/NEXT and SCR segments are properly structured, and calls form a DAG. The shape
+//! follows real ladder networks (a boolean expression on the logic stack, then coils and boxes),
+//! with deliberate corner cases mixed in: stacks deeper than nine levels, call chains deeper than
+//! eight, pointers stepped past their area, loops left to the watchdog.
+//!
+//! The parts: [`operands`] picks operands per operand class, [`programs`] builds networks and
+//! POUs, [`stimulus`] builds the per-scan inputs and scan times.
+
+pub mod boxes;
+pub mod operands;
+pub mod programs;
+pub mod stimulus;
+
+use crate::rng::Choices;
+use std::collections::BTreeMap;
+use stljit_core::ir::{
+    BitLoc, CounterDecl, CounterKind, EdgeDecl, Op, Pou, PouKind, Program, SrcLoc, TimerDecl,
+    TimerKind,
+};
+use stljit_core::{CounterId, CpuProfile, LabelId, OpIdx, PouId, ProfileId, TimerId};
+
+pub use stimulus::{HmiWrite, ScanInput, Stimulus};
+
+/// Knobs of the generator. The defaults aim at many small, realistic programs per second.
+#[derive(Clone, Debug)]
+pub struct GenConfig {
+    /// The profile, or `None` to pick one per program.
+    pub profile: Option<ProfileId>,
+    /// Upper bound on networks in the main program (the actual count is random below it).
+    pub max_networks: u32,
+    /// Upper bound on ordinary subroutines (a deep call chain may add more).
+    pub max_subroutines: u32,
+    /// Upper bound on ops per POU; generation stops adding networks past it.
+    pub max_ops_per_pou: usize,
+    /// Number of scans of the stimulus.
+    pub scans: u32,
+}
+
+impl Default for GenConfig {
+    fn default() -> GenConfig {
+        GenConfig {
+            profile: None,
+            max_networks: 14,
+            max_subroutines: 4,
+            max_ops_per_pou: 160,
+            scans: 50,
+        }
+    }
+}
+
+/// A generated test case: a program and the stimulus to drive it with.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Case {
+    /// The program, valid for its profile.
+    pub program: Program,
+    /// Inputs and time of every scan.
+    pub stimulus: Stimulus,
+}
+
+/// Generates a case from a seed.
+pub fn case_from_seed(seed: u64, cfg: &GenConfig) -> Case {
+    let mut c = Choices::from_seed(seed);
+    generate_case(&mut c, cfg)
+}
+
+/// Generates a case from fuzzer bytes.
+pub fn case_from_bytes(data: &[u8], cfg: &GenConfig) -> Case {
+    let mut c = Choices::from_bytes(data);
+    generate_case(&mut c, cfg)
+}
+
+/// Generates a case from any choice stream.
+pub fn generate_case(c: &mut Choices<'_>, cfg: &GenConfig) -> Case {
+    let program = generate_program(c, cfg);
+    let stimulus = stimulus::generate(c, program.profile, cfg.scans);
+    Case { program, stimulus }
+}
+
+/// Generates a program from any choice stream.
+pub fn generate_program(c: &mut Choices<'_>, cfg: &GenConfig) -> Program {
+    let profile = match cfg.profile {
+        Some(p) => p,
+        // The A5 is the product; the S7-200 table exercises the kind-by-number timer rules.
+        None => [ProfileId::A5, ProfileId::S7_200][c.weighted(&[4, 1])],
+    };
+    let mut g = Gen::new(c, cfg, profile);
+    g.program()
+}
+
+/// Where the op being emitted sits, for the structural rules (no WDR inside a loop, no jump or
+/// FOR inside an SCR segment, FOR nesting limit).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Ctx {
+    /// Inside a backward-jump loop or a FOR body.
+    pub(crate) in_loop: bool,
+    /// FOR nesting depth.
+    pub(crate) for_depth: u8,
+    /// The S bit of the enclosing SCR segment.
+    pub(crate) scr: Option<BitLoc>,
+    /// Nesting depth of structured blocks (bounds recursion of the generator itself).
+    pub(crate) depth: u8,
+}
+
+/// Generator state for one program.
+pub(crate) struct Gen<'c, 'a> {
+    pub(crate) c: &'c mut Choices<'a>,
+    pub(crate) cfg: GenConfig,
+    pub(crate) p: &'static CpuProfile,
+    pub(crate) timers: BTreeMap<u16, TimerKind>,
+    pub(crate) counters: BTreeMap<u16, CounterKind>,
+    pub(crate) edges: u16,
+    /// The POU being built.
+    pub(crate) pou: PouId,
+    pub(crate) ops: Vec<Op>,
+    pub(crate) labels: Vec<Option<OpIdx>>,
+    /// Total number of POUs (main + subroutines) in the program.
+    pub(crate) n_pous: u32,
+    /// Whether the program may contain a loop without an exit (then it ends in the watchdog).
+    pub(crate) allow_endless: bool,
+}
+
+impl<'c, 'a> Gen<'c, 'a> {
+    fn new(c: &'c mut Choices<'a>, cfg: &GenConfig, profile: ProfileId) -> Gen<'c, 'a> {
+        Gen {
+            c,
+            cfg: cfg.clone(),
+            p: profile.profile(),
+            timers: BTreeMap::new(),
+            counters: BTreeMap::new(),
+            edges: 0,
+            pou: PouId(0),
+            ops: Vec::new(),
+            labels: Vec::new(),
+            n_pous: 1,
+            allow_endless: false,
+        }
+    }
+
+    /// Appends an op and returns its index.
+    pub(crate) fn emit(&mut self, op: Op) -> OpIdx {
+        self.ops.push(op);
+        OpIdx::new(self.ops.len() - 1)
+    }
+
+    /// A fresh label of the current POU, not yet placed; `None` when the POU has used every
+    /// label number the profile allows.
+    pub(crate) fn new_label(&mut self) -> Option<LabelId> {
+        if self.labels.len() > usize::from(self.p.max_label) {
+            return None;
+        }
+        self.labels.push(None);
+        Some(LabelId::new(self.labels.len() - 1))
+    }
+
+    /// Emits the label op.
+    pub(crate) fn place_label(&mut self, l: LabelId) {
+        let at = self.emit(Op::Label(l));
+        self.labels[l.index()] = Some(at);
+    }
+
+    /// Whether the current POU has room for more ops.
+    pub(crate) fn room(&self) -> bool {
+        self.ops.len() < self.cfg.max_ops_per_pou
+    }
+
+    /// A new edge slot, or `None` when the profile's limit is reached.
+    pub(crate) fn edge_slot(&mut self) -> Option<stljit_core::EdgeSlot> {
+        if self.edges >= self.p.max_edges {
+            return None;
+        }
+        self.edges += 1;
+        Some(stljit_core::EdgeSlot(self.edges - 1))
+    }
+
+    /// Finishes the POU being built.
+    fn take_pou(&mut self, name: String, kind: PouKind) -> Pou {
+        let ops = std::mem::take(&mut self.ops);
+        // Every label was placed when its construct closed; a missing one would be a generator
+        // bug, so fall back to op 0 rather than panic (the front-end check would then flag it).
+        let labels = std::mem::take(&mut self.labels)
+            .into_iter()
+            .map(|l| l.unwrap_or(OpIdx(0)))
+            .collect();
+        Pou {
+            name,
+            kind,
+            locs: vec![SrcLoc::default(); ops.len()],
+            ops,
+            labels,
+        }
+    }
+
+    fn program(&mut self) -> Program {
+        self.allow_endless = self.c.chance(1, 40);
+        let plan = self.plan_subroutines();
+        self.n_pous = 1 + plan.len() as u32;
+        let mut pous = Vec::with_capacity(self.n_pous as usize);
+        self.pou = Program::MAIN;
+        self.main_body(&plan);
+        pous.push(self.take_pou("MAIN".into(), PouKind::Main));
+        for (i, sub) in plan.iter().enumerate() {
+            self.pou = PouId::new(i + 1);
+            self.sub_body(sub);
+            pous.push(self.take_pou(format!("SBR{i}"), PouKind::Subroutine(i as u16)));
+        }
+        let mut program = Program {
+            profile: self.p.id,
+            pous,
+            timers: self
+                .timers
+                .iter()
+                .map(|(&n, &kind)| TimerDecl {
+                    id: TimerId(n),
+                    kind,
+                    resolution: self
+                        .p
+                        .timer_resolution(n, kind)
+                        .unwrap_or(stljit_core::profile::Resolution::Ms100),
+                })
+                .collect(),
+            counters: self
+                .counters
+                .iter()
+                .map(|(&n, &kind)| CounterDecl {
+                    id: CounterId(n),
+                    kind,
+                })
+                .collect(),
+            edges: vec![EdgeDecl { init: false }; usize::from(self.edges)],
+            logic_stack_depth: 9,
+            files: vec!["fuzz.stl".into()],
+        };
+        crate::canon::canonicalize(&mut program);
+        program
+    }
+}
+
+/// What a subroutine is for, decided before any code is generated so that callers know their
+/// callees.
+#[derive(Clone, Debug)]
+pub(crate) struct SubPlan {
+    /// Part of a chain deeper than the call-nesting limit: calls the next subroutine first thing.
+    pub(crate) chain_next: Option<PouId>,
+    /// Number of networks.
+    pub(crate) networks: u32,
+}
+
+impl Gen<'_, '_> {
+    fn plan_subroutines(&mut self) -> Vec<SubPlan> {
+        let mut plan = Vec::new();
+        let n = self.c.below(self.cfg.max_subroutines + 1);
+        for _ in 0..n {
+            let networks = self.c.range(1, 6);
+            plan.push(SubPlan {
+                chain_next: None,
+                networks,
+            });
+        }
+        // A chain one to four levels past the nesting limit, so that the deepest calls fail with
+        // 0x0008 in both engines.
+        if self.c.chance(1, 12) {
+            let len = u32::from(self.p.max_call_depth) + self.c.range(1, 4);
+            let first = plan.len();
+            for k in 0..len {
+                let next = (k + 1 < len).then(|| PouId::new(first + k as usize + 2));
+                plan.push(SubPlan {
+                    chain_next: next,
+                    networks: self.c.range(0, 2),
+                });
+            }
+        }
+        let max = usize::from(self.p.max_subroutine) + 1;
+        plan.truncate(max);
+        let len = plan.len();
+        if let Some(last) = plan.last_mut()
+            && last.chain_next.is_some_and(|p| p.index() > len)
+        {
+            last.chain_next = None;
+        }
+        plan
+    }
+}
+
+/// Timer and counter numbers the generator prefers, so that instructions on the same object meet.
+pub(crate) const TIMER_KINDS: [TimerKind; 3] =
+    [TimerKind::On, TimerKind::Retentive, TimerKind::Off];
+/// Counter kinds in generator order.
+pub(crate) const COUNTER_KINDS: [CounterKind; 3] =
+    [CounterKind::Up, CounterKind::Down, CounterKind::UpDown];
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,832 @@
+//! Networks and POUs: a boolean expression on the logic stack followed by coils and boxes, plus
+//! the structured constructs (forward jumps, backward loops, FOR/NEXT, SCR sections, calls).
+//!
+//! Structure rules that keep programs valid and terminating: jumps are generated as nested
+//! if/while shapes inside one POU and never cross a FOR/NEXT or SCR boundary; nothing that
+//! jumps, loops or ends is placed inside an SCR segment; WDR appears only in the main program
+//! outside every loop, so each loop either exits or runs into the watchdog.
+
+use super::boxes::WIDTHS;
+use super::operands::Class;
+use super::{COUNTER_KINDS, Ctx, Gen, SubPlan, TIMER_KINDS};
+use stljit_core::ir::{ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, Loc, Op, Operand};
+use stljit_core::{Area, CounterId, OpIdx, PouId, TimerId, Width};
+
+const CMP_OPS: [CmpOp; 6] = [
+    CmpOp::Eq,
+    CmpOp::Ne,
+    CmpOp::Ge,
+    CmpOp::Le,
+    CmpOp::Gt,
+    CmpOp::Lt,
+];
+
+impl Gen<'_, '_> {
+    /// The main program: optional pointer setup, networks, an optional SCR section, calls that
+    /// start every deep call chain.
+    pub(crate) fn main_body(&mut self, plan: &[SubPlan]) {
+        let ctx = Ctx::default();
+        if self.c.chance(1, 2) {
+            self.pointer_setup();
+        }
+        let targets: Vec<PouId> = plan.iter().filter_map(|s| s.chain_next).collect();
+        for (i, sub) in plan.iter().enumerate() {
+            let id = PouId::new(i + 1);
+            if sub.chain_next.is_some() && !targets.contains(&id) {
+                let c = self.contact();
+                self.emit(Op::Load(c));
+                self.emit(Op::Call(id));
+            }
+        }
+        let n = self.c.range(1, self.cfg.max_networks);
+        let scr_at = self.c.chance(1, 5).then(|| self.c.below(n + 1));
+        for k in 0..=n {
+            if !self.room() {
+                break;
+            }
+            if scr_at == Some(k) {
+                self.scr_section();
+            }
+            if k < n {
+                self.network(ctx);
+            }
+        }
+        if self.c.chance(1, 2) {
+            self.emit(Op::End { conditional: false });
+        }
+    }
+
+    /// A subroutine: the next link of its chain, then networks.
+    pub(crate) fn sub_body(&mut self, plan: &SubPlan) {
+        let ctx = Ctx::default();
+        if let Some(next) = plan.chain_next {
+            self.emit(Op::Load(on(sm(0, 0))));
+            self.emit(Op::Call(next));
+        }
+        let scr_at = self.c.chance(1, 8).then(|| self.c.below(plan.networks + 1));
+        for k in 0..=plan.networks {
+            if !self.room() {
+                break;
+            }
+            if scr_at == Some(k) {
+                self.scr_section();
+            }
+            if k < plan.networks {
+                self.network(ctx);
+            }
+        }
+        if self.c.chance(1, 2) {
+            self.emit(Op::Return { conditional: false });
+        }
+    }
+
+    /// One network of any kind allowed in `ctx`.
+    pub(crate) fn network(&mut self, ctx: Ctx) {
+        let structured = ctx.scr.is_none() && ctx.depth < 3;
+        let weights = [
+            30,                             // contacts and coils
+            8,                              // timer
+            6,                              // counter
+            14,                             // boxes
+            5,                              // pointers
+            3,                              // deep stack
+            if structured { 4 } else { 0 }, // forward jump
+            if structured { 3 } else { 0 }, // backward loop
+            if structured && ctx.for_depth < self.p.max_for_depth {
+                3
+            } else {
+                0
+            }, // FOR
+            if self.has_callee() { 4 } else { 0 }, // call
+            5,                              // LPS/LRD/LPP
+            3,                              // control
+            3,                              // immediate I/O
+            4,                              // flags
+        ];
+        match self.c.weighted(&weights) {
+            0 => {
+                self.expr(0);
+                self.outputs(ctx);
+            }
+            1 => {
+                self.expr(1);
+                let op = self.timer_op();
+                self.emit(op);
+                if self.c.chance(1, 3) {
+                    self.expr(2);
+                    self.reset_objects(true);
+                }
+            }
+            2 => self.counter_network(),
+            3 => self.box_network(),
+            4 => self.pointer_network(),
+            5 => self.deep_stack(),
+            6 => self.forward_jump(ctx),
+            7 => self.backward_loop(ctx),
+            8 => self.for_loop(ctx),
+            9 => {
+                self.expr(1);
+                if let Some(id) = self.callee() {
+                    self.emit(Op::Call(id));
+                }
+            }
+            10 => self.branches(ctx),
+            11 => self.control(ctx),
+            12 => self.immediate_io(),
+            _ => self.flag_network(),
+        }
+    }
+
+    fn has_callee(&self) -> bool {
+        (self.pou.0 + 1) < self.n_pous
+    }
+
+    /// A subroutine the current POU may call (a higher number, so calls form a DAG).
+    fn callee(&mut self) -> Option<PouId> {
+        if !self.has_callee() {
+            return None;
+        }
+        Some(PouId(self.c.range(self.pou.0 + 1, self.n_pous - 1)))
+    }
+
+    /// A contact: mostly a bit, sometimes a compare or an immediate input.
+    pub(crate) fn contact(&mut self) -> Contact {
+        match self.c.weighted(&[14, 5, 1]) {
+            0 => Contact::Bit {
+                bit: self.bit_in(),
+                negated: self.c.chance(1, 4),
+            },
+            1 => self.compare(),
+            _ => Contact::ImmediateInput {
+                bit: self.plain_bit(Area::I, false),
+                negated: self.c.chance(1, 3),
+            },
+        }
+    }
+
+    fn compare(&mut self) -> Contact {
+        let ty = [CmpType::Byte, CmpType::Int, CmpType::DInt, CmpType::Real]
+            [self.c.weighted(&[3, 5, 2, 2])];
+        let op = self.c.pick(&CMP_OPS);
+        let k = if ty == CmpType::Real {
+            Class::REAL_IN
+        } else {
+            Class::IN
+        };
+        let lhs = self.value(
+            ty.width(),
+            Class {
+                no_const: true,
+                ..k
+            },
+        );
+        let rhs = self.value(ty.width(), k);
+        Contact::Compare { ty, op, lhs, rhs }
+    }
+
+    /// Ops that push exactly one value.
+    pub(crate) fn expr(&mut self, depth: u8) {
+        match self.c.weighted(&[6, if depth < 3 { 2 } else { 0 }, 1]) {
+            0 => {
+                let c = self.contact();
+                self.emit(Op::Load(c));
+                for _ in 0..self.c.below(4) {
+                    let c = self.contact();
+                    let op = if self.c.chance(2, 3) {
+                        Op::And(c)
+                    } else {
+                        Op::Or(c)
+                    };
+                    self.emit(op);
+                }
+            }
+            1 => {
+                self.expr(depth + 1);
+                self.expr(depth + 1);
+                let op = if self.c.chance(1, 2) {
+                    Op::AndBlock
+                } else {
+                    Op::OrBlock
+                };
+                self.emit(op);
+            }
+            _ => {
+                let c = self.contact();
+                self.emit(Op::Load(c));
+                let n = self.c.below(9) as u8;
+                self.emit(Op::Pick(n));
+                self.emit(Op::Pop);
+            }
+        }
+        match self.c.weighted(&[12, 1, 2]) {
+            1 => {
+                self.emit(Op::Not);
+            }
+            2 => {
+                if let Some(slot) = self.edge_slot() {
+                    let falling = self.c.chance(1, 3);
+                    self.emit(Op::Edge { slot, falling });
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// One to three consumers of the power flow.
+    fn outputs(&mut self, ctx: Ctx) {
+        for _ in 0..self.c.range(1, 3) {
+            self.output(ctx);
+        }
+    }
+
+    fn output(&mut self, ctx: Ctx) {
+        match self.c.weighted(&[12, 1, 3, 1, 5, 2, 1, 1]) {
+            0 => {
+                let bit = self.bit_out(true);
+                self.emit(Op::Assign {
+                    bit,
+                    immediate: false,
+                });
+            }
+            1 => {
+                let bit = self.plain_bit(Area::Q, true);
+                self.emit(Op::Assign {
+                    bit,
+                    immediate: true,
+                });
+            }
+            2 => self.set_range(),
+            3 => {
+                let t = self.c.chance(1, 2);
+                self.reset_objects(t);
+            }
+            4 => {
+                let b = self.box_op();
+                self.emit(Op::Box(b));
+                if self.c.chance(1, 3) {
+                    self.emit(Op::AndEno);
+                }
+            }
+            5 => {
+                let op = self.timer_op();
+                self.emit(op);
+            }
+            6 => {
+                if let Some(id) = self.callee() {
+                    self.emit(Op::Call(id));
+                }
+            }
+            _ => {
+                // AENO after a box that may fail chains a second box on its success.
+                let b = self.box_op();
+                self.emit(Op::Box(b));
+                self.emit(Op::AndEno);
+                let bit = self.bit_out(false);
+                self.emit(Op::Assign {
+                    bit,
+                    immediate: false,
+                });
+            }
+        }
+        let _ = ctx;
+    }
+
+    /// `S`/`R`/`SI`/`RI` over a range that fits its area for constant counts.
+    fn set_range(&mut self) {
+        let immediate = self.c.chance(1, 8);
+        let value = self.c.chance(1, 2);
+        let (start, room) = if immediate {
+            let b = self.plain_bit(Area::Q, true);
+            (b, self.bits_left(b).min(128))
+        } else if value && self.c.chance(1, 8) {
+            // `S T5, 3` sets timer bits (a reset of timers is a different op).
+            let n = self.timer_no();
+            let b = BitLoc {
+                area: Area::TimerBit,
+                byte: u32::from(n),
+                bit: 0,
+            };
+            (b, u32::from(self.p.timers) - u32::from(n))
+        } else {
+            let b = self.bit_out(false);
+            (b, self.bits_left(b))
+        };
+        let count = if immediate {
+            Operand::Const(self.c.range(1, room.min(16)))
+        } else if self.c.chance(1, 10) {
+            Operand::Const(0)
+        } else {
+            self.count(room.min(24))
+        };
+        self.emit(Op::SetRange {
+            start,
+            count,
+            value,
+            immediate,
+        });
+    }
+
+    fn bits_left(&self, b: BitLoc) -> u32 {
+        (self.p.area_size(b.area) - b.byte) * 8 - u32::from(b.bit)
+    }
+
+    /// `R T.., n` or `R C.., n`.
+    fn reset_objects(&mut self, timers: bool) {
+        if timers {
+            let n = self.timer_no();
+            let room = u32::from(self.p.timers) - u32::from(n);
+            let count = self.count(room.min(8));
+            self.emit(Op::ResetTimers {
+                first: TimerId(n),
+                count,
+            });
+        } else {
+            let n = self.counter_no();
+            let room = u32::from(self.p.counters) - u32::from(n);
+            let count = self.count(room.min(8));
+            self.emit(Op::ResetCounters {
+                first: CounterId(n),
+                count,
+            });
+        }
+    }
+
+    /// A timer instruction; the number keeps the kind it was first used with.
+    pub(crate) fn timer_op(&mut self) -> Op {
+        let n = self.timer_no();
+        let kind = match self.timers.get(&n) {
+            Some(&k) => k,
+            None => {
+                let allowed: Vec<_> = TIMER_KINDS
+                    .into_iter()
+                    .filter(|&k| self.p.timer_resolution(n, k).is_some())
+                    .collect();
+                let k = if allowed.is_empty() {
+                    TIMER_KINDS[0]
+                } else {
+                    self.c.pick(&allowed)
+                };
+                self.timers.insert(n, k);
+                k
+            }
+        };
+        let preset = if self.c.chance(5, 6) {
+            let pt = match self.c.weighted(&[10, 2, 1, 1]) {
+                0 => self.c.range(1, 40),
+                1 => self.c.range(40, 600),
+                2 => 0,
+                _ => self.constant(Width::Word, false),
+            };
+            Operand::Const(pt & 0xFFFF)
+        } else {
+            self.value(Width::Word, Class::IN)
+        };
+        Op::Timer {
+            kind,
+            timer: TimerId(n),
+            preset,
+        }
+    }
+
+    fn counter_network(&mut self) {
+        let n = self.counter_no();
+        let kind = match self.counters.get(&n) {
+            Some(&k) => k,
+            None => {
+                let k = self.c.pick(&COUNTER_KINDS);
+                self.counters.insert(n, k);
+                k
+            }
+        };
+        let inputs = if kind == COUNTER_KINDS[2] { 3 } else { 2 };
+        for i in 0..inputs {
+            self.expr(if i + 1 == inputs { 2 } else { 1 });
+        }
+        let preset = if self.c.chance(4, 5) {
+            Operand::Const(match self.c.weighted(&[8, 1, 1]) {
+                0 => self.c.range(1, 12),
+                1 => 0,
+                _ => self.constant(Width::Word, false),
+            })
+        } else {
+            self.value(Width::Word, Class::IN)
+        };
+        self.emit(Op::Counter {
+            kind,
+            counter: CounterId(n),
+            preset,
+        });
+        if self.c.chance(1, 3) {
+            self.emit(Op::Pop);
+            let bit = self.bit_out(false);
+            self.emit(Op::Assign {
+                bit,
+                immediate: false,
+            });
+        }
+    }
+
+    /// A condition, then one to three boxes, some chained with AENO.
+    fn box_network(&mut self) {
+        self.expr(1);
+        for _ in 0..self.c.range(1, 3) {
+            let b = self.box_op();
+            self.emit(Op::Box(b));
+            if self.c.chance(1, 4) {
+                self.emit(Op::AndEno);
+            }
+        }
+    }
+
+    /// Arithmetic, then a network that reads SMB1 flags or ENO.
+    fn flag_network(&mut self) {
+        self.emit(Op::Load(on(sm(0, 0))));
+        let b = self.arith_box();
+        self.emit(Op::Box(b));
+        if self.c.chance(1, 2) {
+            self.emit(Op::AndEno);
+            let bit = self.bit_out(false);
+            self.emit(Op::Assign {
+                bit,
+                immediate: false,
+            });
+        }
+        let flag = sm(1, self.c.below(8) as u8);
+        self.emit(Op::Load(on(flag)));
+        if self.c.chance(1, 2) {
+            let bit = sm(1, self.c.below(8) as u8);
+            let negated = self.c.chance(1, 2);
+            self.emit(Op::Or(Contact::Bit { bit, negated }));
+        }
+        let bit = self.bit_out(false);
+        self.emit(Op::Assign {
+            bit,
+            immediate: false,
+        });
+    }
+
+    /// Pointers: `MOVD &x, cell`, stepping with `+D`/`INCD`, use through `*cell`.
+    fn pointer_network(&mut self) {
+        self.emit(Op::Load(on(sm(0, 0))));
+        if self.c.chance(1, 3) {
+            let target = self.address_target();
+            let cell = self.pointer_cell();
+            self.emit(Op::Box(BoxOp::Move {
+                width: Width::DWord,
+                src: Operand::AddressOf(target),
+                dst: Operand::Mem(cell),
+            }));
+        }
+        let cell = self.pointer_cell();
+        let step = match self.c.weighted(&[3, 2, 1, 1]) {
+            0 => BoxOp::IntArith {
+                op: ArithOp::Add,
+                width: Width::DWord,
+                src: Operand::Const(self.c.pick(&[1, 2, 4, 8])),
+                dst: Operand::Mem(cell),
+            },
+            1 => BoxOp::Step {
+                width: Width::DWord,
+                up: true,
+                dst: Operand::Mem(cell),
+            },
+            2 => BoxOp::Step {
+                width: Width::DWord,
+                up: false,
+                dst: Operand::Mem(cell),
+            },
+            _ => BoxOp::IntArith {
+                op: ArithOp::Sub,
+                width: Width::DWord,
+                src: Operand::Const(self.c.pick(&[1, 2, 4])),
+                dst: Operand::Mem(cell),
+            },
+        };
+        self.emit(Op::Box(step));
+        let w = self.c.pick(&WIDTHS);
+        let ind = Operand::Indirect(cell);
+        let op = if self.c.chance(1, 2) {
+            let dst = self.value(w, Class::OUT);
+            BoxOp::Move {
+                width: w,
+                src: ind,
+                dst,
+            }
+        } else {
+            let src = self.value(w, Class::IN);
+            BoxOp::Move {
+                width: w,
+                src,
+                dst: ind,
+            }
+        };
+        self.emit(Op::Box(op));
+    }
+
+    /// Initial pointers, so that `*` operands mostly point somewhere.
+    fn pointer_setup(&mut self) {
+        self.emit(Op::Load(on(sm(0, 1))));
+        for _ in 0..self.c.range(1, 3) {
+            let target = self.address_target();
+            let cell = self.pointer_cell();
+            self.emit(Op::Box(BoxOp::Move {
+                width: Width::DWord,
+                src: Operand::AddressOf(target),
+                dst: Operand::Mem(cell),
+            }));
+        }
+    }
+
+    /// Ten or more pushes, so the bottom level falls off, then combine.
+    fn deep_stack(&mut self) {
+        let k = self.c.range(9, 13);
+        for _ in 0..k {
+            let c = self.contact();
+            self.emit(Op::Load(c));
+            if self.c.chance(1, 6) {
+                let n = self.c.below(9) as u8;
+                self.emit(Op::Pick(n));
+            }
+        }
+        for _ in 1..k {
+            let op = match self.c.weighted(&[4, 4, 1, 1]) {
+                0 => Op::AndBlock,
+                1 => Op::OrBlock,
+                2 => Op::ReadSecond,
+                _ => Op::Pop,
+            };
+            self.emit(op);
+        }
+        let bit = self.bit_out(false);
+        self.emit(Op::Assign {
+            bit,
+            immediate: false,
+        });
+    }
+
+    /// `LPS` / `LRD` / `LPP` branches, each with its own contacts and outputs.
+    fn branches(&mut self, ctx: Ctx) {
+        self.expr(1);
+        self.emit(Op::Dup);
+        let n = self.c.range(1, 3);
+        for i in 0..=n {
+            if i > 0 {
+                self.emit(if i == n { Op::Pop } else { Op::ReadSecond });
+            }
+            let c = self.contact();
+            self.emit(Op::And(c));
+            self.output(ctx);
+        }
+    }
+
+    fn control(&mut self, ctx: Ctx) {
+        let main = self.pou == PouId(0);
+        let top = ctx.depth == 0 && ctx.scr.is_none();
+        let weights = [
+            3,
+            u32::from(main && top),
+            u32::from(main && !ctx.in_loop),
+            1,
+            u32::from(!main && top),
+        ];
+        self.expr(1);
+        match self.c.weighted(&weights) {
+            0 => {
+                self.emit(Op::Nop);
+            }
+            1 => {
+                // END ends the scan early; make it rare enough that later networks still run.
+                let bit = self.bit_in();
+                self.emit(Op::And(Contact::Bit {
+                    bit,
+                    negated: false,
+                }));
+                self.emit(Op::End { conditional: true });
+            }
+            2 => {
+                self.emit(Op::Wdr);
+            }
+            3 => {
+                // STOP ends the run for good; gate it behind an unlikely compare.
+                let offset = 2 * self.c.below(16);
+                let rhs = Operand::Const(self.c.range(2, 9));
+                self.emit(Op::And(Contact::Compare {
+                    ty: CmpType::Int,
+                    op: CmpOp::Eq,
+                    lhs: Operand::Mem(Loc {
+                        area: Area::V,
+                        offset,
+                    }),
+                    rhs,
+                }));
+                self.emit(Op::Stop);
+            }
+            _ => {
+                self.emit(Op::Return { conditional: true });
+            }
+        }
+    }
+
+    fn immediate_io(&mut self) {
+        self.expr(1);
+        match self.c.below(3) {
+            0 => {
+                let input = self.c.below(self.p.inputs);
+                let dst = self.value(Width::Byte, Class::OUT);
+                self.emit(Op::Box(BoxOp::ImmediateRead { input, dst }));
+            }
+            1 => {
+                let src = self.value(Width::Byte, Class::IN);
+                let output = self.c.below(self.p.outputs);
+                self.emit(Op::Box(BoxOp::ImmediateWrite { src, output }));
+            }
+            _ => {
+                let bit = self.plain_bit(Area::Q, true);
+                self.emit(Op::Assign {
+                    bit,
+                    immediate: true,
+                });
+            }
+        }
+    }
+
+    /// `cond; JMP l; <body>; LBL l`.
+    fn forward_jump(&mut self, ctx: Ctx) {
+        let Some(l) = self.new_label() else {
+            return;
+        };
+        self.expr(1);
+        self.emit(Op::Jump(l));
+        self.body(Ctx {
+            depth: ctx.depth + 1,
+            ..ctx
+        });
+        self.place_label(l);
+    }
+
+    /// `LBL l; <body>; cond; JMP l`, with a loop counter unless endless loops are allowed.
+    fn backward_loop(&mut self, ctx: Ctx) {
+        let Some(l) = self.new_label() else {
+            return;
+        };
+        let bounded = !self.allow_endless || self.c.chance(3, 4);
+        let cell = self.loop_cell(u32::from(ctx.depth) % 4);
+        if bounded {
+            self.emit(Op::Load(on(sm(0, 0))));
+            self.emit(Op::Box(BoxOp::Move {
+                width: Width::Word,
+                src: Operand::Const(0),
+                dst: Operand::Mem(cell),
+            }));
+        }
+        self.place_label(l);
+        self.body(Ctx {
+            in_loop: true,
+            depth: ctx.depth + 1,
+            ..ctx
+        });
+        if bounded {
+            self.emit(Op::Load(on(sm(0, 0))));
+            self.emit(Op::Box(BoxOp::Step {
+                width: Width::Word,
+                up: true,
+                dst: Operand::Mem(cell),
+            }));
+            let rhs = Operand::Const(self.c.range(1, 6));
+            self.emit(Op::Load(Contact::Compare {
+                ty: CmpType::Int,
+                op: CmpOp::Lt,
+                lhs: Operand::Mem(cell),
+                rhs,
+            }));
+        } else {
+            self.expr(1);
+        }
+        self.emit(Op::Jump(l));
+    }
+
+    /// `cond; FOR idx, init, final; <body>; NEXT`.
+    fn for_loop(&mut self, ctx: Ctx) {
+        if self.c.chance(2, 3) {
+            self.emit(Op::Load(on(sm(0, 0))));
+        } else {
+            self.expr(1);
+        }
+        let index = match self.c.weighted(&[6, 1, 1]) {
+            0 => Operand::Mem(self.loop_cell(4 + u32::from(ctx.for_depth))),
+            1 => Operand::Mem(Loc {
+                area: Area::L,
+                offset: 2 * self.c.below(8),
+            }),
+            _ => self.value(Width::Word, Class::OUT),
+        };
+        let init_v = self.c.range(0, 3);
+        let init = Operand::Const(init_v);
+        let limit = if self.c.chance(5, 6) {
+            // Nested loops multiply; keep inner ones short.
+            let span = if ctx.for_depth > 1 { 1 } else { 4 };
+            Operand::Const((init_v + self.c.below(span + 1)).wrapping_sub(self.c.below(2)) & 0xFFFF)
+        } else {
+            self.value(Width::Word, Class::IN)
+        };
+        let head = self.emit(Op::For {
+            index,
+            init,
+            limit,
+            next: OpIdx(0),
+        });
+        self.body(Ctx {
+            in_loop: true,
+            for_depth: ctx.for_depth + 1,
+            depth: ctx.depth + 1,
+            ..ctx
+        });
+        let next = self.emit(Op::Next { head });
+        if let Op::For { next: n, .. } = &mut self.ops[head.index()] {
+            *n = next;
+        }
+    }
+
+    /// The inside of a construct: zero to three networks (a FOR nest may grow past depth 3 by
+    /// itself, so that nesting up to the profile's limit is reached sometimes).
+    fn body(&mut self, ctx: Ctx) {
+        if ctx.for_depth > 0 && ctx.for_depth < self.p.max_for_depth && self.c.chance(1, 4) {
+            self.for_loop(Ctx {
+                depth: ctx.depth.min(2),
+                ..ctx
+            });
+            return;
+        }
+        for _ in 0..self.c.below(4) {
+            if !self.room() {
+                return;
+            }
+            self.network(ctx);
+        }
+    }
+
+    /// An SCR section: steps in this POU's own S byte, entered by the first scan.
+    fn scr_section(&mut self) {
+        let byte = self.pou.0;
+        if byte >= self.p.sequence_relays {
+            return;
+        }
+        let step = |bit: u32| BitLoc {
+            area: Area::S,
+            byte,
+            bit: bit as u8,
+        };
+        self.emit(Op::Load(on(sm(0, 1))));
+        self.emit(Op::SetRange {
+            start: step(0),
+            count: Operand::Const(1),
+            value: true,
+            immediate: false,
+        });
+        let n = self.c.range(1, 4);
+        for i in 0..n {
+            let me = step(i);
+            self.emit(Op::ScrBegin { bit: me });
+            let ctx = Ctx {
+                scr: Some(me),
+                ..Ctx::default()
+            };
+            let mut cond_ends = Vec::new();
+            for _ in 0..self.c.range(1, 3) {
+                match self.c.weighted(&[6, 3, 1]) {
+                    0 => self.network(ctx),
+                    1 => {
+                        self.expr(1);
+                        let to = step((i + 1 + self.c.below(n)) % n);
+                        self.emit(Op::ScrTransition { to, from: me });
+                    }
+                    _ => {
+                        self.expr(1);
+                        cond_ends.push(self.emit(Op::ScrCondEnd { end: OpIdx(0) }));
+                    }
+                }
+            }
+            let end = self.emit(Op::ScrEnd);
+            for at in cond_ends {
+                self.ops[at.index()] = Op::ScrCondEnd { end };
+            }
+        }
+    }
+}
+
+/// The contact `LD bit`.
+pub(crate) fn on(bit: BitLoc) -> Contact {
+    Contact::Bit {
+        bit,
+        negated: false,
+    }
+}
+
+/// `SMx.y`.
+pub(crate) fn sm(byte: u32, bit: u8) -> BitLoc {
+    BitLoc {
+        area: Area::SM,
+        byte,
+        bit,
+    }
+}

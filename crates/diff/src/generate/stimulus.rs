@@ -1,0 +1,163 @@
+//! Per-scan stimulus: virtual time, input bytes, analog input words and HMI writes.
+//!
+//! Inputs change the way a machine's do (a few bits per scan, now and then a whole byte); times
+//! are regular, irregular (including repeated instants) or jump far ahead, so that every timer
+//! resolution sees zero, one and many intervals per scan.
+
+use crate::rng::Choices;
+use stljit_core::ir::{Address, BitLoc, Loc};
+use stljit_core::{Area, ProfileId, Width};
+
+/// A value written into the image before a scan, as an HMI or a debugger would.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct HmiWrite {
+    /// Where.
+    pub addr: Address,
+    /// The value (a bit uses bit 0).
+    pub value: u32,
+}
+
+/// Everything the outside world supplies for one scan.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ScanInput {
+    /// Virtual time of the scan in ms (non-decreasing).
+    pub t_ms: u64,
+    /// The physical input bytes (`IB0..`), one per profile input byte.
+    pub inputs: Vec<u8>,
+    /// The analog input words (`AIW0, AIW2, ..`).
+    pub ai: Vec<u16>,
+    /// Writes applied before the scan starts.
+    pub writes: Vec<HmiWrite>,
+}
+
+/// The stimulus of a whole run.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub struct Stimulus {
+    /// One entry per scan.
+    pub scans: Vec<ScanInput>,
+}
+
+impl Stimulus {
+    /// Number of scans.
+    pub fn len(&self) -> usize {
+        self.scans.len()
+    }
+
+    /// Whether there are no scans.
+    pub fn is_empty(&self) -> bool {
+        self.scans.is_empty()
+    }
+}
+
+/// Generates `scans` scans of stimulus for a profile.
+pub fn generate(c: &mut Choices<'_>, profile: ProfileId, scans: u32) -> Stimulus {
+    let p = profile.profile();
+    let mut inputs: Vec<u8> = (0..p.inputs)
+        .map(|_| if c.chance(1, 3) { c.bits() as u8 } else { 0 })
+        .collect();
+    let mut ai: Vec<u16> = (0..p.analog_inputs / 2).map(|_| 0).collect();
+    // Time modes: a fixed period, irregular steps, or a fixed period with rare long pauses.
+    let mode = c.below(3);
+    let period = u64::from(c.pick(&[10u32, 1, 5, 7, 20, 50, 100, 250, 1000]));
+    let mut t = if c.chance(1, 4) {
+        u64::from(c.below(100_000))
+    } else {
+        0
+    };
+    let mut out = Vec::with_capacity(scans as usize);
+    for k in 0..scans {
+        if k > 0 {
+            t += match mode {
+                0 => period,
+                1 => u64::from(match c.weighted(&[2, 6, 3, 1]) {
+                    0 => 0,
+                    1 => c.range(1, 30),
+                    2 => c.range(30, 300),
+                    _ => c.range(300, 3000),
+                }),
+                _ => {
+                    if c.chance(1, 20) {
+                        u64::from(c.range(1000, 70_000))
+                    } else {
+                        period
+                    }
+                }
+            };
+        }
+        for _ in 0..c.weighted(&[3, 4, 2, 1]) {
+            let byte = if c.chance(3, 4) {
+                c.below(2.min(p.inputs))
+            } else {
+                c.below(p.inputs)
+            } as usize;
+            inputs[byte] ^= 1 << c.below(8);
+        }
+        if c.chance(1, 30) {
+            let byte = c.below(p.inputs) as usize;
+            inputs[byte] = c.bits() as u8;
+        }
+        if !ai.is_empty() && c.chance(1, 5) {
+            let w = c.below(ai.len() as u32) as usize;
+            ai[w] = match c.below(3) {
+                0 => c.below(32_001) as u16,
+                1 => c.bits() as u16,
+                _ => ai[w].wrapping_add(c.below(200) as u16),
+            };
+        }
+        let mut writes = Vec::new();
+        if c.chance(1, 12) {
+            writes.push(hmi_write(c, profile));
+        }
+        out.push(ScanInput {
+            t_ms: t,
+            inputs: inputs.clone(),
+            ai: ai.clone(),
+            writes,
+        });
+    }
+    Stimulus { scans: out }
+}
+
+fn hmi_write(c: &mut Choices<'_>, profile: ProfileId) -> HmiWrite {
+    let p = profile.profile();
+    match c.below(4) {
+        0 => HmiWrite {
+            addr: Address::Bit(BitLoc {
+                area: Area::M,
+                byte: c.below(p.bit_memory.min(8)),
+                bit: c.below(8) as u8,
+            }),
+            value: c.below(2),
+        },
+        1 => HmiWrite {
+            addr: Address::Value {
+                loc: Loc {
+                    area: Area::V,
+                    offset: 2 * c.below(32),
+                },
+                width: Width::Word,
+            },
+            value: c.bits() & 0xFFFF,
+        },
+        2 => HmiWrite {
+            addr: Address::Value {
+                loc: Loc {
+                    area: Area::V,
+                    offset: c.below(64),
+                },
+                width: Width::Byte,
+            },
+            value: c.bits() & 0xFF,
+        },
+        _ => HmiWrite {
+            addr: Address::Value {
+                loc: Loc {
+                    area: Area::V,
+                    offset: 100 + 4 * c.below(8),
+                },
+                width: Width::DWord,
+            },
+            value: (c.range(0, 2000) as f32 / 4.0 - 250.0).to_bits(),
+        },
+    }
+}
