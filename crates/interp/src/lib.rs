@@ -1,1 +1,64 @@
-//! The reference interpreter (work in progress).
+//! The reference interpreter: walks the IR one op at a time, keeping the logic stack as the
+//! bit vector of spec §3.1, and calls the shared runtime ([`stljit_runtime`]) for everything
+//! stateful or intricate (timers, counters, edges, pointers, flag rules, block instructions).
+//!
+//! It is written to be obviously correct rather than fast: every operand access is bounds-checked,
+//! every scheduler field lives in the image (so the image after a scan is complete and comparable
+//! with the JIT's), and a malformed program yields an error from [`Interpreter::new`] or a
+//! recorded run-time error, never a panic.
+
+mod boxes;
+mod exec;
+mod operand;
+mod validate;
+
+#[cfg(test)]
+mod tests;
+
+use stljit_core::ScanStatus;
+use stljit_core::ir::Program;
+use stljit_runtime::{Engine, Image, scan};
+
+pub use validate::InterpError;
+
+/// The interpreter for one program.
+#[derive(Clone, Debug)]
+pub struct Interpreter {
+    program: Program,
+    /// `(1 << logic_stack_depth) - 1`.
+    stack_mask: u16,
+    /// Deepest CALL nesting allowed below the main program.
+    max_call_depth: u32,
+}
+
+impl Interpreter {
+    /// Checks `program` for the references the interpreter follows (labels, calls, FOR/NEXT and
+    /// SCR partners, stack depth) and keeps a copy of it.
+    pub fn new(program: &Program) -> Result<Interpreter, InterpError> {
+        validate::check(program)?;
+        Ok(Interpreter {
+            program: program.clone(),
+            stack_mask: ((1u32 << program.logic_stack_depth) - 1) as u16,
+            max_call_depth: u32::from(program.profile.profile().max_call_depth),
+        })
+    }
+
+    /// The program being interpreted.
+    pub fn program(&self) -> &Program {
+        &self.program
+    }
+}
+
+impl Engine for Interpreter {
+    fn name(&self) -> &'static str {
+        "interp"
+    }
+
+    fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
+        let (img, layout) = image.split_mut();
+        scan::run(img, layout, t_ms, |img, layout| {
+            let mut m = exec::Machine::new(self, img, layout);
+            m.run_main()
+        })
+    }
+}

@@ -1,0 +1,1 @@
+//! Interpreter unit tests (see the `tests/` submodules).

@@ -1,0 +1,319 @@
+//! [`Simulation`]: runs an [`Engine`] scan by scan at virtual time, feeding a [`Stimulus`] and
+//! reporting every scan to an [`Observer`].
+//!
+//! Scan `k` starts at virtual time `k · scan_ms`. Before it, the stimulus rows due at `k` are
+//! written into the image; after it, the observer sees the image. The run ends after the
+//! requested scans, or early when a scan reports STOP or a fatal error, or when the caller's
+//! cancel flag is set (checked between scans only, so the image is always a whole-scan state).
+
+use super::stimulus::Stimulus;
+use super::value::write_address;
+use crate::engine::Engine;
+use crate::image::Image;
+use std::fmt;
+use std::io;
+use std::sync::atomic::{AtomicBool, Ordering};
+use stljit_core::{FatalCode, ScanStatus};
+
+/// How long to run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Until {
+    /// This many scans.
+    Scans(u64),
+    /// Every scan that starts within this many ms of the run's first scan (so
+    /// `ceil(ms / scan_ms)` scans).
+    Duration(u64),
+}
+
+/// What an observer sees after each scan.
+#[derive(Clone, Copy, Debug)]
+pub struct ScanEvent<'a> {
+    /// Scan number (0 is the first after cold start).
+    pub scan: u64,
+    /// Virtual time at the scan's start.
+    pub t_ms: u64,
+    /// The image after the scan.
+    pub image: &'a Image,
+    /// What the engine reported.
+    pub status: ScanStatus,
+}
+
+/// Receives every scan of a run (trace writers, test recorders).
+pub trait Observer {
+    /// Called after each scan; an error ends the run with [`SimError::Observer`].
+    fn observe(&mut self, event: &ScanEvent<'_>) -> io::Result<()>;
+}
+
+/// Observes nothing.
+impl Observer for () {
+    fn observe(&mut self, _: &ScanEvent<'_>) -> io::Result<()> {
+        Ok(())
+    }
+}
+
+impl<F: FnMut(&ScanEvent<'_>) -> io::Result<()>> Observer for F {
+    fn observe(&mut self, event: &ScanEvent<'_>) -> io::Result<()> {
+        self(event)
+    }
+}
+
+/// Every observer in the list sees every scan, in order.
+impl Observer for [&mut dyn Observer] {
+    fn observe(&mut self, event: &ScanEvent<'_>) -> io::Result<()> {
+        self.iter_mut().try_for_each(|o| o.observe(event))
+    }
+}
+
+/// Where a run stands, for a progress bar.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Progress {
+    /// Scans run so far in this run.
+    pub done: u64,
+    /// Scans this run will take if nothing stops it.
+    pub total: u64,
+    /// Virtual time of the last scan.
+    pub t_ms: u64,
+}
+
+/// How a run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Outcome {
+    /// All requested scans ran.
+    Completed,
+    /// A STOP instruction executed in the last scan (or the image was already in STOP).
+    Stopped,
+    /// A fatal error aborted the last scan.
+    Fatal {
+        /// The raw code from the image (`Sched::FATAL`).
+        code: u16,
+    },
+    /// The cancel flag was set.
+    Cancelled,
+}
+
+impl Outcome {
+    /// The fatal code, when it is a known one.
+    pub fn fatal_code(self) -> Option<FatalCode> {
+        match self {
+            Outcome::Fatal { code } => FatalCode::try_from(code).ok(),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for Outcome {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Outcome::Completed => f.write_str("completed"),
+            Outcome::Stopped => f.write_str("stopped (STOP instruction)"),
+            Outcome::Fatal { code } => match FatalCode::try_from(*code) {
+                Ok(c) => write!(f, "{c}"),
+                Err(raw) => write!(f, "fatal 16#{raw:04X}"),
+            },
+            Outcome::Cancelled => f.write_str("cancelled"),
+        }
+    }
+}
+
+/// Summary of one [`Simulation::run`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RunReport {
+    /// Scans executed by this run.
+    pub scans: u64,
+    /// Number of the next scan the simulation would run.
+    pub next_scan: u64,
+    /// Virtual time of the last executed scan (of the run's start when none ran).
+    pub t_ms: u64,
+    /// Why the run ended.
+    pub outcome: Outcome,
+}
+
+/// Why a simulation could not be set up or run.
+#[derive(Debug)]
+pub enum SimError {
+    /// `scan_ms` was 0: time must advance between scans.
+    ZeroScanTime,
+    /// The stimulus was built for another profile's image (an address does not fit it).
+    StimulusAddress {
+        /// The column's name.
+        column: String,
+        /// The row's source line.
+        line: u32,
+    },
+    /// An observer failed (a trace writer's I/O error).
+    Observer(io::Error),
+}
+
+impl fmt::Display for SimError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SimError::ZeroScanTime => f.write_str("scan time must be at least 1 ms"),
+            SimError::StimulusAddress { column, line } => {
+                write!(f, "stimulus line {line}: `{column}` is outside the memory image")
+            }
+            SimError::Observer(e) => write!(f, "trace output failed: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for SimError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            SimError::Observer(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+/// A PLC under simulation: an engine, its image and the virtual clock.
+pub struct Simulation<'a> {
+    engine: &'a mut dyn Engine,
+    image: Image,
+    scan_ms: u64,
+    next_scan: u64,
+    cancel: Option<&'a AtomicBool>,
+    progress: Option<&'a mut dyn FnMut(Progress)>,
+}
+
+impl<'a> Simulation<'a> {
+    /// A simulation continuing from `image` (normally `Image::cold_start`): the next scan is the
+    /// image's scan number.
+    pub fn new(
+        engine: &'a mut dyn Engine,
+        image: Image,
+        scan_ms: u64,
+    ) -> Result<Simulation<'a>, SimError> {
+        if scan_ms == 0 {
+            return Err(SimError::ZeroScanTime);
+        }
+        let next_scan = image.scan_no();
+        Ok(Simulation {
+            engine,
+            image,
+            scan_ms,
+            next_scan,
+            cancel: None,
+            progress: None,
+        })
+    }
+
+    /// Stops the run before the next scan once `flag` is set (e.g. by a Ctrl-C handler).
+    pub fn with_cancel(mut self, flag: &'a AtomicBool) -> Self {
+        self.cancel = Some(flag);
+        self
+    }
+
+    /// Calls `f` after every scan.
+    pub fn with_progress(mut self, f: &'a mut dyn FnMut(Progress)) -> Self {
+        self.progress = Some(f);
+        self
+    }
+
+    /// The image as it stands.
+    pub fn image(&self) -> &Image {
+        &self.image
+    }
+
+    /// Gives the image back.
+    pub fn into_image(self) -> Image {
+        self.image
+    }
+
+    /// The engine's name.
+    pub fn engine_name(&self) -> &'static str {
+        self.engine.name()
+    }
+
+    /// Virtual time at the start of scan `k`.
+    pub fn time_of(&self, k: u64) -> u64 {
+        k.saturating_mul(self.scan_ms)
+    }
+
+    /// Runs scans until `until`, a STOP, a fatal error or cancellation. Stimulus rows due before
+    /// this run's first scan are applied before it (so a continued simulation sees the
+    /// stimulus's state at the current time), rows due later before their scan.
+    pub fn run(
+        &mut self,
+        until: Until,
+        stimulus: &Stimulus,
+        observer: &mut dyn Observer,
+    ) -> Result<RunReport, SimError> {
+        let first = self.next_scan;
+        let total = match until {
+            Until::Scans(n) => n,
+            Until::Duration(ms) => ms.div_ceil(self.scan_ms),
+        };
+        let mut report = RunReport {
+            scans: 0,
+            next_scan: first,
+            t_ms: self.time_of(first),
+            outcome: Outcome::Completed,
+        };
+        if self.image.is_stopped() {
+            report.outcome = Outcome::Stopped;
+            return Ok(report);
+        }
+        let rows = stimulus.rows();
+        let mut next_row = 0;
+        for done in 0..total {
+            if self.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                report.outcome = Outcome::Cancelled;
+                break;
+            }
+            let k = first + done;
+            while let Some(row) = rows.get(next_row)
+                && stimulus.due_scan(row, self.scan_ms) <= k
+            {
+                for (cell, column) in row.cells.iter().zip(stimulus.columns()) {
+                    if let Some(v) = *cell
+                        && !write_address(&mut self.image, &column.address, v)
+                    {
+                        return Err(SimError::StimulusAddress {
+                            column: column.name.clone(),
+                            line: row.line,
+                        });
+                    }
+                }
+                next_row += 1;
+            }
+            let t_ms = self.time_of(k);
+            let status = self.engine.scan(&mut self.image, t_ms);
+            self.next_scan = k + 1;
+            report.scans = done + 1;
+            report.next_scan = k + 1;
+            report.t_ms = t_ms;
+            let event = ScanEvent {
+                scan: k,
+                t_ms,
+                image: &self.image,
+                status,
+            };
+            observer.observe(&event).map_err(SimError::Observer)?;
+            if let Some(p) = self.progress.as_mut() {
+                p(Progress {
+                    done: done + 1,
+                    total,
+                    t_ms,
+                });
+            }
+            match status {
+                ScanStatus::Ok => {}
+                ScanStatus::Stopped => {
+                    report.outcome = Outcome::Stopped;
+                    break;
+                }
+                ScanStatus::Fatal => {
+                    report.outcome = Outcome::Fatal {
+                        code: self.image.fatal(),
+                    };
+                    break;
+                }
+            }
+        }
+        Ok(report)
+    }
+}
+
+#[cfg(test)]
+#[path = "driver_tests.rs"]
+mod tests;
