@@ -6,6 +6,7 @@ use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 mod check;
+mod dump_ir;
 
 /// Compile PLC statement-list programs to native code, run them on virtual time, and prove the
 /// JIT equal to the reference interpreter.
@@ -20,6 +21,8 @@ struct Cli {
 enum Command {
     /// Check programs and report every diagnostic.
     Check(check::Args),
+    /// Print the checked IR, one op per line with its source line.
+    DumpIr(dump_ir::Args),
 }
 
 fn main() -> ExitCode {
@@ -36,6 +39,7 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Check(args) => check::main(args),
+        Command::DumpIr(args) => dump_ir::main(args),
     };
     match result {
         Ok(code) => code,

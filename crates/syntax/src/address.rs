@@ -1,0 +1,192 @@
+//! Single addresses for the CLI's stimulus and watch options (`I0.3`, `VW100`, `T37`, a symbol).
+
+use crate::classes::{BitClass, Cx, Val};
+use crate::lexer::Tok;
+use crate::operand::{Syn, resolve};
+use crate::symbols::SymbolTable;
+use std::fmt;
+use stljit_core::ir::{BitLoc, Loc, Operand};
+use stljit_core::{CpuProfile, FileId, Width};
+
+/// A resolved address.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Address {
+    /// A bit (`I0.3`, `T37`, `C5`).
+    Bit(BitLoc),
+    /// A value (`IB1`, `AIW0`, `VW100`, `VD50`, `AC0` as a dword, `SMB28`).
+    Value {
+        /// Where it lives.
+        loc: Loc,
+        /// Its width.
+        width: Width,
+    },
+}
+
+/// Why an address was rejected.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AddressError {
+    /// The message, e.g. "`Q16.0` is out of range for the A5".
+    pub message: String,
+}
+
+impl fmt::Display for AddressError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for AddressError {}
+
+/// Parses one address against `profile` (and `symbols`, for names). `T37`/`C5` mean the bit;
+/// `ACn` the whole dword.
+pub fn parse_address(
+    text: &str,
+    profile: &CpuProfile,
+    symbols: Option<&SymbolTable>,
+) -> Result<Address, AddressError> {
+    let text = text.trim();
+    let profile: &'static CpuProfile = profile.id.profile();
+    let mut cx = Cx {
+        profile,
+        symbols,
+        diags: Vec::new(),
+        file: FileId(0),
+        line: 1,
+    };
+    let tok = Tok {
+        text,
+        col: 1,
+        len: u32::try_from(text.chars().count()).unwrap_or(u32::MAX),
+    };
+    let result = match resolve(text, symbols) {
+        Ok(Syn::Bit { .. } | Syn::Timer(_) | Syn::Counter(_)) => {
+            cx.bit(tok, BitClass::Read).map(Address::Bit)
+        }
+        Ok(Syn::Mem { width, .. }) => value(&mut cx, tok, width),
+        Ok(Syn::Acc(_) | Syn::Hc(_)) => value(&mut cx, tok, Width::DWord),
+        Ok(other) => {
+            return Err(AddressError {
+                message: format!("`{text}` is {}, not an address", other.describe()),
+            });
+        }
+        Err(_) => cx.syn(tok).map(|_| {
+            Address::Bit(BitLoc {
+                area: stljit_core::Area::I,
+                byte: 0,
+                bit: 0,
+            })
+        }),
+    };
+    match (result, cx.diags.first()) {
+        (Ok(a), None) => Ok(a),
+        (_, Some(d)) => Err(AddressError {
+            message: match &d.help {
+                Some(h) => format!("{} ({h})", d.message),
+                None => d.message.clone(),
+            },
+        }),
+        (Err(_), None) => Err(AddressError {
+            message: format!("`{text}` is not an address"),
+        }),
+    }
+}
+
+fn value(cx: &mut Cx<'_>, tok: Tok<'_>, width: Width) -> Result<Address, crate::classes::Reported> {
+    match cx.value(tok, Val::input(width))? {
+        Operand::Mem(loc) => Ok(Address::Value { loc, width }),
+        _ => Err(crate::classes::Reported),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use stljit_core::ProfileId;
+    use stljit_core::{Area, ir::Loc};
+
+    fn a5(t: &str) -> Result<Address, AddressError> {
+        parse_address(t, ProfileId::A5.profile(), None)
+    }
+
+    #[test]
+    fn addresses() {
+        assert_eq!(
+            a5("I0.3"),
+            Ok(Address::Bit(BitLoc {
+                area: Area::I,
+                byte: 0,
+                bit: 3
+            }))
+        );
+        assert_eq!(
+            a5("T37"),
+            Ok(Address::Bit(BitLoc {
+                area: Area::TimerBit,
+                byte: 37,
+                bit: 0
+            }))
+        );
+        assert_eq!(
+            a5("C5"),
+            Ok(Address::Bit(BitLoc {
+                area: Area::CounterBit,
+                byte: 5,
+                bit: 0
+            }))
+        );
+        assert_eq!(
+            a5("VW100"),
+            Ok(Address::Value {
+                loc: Loc {
+                    area: Area::V,
+                    offset: 100
+                },
+                width: Width::Word
+            })
+        );
+        assert_eq!(
+            a5("AIW0"),
+            Ok(Address::Value {
+                loc: Loc {
+                    area: Area::AI,
+                    offset: 0
+                },
+                width: Width::Word
+            })
+        );
+        assert_eq!(
+            a5("AC0"),
+            Ok(Address::Value {
+                loc: Loc {
+                    area: Area::AC,
+                    offset: 0
+                },
+                width: Width::DWord
+            })
+        );
+        assert_eq!(
+            a5("SMB28"),
+            Ok(Address::Value {
+                loc: Loc {
+                    area: Area::SM,
+                    offset: 28
+                },
+                width: Width::Byte
+            })
+        );
+        assert_eq!(
+            a5("VD50"),
+            Ok(Address::Value {
+                loc: Loc {
+                    area: Area::V,
+                    offset: 50
+                },
+                width: Width::DWord
+            })
+        );
+        assert!(a5("Q16.0").is_err());
+        assert!(a5("VW2499").is_err());
+        assert!(a5("Motor").is_err());
+        assert!(a5("+5").is_err());
+    }
+}

@@ -1,0 +1,338 @@
+//! Program control (spec §4.13): END/MEND/STOP/WDR, JMP/LBL, CALL/RET/CRET, FOR/NEXT and the SCR
+//! instructions, with the block-structure checks they need.
+
+use crate::classes::{BitClass, R};
+use crate::codes::Code;
+use crate::diag::clip;
+use crate::lexer::{Line, Tok};
+use crate::operand::unquote;
+use crate::program::{Lowerer, OpenScr, PouState};
+use crate::symbols::{PouRef, SymTarget};
+use stljit_core::ir::{Op, PouKind};
+use stljit_core::{OpIdx, PouId, Width};
+
+impl Lowerer<'_> {
+    /// Rejects `what` inside an open SCR segment.
+    fn not_in_scr(&mut self, ps: &PouState) -> R<()> {
+        match &ps.scr {
+            Some(open) => {
+                let line = open.span.line;
+                Err(self.cx.report(
+                    Code::InScr,
+                    self.mnemonic,
+                    format!(
+                        "`{}` is not allowed inside an SCR segment",
+                        self.mnemonic.text
+                    ),
+                    Some(format!(
+                        "the segment opened by LSCR on line {line} must be closed with SCRE first"
+                    )),
+                ))
+            }
+            None => Ok(()),
+        }
+    }
+
+    fn only_in(&mut self, ps: &PouState, ok: bool, where_: &str) -> R<()> {
+        if ok {
+            return Ok(());
+        }
+        let kind = match ps.kind {
+            PouKind::Main => "the main program",
+            PouKind::Subroutine(_) => "a subroutine",
+            PouKind::Interrupt(_) => "an interrupt routine",
+        };
+        Err(self.cx.report(
+            Code::WrongBlock,
+            self.mnemonic,
+            format!("`{}` is not allowed in {kind}", self.mnemonic.text),
+            Some(format!(
+                "`{}` is allowed only in {where_}",
+                self.mnemonic.text
+            )),
+        ))
+    }
+
+    /// Lowers a program-control instruction, or reports an unknown mnemonic.
+    pub(crate) fn control(&mut self, ps: &mut PouState, m: &str, line: &Line<'_>) -> R<()> {
+        let o = line.ops;
+        let main = ps.kind == PouKind::Main;
+        let op = match m {
+            "END" | "MEND" => {
+                self.arity(line, 0, 0)?;
+                self.only_in(ps, main, "the main program")?;
+                if m == "END" {
+                    self.not_in_scr(ps)?;
+                }
+                Op::End {
+                    conditional: m == "END",
+                }
+            }
+            "STOP" | "WDR" => {
+                self.arity(line, 0, 0)?;
+                if m == "STOP" { Op::Stop } else { Op::Wdr }
+            }
+            "RET" | "CRET" => {
+                self.arity(line, 0, 0)?;
+                self.only_in(
+                    ps,
+                    matches!(ps.kind, PouKind::Subroutine(_)),
+                    "a subroutine",
+                )?;
+                Op::Return {
+                    conditional: m == "CRET",
+                }
+            }
+            "RETI" => {
+                self.arity(line, 0, 0)?;
+                self.only_in(
+                    ps,
+                    matches!(ps.kind, PouKind::Interrupt(_)),
+                    "an interrupt routine",
+                )?;
+                Op::Return { conditional: false }
+            }
+            "JMP" | "LBL" => {
+                self.arity(line, 1, 1)?;
+                self.not_in_scr(ps)?;
+                let max = u32::from(self.cx.profile.max_label);
+                let n = self.cx.number(o[0], 0, max, "label", Code::NumberRange)?;
+                let id = ps.label(n);
+                if m == "JMP" {
+                    let span = self.cx.span(o[0]);
+                    ps.jumps.push((n, span, o[0].text.to_owned()));
+                    Op::Jump(id)
+                } else {
+                    let span = self.cx.span(o[0]);
+                    if let Some((_, first)) = ps.label_defs[id.index()] {
+                        return Err(self.cx.report(
+                            Code::DuplicateLabel,
+                            o[0],
+                            format!("label {n} is defined twice in this block"),
+                            Some(format!("first defined on line {}", first.line)),
+                        ));
+                    }
+                    ps.label_defs[id.index()] = Some((ps.next_idx(), span));
+                    Op::Label(id)
+                }
+            }
+            "CALL" => {
+                if line.n_ops > 1 {
+                    return Err(self.cx.report(
+                        Code::SubroutineParams,
+                        line.rest,
+                        "subroutine parameters are not supported yet".to_owned(),
+                        Some(
+                            "call the subroutine without parameters and pass values in V memory"
+                                .into(),
+                        ),
+                    ));
+                }
+                self.arity(line, 1, 1)?;
+                Op::Call(self.call_target(o[0])?)
+            }
+            "FOR" => {
+                self.arity(line, 3, 3)?;
+                self.not_in_scr(ps)?;
+                let w = Width::Word;
+                let index = self.cx.value(o[0], crate::classes::Val::output(w));
+                let init = self.cx.value(o[1], crate::classes::Val::input(w));
+                let limit = self.cx.value(o[2], crate::classes::Val::input(w));
+                let (index, init, limit) = (index?, init?, limit?);
+                let max = usize::from(self.cx.profile.max_for_depth);
+                if ps.fors.len() >= max {
+                    return Err(self.cx.report(
+                        Code::ForDepth,
+                        self.mnemonic,
+                        format!("FOR loops nested deeper than {max}"),
+                        Some(format!(
+                            "the {} allows {max} nested FOR loops",
+                            self.cx.profile.model
+                        )),
+                    ));
+                }
+                let span = self.cx.span(self.mnemonic);
+                ps.fors.push((ps.next_idx(), span));
+                Op::For {
+                    index,
+                    init,
+                    limit,
+                    next: OpIdx(0),
+                }
+            }
+            "NEXT" => {
+                self.arity(line, 0, 0)?;
+                self.not_in_scr(ps)?;
+                let Some((head, _)) = ps.fors.pop() else {
+                    return Err(self.cx.report(
+                        Code::ForNext,
+                        self.mnemonic,
+                        "NEXT without FOR".to_owned(),
+                        Some("every NEXT closes the nearest open FOR of the same block".into()),
+                    ));
+                };
+                let here = ps.next_idx();
+                if let Some(Op::For { next, .. }) = ps.ops.get_mut(head.index()) {
+                    *next = here;
+                }
+                Op::Next { head }
+            }
+            "LSCR" => {
+                self.arity(line, 1, 1)?;
+                let bit = self.cx.bit(o[0], BitClass::Seq)?;
+                let span = self.cx.span(self.mnemonic);
+                if let Some(open) = &ps.scr {
+                    let l = open.span.line;
+                    return Err(self.cx.report(
+                        Code::ScrNesting,
+                        self.mnemonic,
+                        "LSCR inside an open SCR segment".to_owned(),
+                        Some(format!(
+                            "close the segment opened on line {l} with SCRE first"
+                        )),
+                    ));
+                }
+                match self.scr_bits.get(&bit) {
+                    Some(&(pou, first)) if pou != ps.id => {
+                        self.cx.report(
+                            Code::ScrBitShared,
+                            o[0],
+                            format!(
+                                "`{}` is already a segment flag in another block",
+                                clip(o[0].text)
+                            ),
+                            Some(format!(
+                                "first used on line {} of file {}",
+                                first.line, first.file.0
+                            )),
+                        );
+                    }
+                    Some(_) => {}
+                    None => {
+                        self.scr_bits.insert(bit, (ps.id, self.cx.span(o[0])));
+                    }
+                }
+                ps.scr = Some(OpenScr {
+                    at: ps.next_idx(),
+                    bit,
+                    span,
+                    cond_ends: Vec::new(),
+                });
+                Op::ScrBegin { bit }
+            }
+            "SCRT" => {
+                self.arity(line, 1, 1)?;
+                let to = self.cx.bit(o[0], BitClass::Seq)?;
+                let from = self.open_scr(ps)?;
+                Op::ScrTransition { to, from }
+            }
+            "CSCRE" => {
+                self.arity(line, 0, 0)?;
+                self.open_scr(ps)?;
+                let here = ps.next_idx();
+                if let Some(open) = &mut ps.scr {
+                    open.cond_ends.push(here);
+                }
+                Op::ScrCondEnd { end: OpIdx(0) }
+            }
+            "SCRE" => {
+                self.arity(line, 0, 0)?;
+                self.open_scr(ps)?;
+                let here = ps.next_idx();
+                if let Some(open) = ps.scr.take() {
+                    let _ = open.at;
+                    for i in open.cond_ends {
+                        if let Some(Op::ScrCondEnd { end }) = ps.ops.get_mut(i.index()) {
+                            *end = here;
+                        }
+                    }
+                }
+                Op::ScrEnd
+            }
+            _ => {
+                self.unknown(self.mnemonic);
+                return Ok(());
+            }
+        };
+        self.emit(ps, op);
+        Ok(())
+    }
+
+    /// The S bit of the open segment, or an error for SCRT/CSCRE/SCRE outside one.
+    fn open_scr(&mut self, ps: &PouState) -> R<stljit_core::ir::BitLoc> {
+        match &ps.scr {
+            Some(open) => Ok(open.bit),
+            None => Err(self.cx.report(
+                Code::ScrNesting,
+                self.mnemonic,
+                format!("`{}` outside an SCR segment", self.mnemonic.text),
+                Some("SCRT, CSCRE and SCRE belong between LSCR and SCRE".into()),
+            )),
+        }
+    }
+
+    /// Resolves a CALL target: a number, `SBRn`, a block name or a symbol naming `SBRn`.
+    fn call_target(&mut self, t: Tok<'_>) -> R<PouId> {
+        let text = unquote(t.text).unwrap_or(t.text);
+        let upper = text.to_ascii_uppercase();
+        let number = text.parse::<u32>().ok().or_else(|| {
+            upper
+                .strip_prefix("SBR")
+                .filter(|d| !d.is_empty() && d.bytes().all(|c| c.is_ascii_digit()))
+                .and_then(|d| d.parse::<u32>().ok())
+        });
+        let number = match number {
+            Some(n) => Some(n),
+            None => match self.names.get(text) {
+                Some(&(id, PouKind::Subroutine(_))) => return Ok(id),
+                Some(&(_, _)) => {
+                    return Err(self.cx.report(
+                        Code::UnknownSubroutine,
+                        t,
+                        format!("`{}` is not a subroutine", clip(text)),
+                        Some("CALL takes a subroutine (SBRn or its name)".into()),
+                    ));
+                }
+                None => match self.cx.symbols.and_then(|s| s.get(text)) {
+                    Some(SymTarget::Pou(PouRef::Subroutine(n))) => Some(u32::from(*n)),
+                    _ => None,
+                },
+            },
+        };
+        let max = u32::from(self.cx.profile.max_subroutine);
+        if let Some(n) = number {
+            if n > max {
+                return Err(self.cx.report(
+                    Code::NumberRange,
+                    t,
+                    format!("subroutine number {n} is out of range"),
+                    Some(format!("allowed: SBR0 - SBR{max}")),
+                ));
+            }
+            if let Some(&id) = u16::try_from(n).ok().and_then(|n| self.subs.get(&n)) {
+                return Ok(id);
+            }
+        }
+        let mut known: Vec<String> = self
+            .names
+            .iter()
+            .filter_map(|(name, &(_, k))| match k {
+                PouKind::Subroutine(n) => Some(format!("{name} (SBR{n})")),
+                _ => None,
+            })
+            .collect();
+        known.sort();
+        known.truncate(8);
+        let help = if known.is_empty() {
+            "no subroutine is defined".to_owned()
+        } else {
+            format!("defined: {}", known.join(", "))
+        };
+        Err(self.cx.report(
+            Code::UnknownSubroutine,
+            t,
+            format!("unknown subroutine `{}`", clip(text)),
+            Some(help),
+        ))
+    }
+}

@@ -1,0 +1,166 @@
+//! The S7-200/A5 statement-list front end of stljit.
+//!
+//! [`compile`] takes the files of a project (plain STL or MicroWIN `.awl` exports, UTF-8 or GBK),
+//! an optional MicroWIN symbol table and a CPU profile, and returns the checked
+//! [`stljit_core::ir::Program`] together with every diagnostic. It never panics and never stops
+//! at the first error. [`print_program`] turns a program back into STL text that parses to the
+//! same IR; [`parse_address`] reads the addresses the CLI's stimulus and watch options name.
+//!
+//! Pipeline: `decode` → `structure` (lines into POUs, using `lexer`) → `program` (lowering with
+//! `lower`/`control`, operands through `operand`/`classes`, the `stack` analysis) → IR.
+
+mod address;
+mod classes;
+mod codes;
+mod control;
+mod decode;
+mod diag;
+mod lexer;
+mod lower;
+mod mnemonics;
+mod operand;
+mod print;
+mod program;
+mod stack;
+mod structure;
+mod symbols;
+
+pub use address::{Address, AddressError, parse_address};
+pub use codes::{Code, Severity};
+pub use decode::Encoding;
+pub use diag::{Diagnostic, SourceText, Sources, render_human, render_json};
+pub use print::{print_op, print_program};
+pub use symbols::{PouRef, SymbolTable};
+
+use classes::Cx;
+use stljit_core::ir::Program;
+use stljit_core::{FileId, ProfileId};
+
+/// One input file: its name (for messages) and raw bytes (any encoding the front end accepts).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SourceFile {
+    /// The name shown in diagnostics, usually the path.
+    pub name: String,
+    /// The raw contents.
+    pub bytes: Vec<u8>,
+}
+
+/// The result of [`compile`].
+#[derive(Clone, Debug)]
+pub struct Compilation {
+    /// The checked program; `Some` iff there is no error diagnostic.
+    pub program: Option<Program>,
+    /// Every diagnostic of every file, sorted by file, line and column.
+    pub diagnostics: Vec<Diagnostic>,
+    /// The decoded sources (program files first, then the symbol table), for rendering.
+    pub sources: Sources,
+    /// The symbol table, when one was given (for resolving watch addresses by name).
+    pub symbols: Option<SymbolTable>,
+}
+
+impl Compilation {
+    /// Number of error diagnostics.
+    pub fn error_count(&self) -> usize {
+        self.diagnostics
+            .iter()
+            .filter(|d| d.severity == Severity::Error)
+            .count()
+    }
+
+    /// Number of warnings.
+    pub fn warning_count(&self) -> usize {
+        self.diagnostics.len() - self.error_count()
+    }
+}
+
+/// Decodes `file`, reporting undecodable bytes as [`Code::Encoding`] on `id`.
+fn decode_file(file: &SourceFile, id: FileId, diags: &mut Vec<Diagnostic>) -> SourceText {
+    let (text, _, issue) = decode::decode(&file.bytes);
+    if let Some(issue) = issue {
+        let before = String::from_utf8_lossy(&file.bytes[..issue.byte.min(file.bytes.len())]);
+        let line = before.matches('\n').count() + 1;
+        let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        let span = diag::Span {
+            file: id,
+            line: u32::try_from(line).unwrap_or(u32::MAX),
+            col: u32::try_from(col).unwrap_or(u32::MAX),
+            len: 1,
+        };
+        diags.push(
+            Diagnostic::new(
+                Code::Encoding,
+                span,
+                "",
+                "the file is neither UTF-8 nor GBK text (invalid byte sequence here)",
+            )
+            .help("save the program as UTF-8 or GBK text"),
+        );
+    }
+    SourceText {
+        name: file.name.clone(),
+        text,
+    }
+}
+
+/// Compiles a project: every file in `files` (together one program), the optional symbol table,
+/// against the CPU `profile`. All diagnostics of all files are reported.
+pub fn compile(
+    files: &[SourceFile],
+    symbols: Option<&SourceFile>,
+    profile: ProfileId,
+) -> Compilation {
+    let mut diags = Vec::new();
+    let mut sources = Sources::default();
+    for (i, f) in files.iter().enumerate() {
+        let text = decode_file(f, FileId::new(i), &mut diags);
+        sources.files.push(text);
+    }
+    let table = symbols.map(|s| {
+        let id = FileId::new(files.len());
+        let text = decode_file(s, id, &mut diags);
+        let (table, d) = SymbolTable::parse(&text.text, id);
+        diags.extend(d);
+        sources.files.push(text);
+        table
+    });
+    let profile_data = profile.profile();
+    let program = {
+        let texts: Vec<(FileId, &str)> = sources.files[..files.len()]
+            .iter()
+            .enumerate()
+            .map(|(i, s)| (FileId::new(i), s.text.as_str()))
+            .collect();
+        let pous = structure::structure(&texts, profile_data, &mut diags);
+        let cx = Cx {
+            profile: profile_data,
+            symbols: table.as_ref(),
+            diags: std::mem::take(&mut diags),
+            file: FileId(0),
+            line: 0,
+        };
+        let names = files.iter().map(|f| f.name.clone()).collect();
+        let (program, d) = program::lower(&pous, cx, names);
+        diags = d;
+        program
+    };
+    diags.sort_by_key(|d| (d.file, d.line, d.col));
+    let ok = diags.iter().all(|d| d.severity != Severity::Error);
+    Compilation {
+        program: ok.then_some(program),
+        diagnostics: diags,
+        sources,
+        symbols: table,
+    }
+}
+
+/// Compiles one UTF-8 text as a single file named `name` (for tests and tools).
+pub fn compile_str(name: &str, text: &str, profile: ProfileId) -> Compilation {
+    compile(
+        &[SourceFile {
+            name: name.to_owned(),
+            bytes: text.as_bytes().to_vec(),
+        }],
+        None,
+        profile,
+    )
+}

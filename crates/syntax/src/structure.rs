@@ -1,0 +1,392 @@
+//! Program structure: groups the lexed lines of every file into POUs. Two layouts are accepted
+//! (spec §4.13): the linear one (main … MEND, `SBR n` … RET, `INT n` …) and MicroWIN's export
+//! blocks (`ORGANIZATION_BLOCK`, `SUBROUTINE_BLOCK`, `INTERRUPT_BLOCK` with `TITLE=`, `VAR_…`
+//! sections, `BEGIN` and `END_…_BLOCK`).
+
+use crate::codes::Code;
+use crate::diag::{Diagnostic, Span, clip};
+use crate::lexer::{Line, Tok, lex_line};
+use stljit_core::ir::PouKind;
+use stljit_core::{CpuProfile, FileId};
+
+/// The source lines of one POU.
+#[derive(Debug)]
+pub(crate) struct PouSrc<'a> {
+    /// Symbolic name (`MAIN`, `Motor_Logic`, `SBR0`).
+    pub(crate) name: String,
+    /// Main, subroutine or interrupt.
+    pub(crate) kind: PouKind,
+    /// The file holding it.
+    pub(crate) file: FileId,
+    /// Where it is declared (for duplicate messages).
+    pub(crate) decl: Span,
+    /// Its instruction lines.
+    pub(crate) lines: Vec<Line<'a>>,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum BlockKind {
+    Org,
+    Sub,
+    Int,
+}
+
+impl BlockKind {
+    fn end_keyword(self) -> &'static str {
+        match self {
+            BlockKind::Org => "END_ORGANIZATION_BLOCK",
+            BlockKind::Sub => "END_SUBROUTINE_BLOCK",
+            BlockKind::Int => "END_INTERRUPT_BLOCK",
+        }
+    }
+}
+
+struct Builder<'a, 'd> {
+    pous: Vec<PouSrc<'a>>,
+    diags: &'d mut Vec<Diagnostic>,
+    profile: &'static CpuProfile,
+}
+
+fn span(file: FileId, line: u32, t: Tok<'_>) -> Span {
+    Span {
+        file,
+        line,
+        col: t.col,
+        len: t.len,
+    }
+}
+
+fn is(t: &Tok<'_>, kw: &str) -> bool {
+    t.text.eq_ignore_ascii_case(kw)
+}
+
+impl<'a> Builder<'a, '_> {
+    fn error(&mut self, s: Span, text: &str, msg: String, help: Option<&str>) {
+        let mut d = Diagnostic::new(Code::Structure, s, text, msg);
+        d.help = help.map(str::to_owned);
+        self.diags.push(d);
+    }
+
+    /// Adds a POU, reporting a second main program or a reused block number.
+    fn add(&mut self, name: String, kind: PouKind, file: FileId, decl: Span, text: &str) -> usize {
+        if let Some(prev) = self.pous.iter().find(|p| p.kind == kind) {
+            let what = match kind {
+                PouKind::Main => "the main program is defined twice".to_owned(),
+                PouKind::Subroutine(n) => format!("subroutine SBR{n} is defined twice"),
+                PouKind::Interrupt(n) => format!("interrupt routine INT{n} is defined twice"),
+            };
+            let help = format!(
+                "first defined at line {} of file {}",
+                prev.decl.line, prev.decl.file.0
+            );
+            self.error(decl, text, what, Some(&help));
+        } else if let Some(prev) = self
+            .pous
+            .iter()
+            .find(|p| p.name == name && kind != PouKind::Main)
+        {
+            let help = format!("first used at line {}", prev.decl.line);
+            self.error(
+                decl,
+                text,
+                format!("block name `{}` is used twice", clip(&name)),
+                Some(&help),
+            );
+        }
+        self.pous.push(PouSrc {
+            name,
+            kind,
+            file,
+            decl,
+            lines: Vec::new(),
+        });
+        self.pous.len() - 1
+    }
+
+    /// Parses `Motor_Logic:SBR0` / `MAIN:OB1` / `SBR0` after a block keyword.
+    fn block_header(&mut self, kind: BlockKind, line: &Line<'a>, file: FileId) -> usize {
+        let rest = line.rest;
+        let s = span(
+            file,
+            line.line,
+            if rest.text.is_empty() {
+                line.mnemonic
+            } else {
+                rest
+            },
+        );
+        let (name, id) = match rest.text.rsplit_once(':') {
+            Some((n, id)) => (n.trim(), id.trim()),
+            None => (rest.text, rest.text),
+        };
+        let upper = id.to_ascii_uppercase();
+        let (prefix, default) = match kind {
+            BlockKind::Org => ("OB", "MAIN"),
+            BlockKind::Sub => ("SBR", ""),
+            BlockKind::Int => ("INT", ""),
+        };
+        let number = upper
+            .strip_prefix(prefix)
+            .and_then(|n| n.parse::<u16>().ok());
+        let name = if name.is_empty() { default } else { name };
+        let pou_kind = match (kind, number) {
+            (BlockKind::Org, Some(1)) => Some(PouKind::Main),
+            (BlockKind::Sub, Some(n)) if n <= self.profile.max_subroutine => {
+                Some(PouKind::Subroutine(n))
+            }
+            (BlockKind::Int, Some(n)) if n <= 127 => Some(PouKind::Interrupt(n)),
+            _ => None,
+        };
+        let pou_kind = pou_kind.unwrap_or_else(|| {
+            let expected = match kind {
+                BlockKind::Org => "NAME:OB1".to_owned(),
+                BlockKind::Sub => format!("NAME:SBRn with n 0 .. {}", self.profile.max_subroutine),
+                BlockKind::Int => "NAME:INTn with n 0 .. 127".to_owned(),
+            };
+            self.error(
+                s,
+                rest.text,
+                format!("bad block header `{}`", clip(rest.text)),
+                Some(&format!("expected {expected}")),
+            );
+            // Keep checking the body under a number nobody can call.
+            match kind {
+                BlockKind::Org => PouKind::Main,
+                BlockKind::Sub => PouKind::Subroutine(u16::MAX),
+                BlockKind::Int => PouKind::Interrupt(u16::MAX),
+            }
+        });
+        let name = if name.is_empty() {
+            match pou_kind {
+                PouKind::Subroutine(n) => format!("SBR{n}"),
+                PouKind::Interrupt(n) => format!("INT{n}"),
+                PouKind::Main => "MAIN".to_owned(),
+            }
+        } else {
+            name.to_owned()
+        };
+        self.add(name, pou_kind, file, s, rest.text)
+    }
+
+    /// `SBR n` / `INT n` in the linear layout.
+    fn linear_marker(&mut self, sub: bool, line: &Line<'a>, file: FileId) -> usize {
+        let t = line.ops[0];
+        let s = span(
+            file,
+            line.line,
+            if line.n_ops == 0 { line.mnemonic } else { t },
+        );
+        let max = if sub {
+            self.profile.max_subroutine
+        } else {
+            127
+        };
+        let n = t
+            .text
+            .parse::<u16>()
+            .ok()
+            .filter(|&n| n <= max && line.n_ops == 1);
+        let n = n.unwrap_or_else(|| {
+            let what = if sub { "SBR" } else { "INT" };
+            self.error(
+                s,
+                t.text,
+                format!("`{what}` needs one number 0 .. {max}"),
+                None,
+            );
+            u16::MAX
+        });
+        let (name, kind) = if sub {
+            (format!("SBR{n}"), PouKind::Subroutine(n))
+        } else {
+            (format!("INT{n}"), PouKind::Interrupt(n))
+        };
+        self.add(name, kind, file, s, line.mnemonic.text)
+    }
+}
+
+/// Groups every file's lines into POUs; the main program comes first (an empty one if no file
+/// has main code).
+pub(crate) fn structure<'a>(
+    files: &[(FileId, &'a str)],
+    profile: &'static CpuProfile,
+    diags: &mut Vec<Diagnostic>,
+) -> Vec<PouSrc<'a>> {
+    let mut b = Builder {
+        pous: Vec::new(),
+        diags,
+        profile,
+    };
+    for &(file, text) in files {
+        structure_file(&mut b, file, text);
+    }
+    let mut pous = b.pous;
+    match pous.iter().position(|p| p.kind == PouKind::Main) {
+        Some(0) => {}
+        Some(i) => {
+            let main = pous.remove(i);
+            pous.insert(0, main);
+        }
+        None => pous.insert(
+            0,
+            PouSrc {
+                name: "MAIN".into(),
+                kind: PouKind::Main,
+                file: files.first().map_or(FileId(0), |f| f.0),
+                decl: Span::default(),
+                lines: Vec::new(),
+            },
+        ),
+    }
+    pous
+}
+
+fn structure_file<'a>(b: &mut Builder<'a, '_>, file: FileId, text: &'a str) {
+    // The open block and whether its BEGIN was seen; the linear POU lines go to.
+    let mut block: Option<(BlockKind, usize, Span)> = None;
+    let mut in_var: Option<Span> = None;
+    let mut linear: Option<usize> = None;
+    let mut used_blocks = false;
+    let mut warned_outside = false;
+    for (i, raw) in text.split('\n').enumerate() {
+        let number = u32::try_from(i + 1).unwrap_or(u32::MAX);
+        let Some(line) = lex_line(raw, number) else {
+            continue;
+        };
+        let m = line.mnemonic;
+        let s = span(file, number, m);
+        let upper_prefix = |p: &str| {
+            m.text.len() >= p.len()
+                && m.text.as_bytes()[..p.len()].eq_ignore_ascii_case(p.as_bytes())
+        };
+        if upper_prefix("NETWORK") && m.text[7..].bytes().all(|c| c.is_ascii_digit()) {
+            continue;
+        }
+        if in_var.is_some() {
+            if is(&m, "END_VAR") {
+                in_var = None;
+            }
+            continue;
+        }
+        if upper_prefix("TITLE")
+            && (m.text[5..].starts_with('=') || line.rest.text.starts_with('='))
+        {
+            continue;
+        }
+        let kind = [
+            ("ORGANIZATION_BLOCK", BlockKind::Org),
+            ("SUBROUTINE_BLOCK", BlockKind::Sub),
+            ("INTERRUPT_BLOCK", BlockKind::Int),
+        ]
+        .into_iter()
+        .find(|(kw, _)| is(&m, kw));
+        if let Some((_, kind)) = kind {
+            if let Some((open, _, at)) = block.take() {
+                b.error(
+                    s,
+                    m.text,
+                    format!("block opened at line {} is not closed", at.line),
+                    Some(open.end_keyword()),
+                );
+            }
+            used_blocks = true;
+            let idx = b.block_header(kind, &line, file);
+            block = Some((kind, idx, s));
+            continue;
+        }
+        if let Some(end) = [BlockKind::Org, BlockKind::Sub, BlockKind::Int]
+            .into_iter()
+            .find(|k| is(&m, k.end_keyword()))
+        {
+            match block {
+                Some((open, _, _)) if open == end => block = None,
+                Some((open, _, _)) => {
+                    b.error(
+                        s,
+                        m.text,
+                        format!("`{}` closes a different kind of block", m.text),
+                        Some(open.end_keyword()),
+                    );
+                    block = None;
+                }
+                None => b.error(
+                    s,
+                    m.text,
+                    format!("`{}` without an open block", m.text),
+                    None,
+                ),
+            }
+            continue;
+        }
+        if is(&m, "BEGIN") {
+            if block.is_none() {
+                b.error(s, m.text, "BEGIN outside a block".into(), None);
+            }
+            continue;
+        }
+        if ["VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR", "VAR_TEMP"]
+            .iter()
+            .any(|k| is(&m, k))
+        {
+            in_var = Some(s);
+            continue;
+        }
+        if is(&m, "END_VAR") {
+            b.error(s, m.text, "END_VAR without VAR_…".into(), None);
+            continue;
+        }
+        let marker = if is(&m, "SBR") {
+            Some(true)
+        } else if is(&m, "INT") {
+            Some(false)
+        } else {
+            None
+        };
+        if let Some(sub) = marker {
+            if block.is_some() {
+                b.error(
+                    s,
+                    m.text,
+                    format!("`{}` marker inside a block", m.text),
+                    Some("blocks end with END_…_BLOCK"),
+                );
+                continue;
+            }
+            linear = Some(b.linear_marker(sub, &line, file));
+            continue;
+        }
+        let target = if let Some((_, idx, _)) = block {
+            idx
+        } else if let Some(idx) = linear {
+            idx
+        } else {
+            if used_blocks && !warned_outside {
+                warned_outside = true;
+                b.error(
+                    s,
+                    m.text,
+                    "instruction outside any block".into(),
+                    Some("put it between BEGIN and END_…_BLOCK"),
+                );
+            }
+            let idx = match b.pous.iter().position(|p| p.kind == PouKind::Main) {
+                Some(i) if b.pous[i].file == file => i,
+                _ => b.add("MAIN".into(), PouKind::Main, file, s, m.text),
+            };
+            linear = Some(idx);
+            idx
+        };
+        b.pous[target].lines.push(line);
+    }
+    if let Some((open, _, at)) = block {
+        b.error(
+            at,
+            "",
+            "block opened here is not closed before the end of the file".to_owned(),
+            Some(open.end_keyword()),
+        );
+    }
+    if let Some(at) = in_var {
+        b.error(at, "", "VAR section is not closed".into(), Some("END_VAR"));
+    }
+}
