@@ -1,1 +1,7 @@
-//! Interpreter unit tests (see the `tests/` submodules).
+//! Interpreter unit tests: IR built directly with the small helpers of [`build`], expected values
+//! from the spec (each test names its section).
+
+mod build;
+mod conformance;
+mod control;
+mod ops;

@@ -1,0 +1,1 @@
+//! Program control: CALL, RET/CRET, END, STOP, watchdog, fatal errors.

@@ -1,0 +1,1 @@
+//! Instruction groups: stack edge cases, boxes with flags and error paths, immediate I/O.
