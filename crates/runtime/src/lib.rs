@@ -22,6 +22,7 @@ pub mod image;
 pub mod mem;
 pub mod pointer;
 pub mod scan;
+pub mod sim;
 pub mod timer;
 
 #[cfg(test)]
