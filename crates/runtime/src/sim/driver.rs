@@ -51,16 +51,26 @@ impl Observer for () {
     }
 }
 
-impl<F: FnMut(&ScanEvent<'_>) -> io::Result<()>> Observer for F {
+/// Both observers see every scan, the first one first (e.g. a CSV and a VCD trace at once).
+impl<A: Observer, B: Observer> Observer for (A, B) {
     fn observe(&mut self, event: &ScanEvent<'_>) -> io::Result<()> {
-        self(event)
+        self.0.observe(event)?;
+        self.1.observe(event)
     }
 }
 
-/// Every observer in the list sees every scan, in order.
-impl Observer for [&mut dyn Observer] {
+impl<O: Observer + ?Sized> Observer for &mut O {
     fn observe(&mut self, event: &ScanEvent<'_>) -> io::Result<()> {
-        self.iter_mut().try_for_each(|o| o.observe(event))
+        (**self).observe(event)
+    }
+}
+
+/// A closure as an observer.
+pub struct FnObserver<F>(pub F);
+
+impl<F: FnMut(&ScanEvent<'_>) -> io::Result<()>> Observer for FnObserver<F> {
+    fn observe(&mut self, event: &ScanEvent<'_>) -> io::Result<()> {
+        (self.0)(event)
     }
 }
 
@@ -149,7 +159,10 @@ impl fmt::Display for SimError {
         match self {
             SimError::ZeroScanTime => f.write_str("scan time must be at least 1 ms"),
             SimError::StimulusAddress { column, line } => {
-                write!(f, "stimulus line {line}: `{column}` is outside the memory image")
+                write!(
+                    f,
+                    "stimulus line {line}: `{column}` is outside the memory image"
+                )
             }
             SimError::Observer(e) => write!(f, "trace output failed: {e}"),
         }

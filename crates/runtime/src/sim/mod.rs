@@ -18,7 +18,12 @@ pub mod trace_vcd;
 pub mod value;
 pub mod watch;
 
-pub use driver::{Observer, Outcome, Progress, RunReport, ScanEvent, SimError, Simulation, Until};
+#[cfg(test)]
+mod test_resolver;
+
+pub use driver::{
+    FnObserver, Observer, Outcome, Progress, RunReport, ScanEvent, SimError, Simulation, Until,
+};
 pub use stimulus::{Stimulus, StimulusError, StimulusErrorKind, TimeBase};
 pub use trace_csv::CsvTrace;
 pub use trace_vcd::VcdTrace;

@@ -220,7 +220,9 @@ impl Stimulus {
         for (line, text) in lines {
             let row = cells(text);
             if row.len() != head.len() {
-                let col = row.get(head.len()).map_or(text.chars().count() as u32 + 1, |c| c.0);
+                let col = row
+                    .get(head.len())
+                    .map_or(text.chars().count() as u32 + 1, |c| c.0);
                 let kind = StimulusErrorKind::CellCount {
                     expected: head.len(),
                     found: row.len(),
@@ -269,7 +271,11 @@ impl Stimulus {
                 reason,
             });
         }
-        if self.columns.iter().any(|c| c.name == name || c.address == address) {
+        if self
+            .columns
+            .iter()
+            .any(|c| c.name == name || c.address == address)
+        {
             return Err(StimulusErrorKind::DuplicateColumn(name.to_string()));
         }
         self.columns.push(Column {

@@ -136,25 +136,11 @@ fn row_errors_name_line_and_column() {
     );
     assert_eq!(
         error_at("scan,I0.0\n3,1\n2,0\n"),
-        (
-            3,
-            1,
-            StimulusErrorKind::Unsorted {
-                at: 2,
-                previous: 3
-            }
-        )
+        (3, 1, StimulusErrorKind::Unsorted { at: 2, previous: 3 })
     );
     assert_eq!(
         error_at("scan,I0.0\n3,1\n  3,0\n"),
-        (
-            3,
-            3,
-            StimulusErrorKind::Unsorted {
-                at: 3,
-                previous: 3
-            }
-        )
+        (3, 3, StimulusErrorKind::Unsorted { at: 3, previous: 3 })
     );
     let e = parse("scan,I0.0\n0,7\n").unwrap_err();
     assert_eq!(

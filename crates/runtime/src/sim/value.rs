@@ -244,44 +244,95 @@ mod tests {
         assert_eq!(parse_value("255", B), Ok(255));
         assert_eq!(parse_value("16#FF", B), Ok(255));
         assert_eq!(parse_value("2#1010", B), Ok(10));
-        assert_eq!(parse_value("256", B), Err(ValueError::OutOfRange { kind: B }));
-        assert_eq!(parse_value("-1", B), Err(ValueError::OutOfRange { kind: B }));
+        assert_eq!(
+            parse_value("256", B),
+            Err(ValueError::OutOfRange { kind: B })
+        );
+        assert_eq!(
+            parse_value("-1", B),
+            Err(ValueError::OutOfRange { kind: B })
+        );
         assert_eq!(parse_value("-1", W), Ok(0xFFFF));
         assert_eq!(parse_value("+7", W), Ok(7));
         assert_eq!(parse_value("65535", W), Ok(0xFFFF));
         assert_eq!(parse_value("-32768", W), Ok(0x8000));
-        assert_eq!(parse_value("-32769", W), Err(ValueError::OutOfRange { kind: W }));
-        assert_eq!(parse_value("16#10000", W), Err(ValueError::OutOfRange { kind: W }));
+        assert_eq!(
+            parse_value("-32769", W),
+            Err(ValueError::OutOfRange { kind: W })
+        );
+        assert_eq!(
+            parse_value("16#10000", W),
+            Err(ValueError::OutOfRange { kind: W })
+        );
         assert_eq!(parse_value("-2147483648", D), Ok(0x8000_0000));
         assert_eq!(parse_value("4294967295", D), Ok(u32::MAX));
-        assert_eq!(parse_value("4294967296", D), Err(ValueError::OutOfRange { kind: D }));
+        assert_eq!(
+            parse_value("4294967296", D),
+            Err(ValueError::OutOfRange { kind: D })
+        );
         assert_eq!(parse_value("1.5", D), Ok(1.5f32.to_bits()));
         assert_eq!(parse_value("-2.0E+3", D), Ok((-2000.0f32).to_bits()));
-        assert_eq!(parse_value("1.5", W), Err(ValueError::RealNotAllowed { kind: W }));
+        assert_eq!(
+            parse_value("1.5", W),
+            Err(ValueError::RealNotAllowed { kind: W })
+        );
         assert_eq!(parse_value("", W), Err(ValueError::Empty));
         assert_eq!(parse_value("16#", W), Err(ValueError::Syntax));
         assert_eq!(parse_value("16#-1", W), Err(ValueError::Syntax));
         assert_eq!(parse_value("+-1", W), Err(ValueError::Syntax));
-        assert_eq!(parse_value("99999999999999999999999", D), Err(ValueError::OutOfRange { kind: D }));
+        assert_eq!(
+            parse_value("99999999999999999999999", D),
+            Err(ValueError::OutOfRange { kind: D })
+        );
     }
 
     #[test]
     fn inputs_go_to_the_physical_copy_others_to_the_image() {
         let mut img = Image::blank(ProfileId::A5);
         let l = img.layout().clone();
-        let i03 = Address::Bit(BitLoc { area: Area::I, byte: 0, bit: 3 });
+        let i03 = Address::Bit(BitLoc {
+            area: Area::I,
+            byte: 0,
+            bit: 3,
+        });
         assert!(write_address(&mut img, &i03, 1));
         assert_eq!(img.bytes()[l.phys_in as usize], 0x08);
-        assert_eq!(img.bytes()[l.base(Area::I) as usize], 0, "image waits for the scan start");
-        let vw = Address::Value { loc: Loc { area: Area::V, offset: 100 }, width: Width::Word };
+        assert_eq!(
+            img.bytes()[l.base(Area::I) as usize],
+            0,
+            "image waits for the scan start"
+        );
+        let vw = Address::Value {
+            loc: Loc {
+                area: Area::V,
+                offset: 100,
+            },
+            width: Width::Word,
+        };
         assert!(write_address(&mut img, &vw, 0x1234));
         assert_eq!(read_address(&img, &vw), Some(0x1234));
-        let past = Address::Value { loc: Loc { area: Area::V, offset: 2499 }, width: Width::Word };
+        let past = Address::Value {
+            loc: Loc {
+                area: Area::V,
+                offset: 2499,
+            },
+            width: Width::Word,
+        };
         assert!(!write_address(&mut img, &past, 1));
         assert_eq!(read_address(&img, &past), None);
-        let sm = Address::Bit(BitLoc { area: Area::SM, byte: 0, bit: 1 });
+        let sm = Address::Bit(BitLoc {
+            area: Area::SM,
+            byte: 0,
+            bit: 1,
+        });
         assert!(writable(&sm, 30).is_some());
-        let smb30 = Address::Value { loc: Loc { area: Area::SM, offset: 30 }, width: Width::Byte };
+        let smb30 = Address::Value {
+            loc: Loc {
+                area: Area::SM,
+                offset: 30,
+            },
+            width: Width::Byte,
+        };
         assert_eq!(writable(&smb30, 30), None);
     }
 }

@@ -188,7 +188,11 @@ impl WatchSpec {
     /// Formats a raw value of this watch.
     pub fn format(&self, raw: u32) -> String {
         let bits = self.bits();
-        let mask = if bits == 32 { u32::MAX } else { (1 << bits) - 1 };
+        let mask = if bits == 32 {
+            u32::MAX
+        } else {
+            (1 << bits) - 1
+        };
         let raw = raw & mask;
         let signed = || {
             let shift = 32 - bits;
@@ -257,10 +261,16 @@ mod tests {
         let mut img = Image::blank(ProfileId::A5);
         assert!(write_address(&mut img, &t.address, 0xFFF6));
         assert_eq!(t.read(&img).map(|v| t.format(v)), Some("-10".to_string()));
-        assert_eq!(w("C5:u").address, Address::Value {
-            loc: Loc { area: Area::CounterValue, offset: 10 },
-            width: Width::Word
-        });
+        assert_eq!(
+            w("C5:u").address,
+            Address::Value {
+                loc: Loc {
+                    area: Area::CounterValue,
+                    offset: 10
+                },
+                width: Width::Word
+            }
+        );
     }
 
     #[test]
@@ -277,10 +287,17 @@ mod tests {
         );
         let layout = Layout::of(ProfileId::A5);
         assert!(w("VW2498").check(&layout).is_ok());
-        assert!(matches!(w("VW2499").check(&layout), Err(WatchError::OutOfRange { .. })));
+        assert!(matches!(
+            w("VW2499").check(&layout),
+            Err(WatchError::OutOfRange { .. })
+        ));
         let bit = WatchSpec {
             text: "I16.0".into(),
-            address: Address::Bit(BitLoc { area: Area::I, byte: 16, bit: 0 }),
+            address: Address::Bit(BitLoc {
+                area: Area::I,
+                byte: 16,
+                bit: 0,
+            }),
             format: Format::Default,
         };
         assert!(bit.check(&layout).is_err());

@@ -1,0 +1,206 @@
+//! Unit tests of the simulation driver, with a toy engine built on the real scan cycle.
+
+use super::*;
+use crate::mem;
+use crate::scan;
+use crate::sim::stimulus::TimeBase;
+use crate::sim::test_resolver::resolve;
+use stljit_core::layout::Sched;
+use stljit_core::{Area, ProfileId};
+
+/// Per scan: QB0 := IB0, VW0 += 1, VB2 := AIW0 low byte; I0.7 requests STOP, I0.6 is fatal
+/// (Watchdog) before anything else happens.
+struct Toy;
+
+impl Engine for Toy {
+    fn name(&self) -> &'static str {
+        "toy"
+    }
+
+    fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
+        let (b, l) = image.split_mut();
+        scan::run(b, l, t_ms, |b, l| {
+            let ib0 = mem::get_u8(b, l.base(Area::I));
+            if ib0 & 0x40 != 0 {
+                scan::record_fatal(b, l, FatalCode::Watchdog, 0, 0);
+                return ScanStatus::Fatal;
+            }
+            mem::set_u8(b, l.base(Area::Q), ib0);
+            let vw0 = l.base(Area::V);
+            let n = mem::get_be(b, vw0, stljit_core::Width::Word);
+            mem::set_be(b, vw0, stljit_core::Width::Word, n + 1);
+            let ai = mem::get_u8(b, l.base(Area::AI) + 1);
+            mem::set_u8(b, vw0 + 2, ai);
+            if ib0 & 0x80 != 0 {
+                mem::set_sched_u8(b, l, Sched::STOP_REQ, 1);
+            }
+            ScanStatus::Ok
+        })
+    }
+}
+
+fn stim(text: &str) -> Stimulus {
+    Stimulus::parse(text, ProfileId::A5.profile(), &resolve).unwrap()
+}
+
+/// Records (scan, t, QB0, VW0, VB2, status) per scan.
+#[derive(Default)]
+struct Rec(Vec<(u64, u64, u8, u32, u8, ScanStatus)>);
+
+impl Observer for Rec {
+    fn observe(&mut self, e: &ScanEvent<'_>) -> io::Result<()> {
+        let b = e.image.bytes();
+        let l = e.image.layout();
+        let v = l.base(Area::V);
+        self.0.push((
+            e.scan,
+            e.t_ms,
+            b[l.base(Area::Q) as usize],
+            mem::get_be(b, v, stljit_core::Width::Word),
+            b[v as usize + 2],
+            e.status,
+        ));
+        Ok(())
+    }
+}
+
+#[test]
+fn rows_apply_before_their_scan_and_hold() {
+    let mut toy = Toy;
+    let mut sim = Simulation::new(&mut toy, Image::blank(ProfileId::A5), 10).unwrap();
+    let s = stim("scan,I0.0,IB1,AIW0\n1,1,,7\n3,0,,\n");
+    let mut rec = Rec::default();
+    let r = sim.run(Until::Scans(5), &s, &mut rec).unwrap();
+    assert_eq!(r.outcome, Outcome::Completed);
+    assert_eq!((r.scans, r.next_scan, r.t_ms), (5, 5, 40));
+    let q: Vec<_> = rec.0.iter().map(|r| (r.0, r.1, r.2, r.3, r.4)).collect();
+    assert_eq!(
+        q,
+        vec![
+            (0, 0, 0, 1, 0),
+            (1, 10, 1, 2, 7),
+            (2, 20, 1, 3, 7),
+            (3, 30, 0, 4, 7),
+            (4, 40, 0, 5, 7)
+        ]
+    );
+}
+
+#[test]
+fn millisecond_rows_and_duration() {
+    let mut toy = Toy;
+    let mut sim = Simulation::new(&mut toy, Image::blank(ProfileId::A5), 10).unwrap();
+    // 15 ms → scan 2 (t = 20), the first starting at or after 15.
+    let s = stim("t_ms,I0.1\n15,1\n");
+    let mut rec = Rec::default();
+    let r = sim.run(Until::Duration(35), &s, &mut rec).unwrap();
+    assert_eq!(r.scans, 4, "scans at 0, 10, 20, 30 start within 35 ms");
+    let q: Vec<u8> = rec.0.iter().map(|r| r.2).collect();
+    assert_eq!(q, vec![0, 0, 2, 2]);
+}
+
+#[test]
+fn continuing_run_catches_up_and_numbers_scans_on() {
+    let mut toy = Toy;
+    let mut sim = Simulation::new(&mut toy, Image::blank(ProfileId::A5), 100).unwrap();
+    let empty = Stimulus::empty(TimeBase::Scan, ProfileId::A5.profile());
+    sim.run(Until::Scans(2), &empty, &mut ()).unwrap();
+    let s = stim("scan,IB0\n0,3\n1,5\n9,1\n");
+    let mut rec = Rec::default();
+    let r = sim.run(Until::Scans(2), &s, &mut rec).unwrap();
+    assert_eq!(r.next_scan, 4);
+    let q: Vec<_> = rec.0.iter().map(|r| (r.0, r.1, r.2)).collect();
+    assert_eq!(q, vec![(2, 200, 5), (3, 300, 5)]);
+}
+
+#[test]
+fn stop_and_fatal_end_the_run() {
+    let mut toy = Toy;
+    let mut sim = Simulation::new(&mut toy, Image::blank(ProfileId::A5), 10).unwrap();
+    let mut rec = Rec::default();
+    let r = sim
+        .run(Until::Scans(10), &stim("scan,I0.7\n2,1\n"), &mut rec)
+        .unwrap();
+    assert_eq!(r.outcome, Outcome::Stopped);
+    assert_eq!(r.scans, 3);
+    assert_eq!(rec.0[2].5, ScanStatus::Stopped);
+    assert_eq!(
+        rec.0[2].2, 0x80,
+        "the STOP scan completes and writes outputs"
+    );
+    let again = sim
+        .run(
+            Until::Scans(10),
+            &Stimulus::empty(TimeBase::Scan, ProfileId::A5.profile()),
+            &mut (),
+        )
+        .unwrap();
+    assert_eq!((again.scans, again.outcome), (0, Outcome::Stopped));
+
+    let mut toy = Toy;
+    let mut sim = Simulation::new(&mut toy, Image::blank(ProfileId::A5), 10).unwrap();
+    let r = sim
+        .run(Until::Scans(10), &stim("scan,I0.6\n1,1\n"), &mut ())
+        .unwrap();
+    assert_eq!(
+        r.outcome,
+        Outcome::Fatal {
+            code: FatalCode::Watchdog as u16
+        }
+    );
+    assert_eq!(r.outcome.fatal_code(), Some(FatalCode::Watchdog));
+    assert_eq!(r.scans, 2);
+    assert_eq!(sim.image().fatal(), FatalCode::Watchdog as u16);
+}
+
+#[test]
+fn cancel_and_progress() {
+    let flag = AtomicBool::new(false);
+    let mut seen = Vec::new();
+    let mut on_progress = |p: Progress| seen.push(p);
+    let mut toy = Toy;
+    let mut sim = Simulation::new(&mut toy, Image::blank(ProfileId::A5), 10)
+        .unwrap()
+        .with_cancel(&flag)
+        .with_progress(&mut on_progress);
+    let empty = Stimulus::empty(TimeBase::Scan, ProfileId::A5.profile());
+    let mut obs = FnObserver(|e: &ScanEvent<'_>| {
+        if e.scan == 2 {
+            flag.store(true, Ordering::Relaxed);
+        }
+        Ok(())
+    });
+    let r = sim.run(Until::Scans(100), &empty, &mut obs).unwrap();
+    assert_eq!((r.scans, r.outcome), (3, Outcome::Cancelled));
+    drop(sim);
+    assert_eq!(seen.len(), 3);
+    assert_eq!(
+        seen[2],
+        Progress {
+            done: 3,
+            total: 100,
+            t_ms: 20
+        }
+    );
+}
+
+#[test]
+fn setup_and_observer_errors() {
+    let mut toy = Toy;
+    assert!(matches!(
+        Simulation::new(&mut toy, Image::blank(ProfileId::A5), 0),
+        Err(SimError::ZeroScanTime)
+    ));
+    let mut toy = Toy;
+    let mut sim = Simulation::new(&mut toy, Image::blank(ProfileId::A5), 10).unwrap();
+    let mut failing = FnObserver(|_: &ScanEvent<'_>| Err(io::Error::other("disk full")));
+    let empty = Stimulus::empty(TimeBase::Scan, ProfileId::A5.profile());
+    let e = sim.run(Until::Scans(3), &empty, &mut failing).unwrap_err();
+    assert_eq!(e.to_string(), "trace output failed: disk full");
+    // A stimulus built for a bigger V area than the image has.
+    let mut s = Stimulus::empty(TimeBase::Scan, ProfileId::A5.profile());
+    s.add_column("VW2499", &resolve).unwrap();
+    s.push_row(0, vec![Some(1)]).unwrap();
+    let e = sim.run(Until::Scans(1), &s, &mut ()).unwrap_err();
+    assert!(matches!(e, SimError::StimulusAddress { line: 2, .. }));
+}
