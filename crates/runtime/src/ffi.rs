@@ -25,15 +25,43 @@
 //! | `stljit_rt_fatal(img, l, code, pou, op)` | [`scan::record_fatal`] | `ScanStatus::Fatal` (2) |
 //! | `stljit_rt_loop_tick(img, l)` | [`scan::loop_tick`] | 1 ok, 0 budget exhausted |
 //! | `stljit_rt_wdr(img, l)` | [`scan::watchdog_reset`] | 0 |
+//! | `stljit_rt_int_arith(img, l, op, width, out, in1)` | [`crate::arith::int_arith`] | u64 value |
+//! | `stljit_rt_mul_wide(img, l, out, in1)` | [`crate::arith::mul_wide`] | u64 value |
+//! | `stljit_rt_div_wide(img, l, out, in1)` | [`crate::arith::div_wide`] | u64 value |
+//! | `stljit_rt_step(img, l, width, up, x)` | [`crate::arith::step`] | u64 value |
+//! | `stljit_rt_real_arith(img, l, op, out, in1)` | [`crate::arith::real_arith`] | u64 value |
+//! | `stljit_rt_real_func(img, l, func, x)` | [`crate::arith::real_func`] | u64 value |
+//! | `stljit_rt_logic(img, l, op, width, out, in1)` | [`crate::bitops::logic`] | u64 value |
+//! | `stljit_rt_invert(img, l, width, x)` | [`crate::bitops::invert`] | u64 value |
+//! | `stljit_rt_shift(img, l, left, width, x, n)` | [`crate::bitops::shift`] | u64 value |
+//! | `stljit_rt_rotate(img, l, left, width, x, n)` | [`crate::bitops::rotate`] | u64 value |
+//! | `stljit_rt_convert(img, l, conv, x)` | [`crate::convert::convert`] | u64 value |
+//! | `stljit_rt_compare(img, l, ty, op, lhs, rhs)` | [`crate::compare::compare`] | u64: 0/1, or FatalCode |
+//! | `stljit_rt_set_range(img, l, area, byte, bit, frame, count, value, immediate)` | [`crate::block::set_range_imm`] | status |
+//! | `stljit_rt_block_move(img, l, src, src_end, dst, dst_end, width, count)` | [`crate::block::block_move`] | status |
+//! | `stljit_rt_fill(img, l, value, dst, dst_end, count)` | [`crate::block::fill`] | status |
+//! | `stljit_rt_shift_register(img, l, data, area, byte, bit, frame, len: i32)` | [`crate::block::shift_register`] | status |
+//! | `stljit_rt_pointer_end(img, l, ptr)` | end of a pointer's [`crate::block::Span`] | image offset (0 = bad) |
+//!
+//! **Value shims** (`u64 value` above) take the operands' raw bits, apply the SMB1 effect to the
+//! image themselves, and return bit 32 set with the value to write when the instruction writes
+//! OUT (ENO = 1), or 0 when it does not (ENO = 0; no error code is involved). Enum arguments
+//! (`op`, `func`, `conv`, `ty`, `area`) are [`FfiCode`]s: the position in the enum's declaration
+//! order (`ArithOp`: Add 0, Sub 1, Mul 2, Div 3; `Area`: its position in `Area::ALL`).
 //!
 //! [`symbols`] lists every shim for `cranelift_jit::JITBuilder::symbol`.
 #![allow(unsafe_code)]
 
+mod ops;
+pub use ops::*;
+
 use crate::{counter, edge, pointer, scan, timer};
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use stljit_core::ir::{CounterKind, TimerKind};
+use stljit_core::ir::{
+    ArithOp, CmpOp, CmpType, Conversion, CounterKind, LogicOp, RealFn, TimerKind,
+};
 use stljit_core::layout::Layout;
-use stljit_core::{ErrorCode, FatalCode, ScanStatus, Width};
+use stljit_core::{Area, ErrorCode, FatalCode, ScanStatus, Width};
 
 /// Status: success.
 pub const RT_OK: u32 = 0;
@@ -86,6 +114,71 @@ pub fn width_of(bytes: u32) -> Option<Width> {
         4 => Some(Width::DWord),
         _ => None,
     }
+}
+
+/// An enum passed across the boundary as its position in [`FfiCode::ALL`].
+pub trait FfiCode: Copy + PartialEq + 'static {
+    /// Every value, in declaration order.
+    const ALL: &'static [Self];
+
+    /// The code of `self`.
+    fn ffi_code(self) -> u32 {
+        Self::ALL.iter().position(|&x| x == self).unwrap_or(0) as u32
+    }
+
+    /// The value with code `code`.
+    fn from_ffi(code: u32) -> Option<Self> {
+        Self::ALL.get(code as usize).copied()
+    }
+}
+
+impl FfiCode for ArithOp {
+    const ALL: &'static [Self] = &[ArithOp::Add, ArithOp::Sub, ArithOp::Mul, ArithOp::Div];
+}
+impl FfiCode for LogicOp {
+    const ALL: &'static [Self] = &[LogicOp::And, LogicOp::Or, LogicOp::Xor];
+}
+impl FfiCode for RealFn {
+    const ALL: &'static [Self] = &[
+        RealFn::Sqrt,
+        RealFn::Ln,
+        RealFn::Exp,
+        RealFn::Sin,
+        RealFn::Cos,
+        RealFn::Tan,
+    ];
+}
+impl FfiCode for Conversion {
+    const ALL: &'static [Self] = &[
+        Conversion::ByteToInt,
+        Conversion::IntToByte,
+        Conversion::IntToDInt,
+        Conversion::DIntToInt,
+        Conversion::DIntToReal,
+        Conversion::Round,
+        Conversion::Trunc,
+        Conversion::BcdToInt,
+        Conversion::IntToBcd,
+        Conversion::Decode,
+        Conversion::Encode,
+        Conversion::Segment,
+    ];
+}
+impl FfiCode for CmpType {
+    const ALL: &'static [Self] = &[CmpType::Byte, CmpType::Int, CmpType::DInt, CmpType::Real];
+}
+impl FfiCode for CmpOp {
+    const ALL: &'static [Self] = &[
+        CmpOp::Eq,
+        CmpOp::Ne,
+        CmpOp::Ge,
+        CmpOp::Le,
+        CmpOp::Gt,
+        CmpOp::Lt,
+    ];
+}
+impl FfiCode for Area {
+    const ALL: &'static [Self] = &Area::ALL;
 }
 
 fn timer_kind(code: u32) -> Option<TimerKind> {
@@ -385,6 +478,26 @@ pub fn symbols() -> Vec<(&'static str, *const u8)> {
         ("stljit_rt_fatal", stljit_rt_fatal as *const u8),
         ("stljit_rt_loop_tick", stljit_rt_loop_tick as *const u8),
         ("stljit_rt_wdr", stljit_rt_wdr as *const u8),
+        ("stljit_rt_int_arith", stljit_rt_int_arith as *const u8),
+        ("stljit_rt_mul_wide", stljit_rt_mul_wide as *const u8),
+        ("stljit_rt_div_wide", stljit_rt_div_wide as *const u8),
+        ("stljit_rt_step", stljit_rt_step as *const u8),
+        ("stljit_rt_real_arith", stljit_rt_real_arith as *const u8),
+        ("stljit_rt_real_func", stljit_rt_real_func as *const u8),
+        ("stljit_rt_logic", stljit_rt_logic as *const u8),
+        ("stljit_rt_invert", stljit_rt_invert as *const u8),
+        ("stljit_rt_shift", stljit_rt_shift as *const u8),
+        ("stljit_rt_rotate", stljit_rt_rotate as *const u8),
+        ("stljit_rt_convert", stljit_rt_convert as *const u8),
+        ("stljit_rt_compare", stljit_rt_compare as *const u8),
+        ("stljit_rt_set_range", stljit_rt_set_range as *const u8),
+        ("stljit_rt_block_move", stljit_rt_block_move as *const u8),
+        ("stljit_rt_fill", stljit_rt_fill as *const u8),
+        (
+            "stljit_rt_shift_register",
+            stljit_rt_shift_register as *const u8,
+        ),
+        ("stljit_rt_pointer_end", stljit_rt_pointer_end as *const u8),
     ]
 }
 
