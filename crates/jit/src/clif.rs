@@ -1,0 +1,88 @@
+//! `stljit dump-clif`: the Cranelift IR of every POU, annotated with the STL source of each op.
+//!
+//! Lowering sets each instruction's source location to `op index + 1`; this writer prints a
+//! comment naming the file, line and op wherever that location changes.
+
+use crate::build;
+use crate::{JitError, JitOptions};
+use cranelift_codegen::entity::SecondaryMap;
+use cranelift_codegen::ir::{Block, Function, Inst, Value};
+use cranelift_codegen::write::{FuncWriter, PlainWriter, decorate_function};
+use std::fmt::{self, Write};
+use stljit_core::ir::{Pou, Program};
+use stljit_core::layout::Layout;
+
+struct Annotated<'a> {
+    prog: &'a Program,
+    pou: &'a Pou,
+    last: u32,
+    plain: PlainWriter,
+}
+
+impl FuncWriter for Annotated<'_> {
+    fn write_block_header(
+        &mut self,
+        w: &mut dyn Write,
+        func: &Function,
+        block: Block,
+        indent: usize,
+    ) -> fmt::Result {
+        self.plain.write_block_header(w, func, block, indent)
+    }
+
+    fn write_instruction(
+        &mut self,
+        w: &mut dyn Write,
+        func: &Function,
+        aliases: &SecondaryMap<Value, Vec<Value>>,
+        inst: Inst,
+        indent: usize,
+    ) -> fmt::Result {
+        let loc = func.srcloc(inst);
+        if !loc.is_default() && loc.bits() != self.last {
+            self.last = loc.bits();
+            let i = loc.bits() as usize - 1;
+            if let (Some(op), Some(src)) = (self.pou.ops.get(i), self.pou.locs.get(i)) {
+                let file = self
+                    .prog
+                    .files
+                    .get(src.file.index())
+                    .map_or("?", String::as_str);
+                writeln!(w, "{:indent$}; {file}:{} op {i}: {op:?}", "", src.line)?;
+            } else if let Some(op) = self.pou.ops.get(i) {
+                writeln!(w, "{:indent$}; op {i}: {op:?}", "")?;
+            }
+        }
+        self.plain.write_instruction(w, func, aliases, inst, indent)
+    }
+}
+
+/// The annotated CLIF of every function of `program` (before Cranelift's own optimisations).
+pub fn clif_text(program: &Program, opts: &JitOptions) -> Result<String, JitError> {
+    let layout = Layout::of(program.profile);
+    let mut out = String::new();
+    let mut failure = None;
+    let mut sink = |func: &Function, pou: usize| {
+        let Some(p) = program.pous.get(pou) else {
+            return;
+        };
+        let _ = writeln!(out, "; POU {pou}: {} ({:?})", p.name, p.kind);
+        let mut wr = Annotated {
+            prog: program,
+            pou: p,
+            last: 0,
+            plain: PlainWriter,
+        };
+        if let Err(e) = decorate_function(&mut wr, &mut out, func) {
+            failure = Some(e.to_string());
+        }
+        out.push('\n');
+    };
+    // The layout address is only baked into shim calls; a dump never runs, so 0 is fine.
+    let built = build::build(program, opts, &layout, 0, false, &mut sink)?;
+    drop(built);
+    match failure {
+        Some(e) => Err(JitError::Codegen(e)),
+        None => Ok(out),
+    }
+}

@@ -1,0 +1,151 @@
+//! [`JitProgram`]: finalizes the compiled module, enters the native code, frees it on drop.
+//!
+//! This is the only module with `unsafe`: turning finalized code addresses into `extern "C"`
+//! function pointers, calling them, and releasing the code memory.
+#![allow(unsafe_code)]
+
+use crate::build::{self, Built};
+use crate::{JitError, JitOptions};
+use cranelift_jit::JITModule;
+use cranelift_module::Module;
+use stljit_core::ir::Program;
+use stljit_core::layout::Layout;
+use stljit_core::{PouId, ScanStatus};
+use stljit_runtime::{Engine, Image, scan};
+
+type PouFn = unsafe extern "C" fn(*mut u8, i32) -> i32;
+type RunFn = unsafe extern "C" fn(*mut u8, u64, u64, u64, *mut u64) -> i32;
+
+/// A program compiled to native code. Implements [`Engine`]; all state lives in the [`Image`].
+pub struct JitProgram {
+    module: Option<JITModule>,
+    main: PouFn,
+    run: RunFn,
+    /// Boxed so its address, baked into the code for the runtime shims, never moves.
+    layout: Box<Layout>,
+    op_count: usize,
+}
+
+impl JitProgram {
+    /// Compiles `program` for the host CPU.
+    pub fn compile(program: &Program, opts: &JitOptions) -> Result<JitProgram, JitError> {
+        let layout = Box::new(Layout::of(program.profile));
+        let layout_ptr = &*layout as *const Layout as i64;
+        let Built { mut module, run_id } =
+            build::build(program, opts, &layout, layout_ptr, true, &mut |_, _| {})?;
+        module
+            .finalize_definitions()
+            .map_err(|e| JitError::Codegen(format!("{e:?}")))?;
+        let main_id = module
+            .get_name("pou0")
+            .and_then(|n| match n {
+                cranelift_module::FuncOrDataId::Func(f) => Some(f),
+                cranelift_module::FuncOrDataId::Data(_) => None,
+            })
+            .ok_or_else(|| JitError::Codegen("main function missing".into()))?;
+        let main_ptr = module.get_finalized_function(main_id);
+        let run_ptr = module.get_finalized_function(run_id);
+        // SAFETY: both addresses are finalized functions of `module` compiled with the
+        // signatures `build::pou_signature` / `build::run_signature` in the host's default
+        // calling convention, which is the C ABI these types name. `module` (and with it the
+        // code) lives as long as `self`.
+        let (main, run) = unsafe {
+            (
+                std::mem::transmute::<*const u8, PouFn>(main_ptr),
+                std::mem::transmute::<*const u8, RunFn>(run_ptr),
+            )
+        };
+        Ok(JitProgram {
+            module: Some(module),
+            main,
+            run,
+            layout,
+            op_count: program.op_count(),
+        })
+    }
+
+    /// Number of IR ops compiled.
+    pub fn op_count(&self) -> usize {
+        self.op_count
+    }
+
+    /// Whether `image` has the layout this program was compiled for (anything else is refused:
+    /// the code addresses the image at constant offsets).
+    fn fits(&self, image: &Image) -> bool {
+        *image.layout() == *self.layout && image.bytes().len() == self.layout.size as usize
+    }
+
+    /// Runs up to `n` scans at times `t0_ms + i * scan_ms` in one native call, stopping after
+    /// the first scan that does not return [`ScanStatus::Ok`]. Returns the number of scans run
+    /// (including that last one) and the last status (`Ok` when all `n` ran, or `n` is 0).
+    /// Equivalent to calling [`Engine::scan`] in a loop.
+    pub fn run_scans(
+        &mut self,
+        image: &mut Image,
+        t0_ms: u64,
+        scan_ms: u64,
+        n: u64,
+    ) -> (u64, ScanStatus) {
+        if !self.fits(image) {
+            return (0, ScanStatus::Fatal);
+        }
+        let mut done = 0u64;
+        let bytes = image.bytes_mut().as_mut_ptr();
+        // SAFETY: `bytes` points to `layout.size` bytes exclusively borrowed for the call (checked
+        // by `fits`), the code only addresses the image within its layout (direct offsets are
+        // range-checked at compile time, pointers through `pointer::resolve`), and `done` is a
+        // live u64.
+        let st = unsafe { (self.run)(bytes, t0_ms, scan_ms, n, &mut done) };
+        (
+            done,
+            ScanStatus::try_from(st as u8).unwrap_or(ScanStatus::Fatal),
+        )
+    }
+
+    fn body(&self, bytes: &mut [u8]) -> ScanStatus {
+        // SAFETY: as in `run_scans`; `bytes` is the whole image of the right layout.
+        let st = unsafe { (self.main)(bytes.as_mut_ptr(), 0) };
+        if st == 0 {
+            ScanStatus::Ok
+        } else {
+            ScanStatus::Fatal
+        }
+    }
+
+    /// The POU a native function belongs to, for diagnostics.
+    pub fn main_pou(&self) -> PouId {
+        PouId(0)
+    }
+}
+
+impl Engine for JitProgram {
+    fn name(&self) -> &'static str {
+        "jit"
+    }
+
+    fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
+        if !self.fits(image) {
+            return ScanStatus::Fatal;
+        }
+        let (bytes, layout) = image.split_mut();
+        scan::run(bytes, layout, t_ms, |b, _| self.body(b))
+    }
+}
+
+impl Drop for JitProgram {
+    fn drop(&mut self) {
+        if let Some(m) = self.module.take() {
+            // SAFETY: no code of this module is running (we hold `&mut self`) and the function
+            // pointers die with `self`.
+            unsafe { m.free_memory() };
+        }
+    }
+}
+
+impl std::fmt::Debug for JitProgram {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("JitProgram")
+            .field("ops", &self.op_count)
+            .finish()
+    }
+}

@@ -1,0 +1,254 @@
+//! The runtime functions compiled code calls, and their Cranelift signatures.
+//!
+//! Two kinds: the runtime's own `extern "C"` shims over the image (`stljit_rt_*`, see
+//! `stljit_runtime::ffi`), and value shims defined here (`stljit_jit_*`) that wrap the runtime's
+//! pure box computations (`arith`, `bitops`, `convert`), so that every intricate flag rule is the
+//! runtime's code, not a re-derivation. A value shim takes and returns plain integers, so it
+//! needs no `unsafe`; it packs the runtime's [`Outcome`] into a `u64` (see [`pack_outcome`]).
+
+use cranelift_codegen::ir::{
+    AbiParam, Signature,
+    types::{I32, I64},
+};
+use cranelift_codegen::isa::CallConv;
+use cranelift_module::{FuncId, Linkage, Module};
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use stljit_core::Width;
+use stljit_core::ir::{ArithOp, Conversion, RealFn};
+use stljit_runtime::flags::Outcome;
+use stljit_runtime::{arith, bitops, convert};
+
+/// A function compiled code may call.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub(crate) enum Helper {
+    Timer,
+    TimerReset,
+    Counter,
+    CounterReset,
+    Pointer,
+    ScanBegin,
+    ScanEnd,
+    /// `stljit_jit_value(op, width_or_sub, out, in1) -> u64` packed outcome.
+    Value,
+}
+
+impl Helper {
+    pub(crate) const ALL: [Helper; 8] = [
+        Helper::Timer,
+        Helper::TimerReset,
+        Helper::Counter,
+        Helper::CounterReset,
+        Helper::Pointer,
+        Helper::ScanBegin,
+        Helper::ScanEnd,
+        Helper::Value,
+    ];
+
+    /// The symbol name.
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            Helper::Timer => "stljit_rt_timer",
+            Helper::TimerReset => "stljit_rt_timer_reset",
+            Helper::Counter => "stljit_rt_counter",
+            Helper::CounterReset => "stljit_rt_counter_reset",
+            Helper::Pointer => "stljit_rt_pointer",
+            Helper::ScanBegin => "stljit_rt_scan_begin",
+            Helper::ScanEnd => "stljit_rt_scan_end",
+            Helper::Value => "stljit_jit_value",
+        }
+    }
+
+    /// Whether the first argument is the image pointer (all runtime shims; not value shims).
+    pub(crate) fn takes_image(self) -> bool {
+        !matches!(self, Helper::Value)
+    }
+
+    /// Whether the layout pointer is passed (runtime shims only).
+    pub(crate) fn takes_layout(self) -> bool {
+        !matches!(self, Helper::Value)
+    }
+
+    /// Argument types after `image, layout`, and the return type.
+    fn sig_parts(
+        self,
+    ) -> (
+        &'static [cranelift_codegen::ir::Type],
+        cranelift_codegen::ir::Type,
+    ) {
+        match self {
+            Helper::Timer | Helper::Counter => (&[I32, I32, I32, I32, I32], I32),
+            Helper::TimerReset | Helper::CounterReset => (&[I32, I32], I32),
+            Helper::Pointer => (&[I32, I32, I32], I64),
+            Helper::ScanBegin => (&[I64], I32),
+            Helper::ScanEnd => (&[I32], I32),
+            Helper::Value => (&[I32, I32, I32, I32], I64),
+        }
+    }
+
+    /// The full signature.
+    pub(crate) fn signature(self, cc: CallConv) -> Signature {
+        let mut s = Signature::new(cc);
+        if self.takes_image() {
+            s.params.push(AbiParam::new(I64));
+        }
+        if self.takes_layout() {
+            s.params.push(AbiParam::new(I64));
+        }
+        let (args, ret) = self.sig_parts();
+        s.params.extend(args.iter().map(|t| AbiParam::new(*t)));
+        s.returns.push(AbiParam::new(ret));
+        s
+    }
+
+    /// The host address of the function.
+    pub(crate) fn address(self) -> *const u8 {
+        if self == Helper::Value {
+            return stljit_jit_value as *const u8;
+        }
+        stljit_runtime::ffi::symbols()
+            .into_iter()
+            .find(|(n, _)| *n == self.name())
+            .map_or(std::ptr::null(), |(_, p)| p)
+    }
+}
+
+/// Every helper declared in one module.
+pub(crate) struct HelperIds {
+    ids: Vec<(Helper, FuncId)>,
+}
+
+impl HelperIds {
+    /// Declares every helper as an imported function.
+    pub(crate) fn declare(
+        m: &mut impl Module,
+    ) -> Result<HelperIds, Box<cranelift_module::ModuleError>> {
+        let cc = m.isa().default_call_conv();
+        let mut ids = Vec::new();
+        for h in Helper::ALL {
+            let id = m
+                .declare_function(h.name(), Linkage::Import, &h.signature(cc))
+                .map_err(Box::new)?;
+            ids.push((h, id));
+        }
+        Ok(HelperIds { ids })
+    }
+
+    /// The id of a helper.
+    pub(crate) fn id(&self, h: Helper) -> FuncId {
+        self.ids
+            .iter()
+            .find(|(x, _)| *x == h)
+            .map(|(_, id)| *id)
+            .unwrap_or(self.ids[0].1)
+    }
+}
+
+/// Operation selectors of [`stljit_jit_value`].
+#[derive(Clone, Copy, Debug)]
+#[repr(u32)]
+pub(crate) enum ValueOp {
+    IntArith = 1,
+    MulWide = 2,
+    DivWide = 3,
+    Step = 4,
+    RealArith = 5,
+    RealFunc = 6,
+    ShiftL = 9,
+    ShiftR = 10,
+    RotL = 11,
+    RotR = 12,
+    Convert = 13,
+}
+
+/// Packs an outcome: bits 0–31 the value, bit 32 set when there is one, bits 40–47 the SMB1
+/// bits to set, bits 48–55 the bits to clear.
+pub(crate) fn pack_outcome(o: Outcome) -> u64 {
+    let (v, has) = match o.value {
+        Some(v) => (u64::from(v), 1u64 << 32),
+        None => (0, 0),
+    };
+    v | has | u64::from(o.flags.set) << 40 | u64::from(o.flags.clear) << 48
+}
+
+fn width_of(n: u32) -> Width {
+    match n {
+        1 => Width::Byte,
+        2 => Width::Word,
+        _ => Width::DWord,
+    }
+}
+
+/// Encodes the sub-operation of [`stljit_jit_value`].
+pub(crate) fn sub_code(width: Width, sub: u32) -> u32 {
+    width.bytes() | sub << 8
+}
+
+fn arith_op(n: u32) -> ArithOp {
+    [ArithOp::Add, ArithOp::Sub, ArithOp::Mul, ArithOp::Div][(n & 3) as usize]
+}
+
+pub(crate) fn arith_code(op: ArithOp) -> u32 {
+    match op {
+        ArithOp::Add => 0,
+        ArithOp::Sub => 1,
+        ArithOp::Mul => 2,
+        ArithOp::Div => 3,
+    }
+}
+
+const REAL_FNS: [RealFn; 6] = [
+    RealFn::Sqrt,
+    RealFn::Ln,
+    RealFn::Exp,
+    RealFn::Sin,
+    RealFn::Cos,
+    RealFn::Tan,
+];
+const CONVERSIONS: [Conversion; 12] = [
+    Conversion::ByteToInt,
+    Conversion::IntToByte,
+    Conversion::IntToDInt,
+    Conversion::DIntToInt,
+    Conversion::DIntToReal,
+    Conversion::Round,
+    Conversion::Trunc,
+    Conversion::BcdToInt,
+    Conversion::IntToBcd,
+    Conversion::Decode,
+    Conversion::Encode,
+    Conversion::Segment,
+];
+
+pub(crate) fn real_fn_code(f: RealFn) -> u32 {
+    REAL_FNS.iter().position(|x| *x == f).unwrap_or(0) as u32
+}
+
+pub(crate) fn conv_code(c: Conversion) -> u32 {
+    CONVERSIONS.iter().position(|x| *x == c).unwrap_or(0) as u32
+}
+
+fn value_outcome(op: u32, sub: u32, out: u32, in1: u32) -> Outcome {
+    let width = width_of(sub & 0xFF);
+    let s = (sub >> 8) as usize;
+    match op {
+        1 => arith::int_arith(arith_op(s as u32), width, out, in1),
+        2 => arith::mul_wide(out, in1),
+        3 => arith::div_wide(out, in1),
+        4 => arith::step(width, s != 0, out),
+        5 => arith::real_arith(arith_op(s as u32), out, in1),
+        6 => arith::real_func(REAL_FNS[s % REAL_FNS.len()], in1),
+        9 | 10 => bitops::shift(op == 9, width, out, in1 as u8),
+        11 | 12 => bitops::rotate(op == 11, width, out, in1 as u8),
+        _ => convert::convert(CONVERSIONS[s % CONVERSIONS.len()], in1),
+    }
+}
+
+/// The value shim: runs one of the runtime's box computations (selected by `op`, see
+/// [`ValueOp`]) and packs its outcome. Never unwinds: a panic (a runtime bug) reads as "no
+/// value, no flags", i.e. ENO = 0.
+pub(crate) extern "C" fn stljit_jit_value(op: u32, sub: u32, out: u32, in1: u32) -> u64 {
+    catch_unwind(AssertUnwindSafe(|| {
+        pack_outcome(value_outcome(op, sub, out, in1))
+    }))
+    .unwrap_or(0)
+}

@@ -1,0 +1,87 @@
+//! The Cranelift JIT engine of stljit.
+//!
+//! [`JitProgram::compile`] turns a checked [`stljit_core::ir::Program`] into native code: one
+//! function per POU (`fn(image, depth) -> status`, see [`lower`]) plus an entry that runs many
+//! scans in one call. [`JitProgram`] implements [`stljit_runtime::Engine`], so it is driven
+//! exactly like the interpreter, and must leave the same image bytes after every scan.
+//! [`clif_text`] prints the annotated Cranelift IR for `stljit dump-clif`.
+//!
+//! Semantics with intricate rules (timers, counters, pointer resolution, multiplication and
+//! division, reals, shifts, conversions) are the runtime's code, called through its `extern "C"`
+//! shims or the value shim in [`helpers`]; bit logic, moves, compares, integer add/sub and word
+//! logic are inlined. The only `unsafe` is in [`engine`], which enters the compiled code.
+
+mod analysis;
+mod build;
+mod clif;
+mod engine;
+mod helpers;
+mod lower;
+
+pub use clif::clif_text;
+pub use engine::JitProgram;
+
+use std::fmt;
+
+/// Code-generation effort.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum OptLevel {
+    /// No optimisation passes: fastest compile.
+    #[default]
+    None,
+    /// Cranelift's `speed` level (e-graph rewrites, better register allocation).
+    Speed,
+}
+
+impl OptLevel {
+    /// The name used on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            OptLevel::None => "none",
+            OptLevel::Speed => "speed",
+        }
+    }
+
+    /// Parses a command-line name (`none`, `speed`).
+    pub fn from_name(s: &str) -> Option<OptLevel> {
+        match s {
+            "none" => Some(OptLevel::None),
+            "speed" => Some(OptLevel::Speed),
+            _ => None,
+        }
+    }
+}
+
+/// Options of [`JitProgram::compile`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct JitOptions {
+    /// Cranelift optimisation level.
+    pub opt: OptLevel,
+}
+
+/// Why a program could not be compiled.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum JitError {
+    /// The host CPU is not supported by Cranelift.
+    UnsupportedHost(String),
+    /// Cranelift rejected a setting or the generated code (a bug in this crate).
+    Codegen(String),
+    /// The program is not well formed (targets out of range, no main POU, stack depth not in
+    /// 1..=31); the front end never produces such a program.
+    Malformed(String),
+    /// The program uses an instruction this engine does not compile yet.
+    Unsupported(String),
+}
+
+impl fmt::Display for JitError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            JitError::UnsupportedHost(m) => write!(f, "host not supported by the JIT: {m}"),
+            JitError::Codegen(m) => write!(f, "JIT code generation failed: {m}"),
+            JitError::Malformed(m) => write!(f, "malformed program: {m}"),
+            JitError::Unsupported(m) => write!(f, "not supported by the JIT yet: {m}"),
+        }
+    }
+}
+
+impl std::error::Error for JitError {}

@@ -1,0 +1,327 @@
+//! Bit logic: contacts, compares, logic-stack instructions, edges and coils.
+//!
+//! All of it works on [`B`] booleans and cached bytes, so a run of contacts and coils becomes a
+//! handful of ALU instructions with no memory traffic until the block ends.
+
+use super::Lower;
+use super::cache::Addr;
+use super::mem::OnFail;
+use super::value::B;
+use cranelift_codegen::ir::{
+    InstBuilder, Value,
+    condcodes::{FloatCC, IntCC},
+    types::{F32, I16, I32},
+};
+use stljit_core::ir::{BitLoc, CmpOp, CmpType, Contact, Op, Operand};
+use stljit_core::layout::Sched;
+use stljit_core::{Area, ErrorCode, FatalCode, Width};
+
+impl Lower<'_, '_> {
+    /// The cached byte and bit of a bit location.
+    pub(crate) fn bit_byte(&self, bit: BitLoc) -> Addr {
+        self.area_addr(bit.area, bit.byte)
+    }
+
+    /// Reads a bit as a lazy boolean.
+    pub(crate) fn read_bit(&mut self, bit: BitLoc) -> B {
+        let a = self.bit_byte(bit);
+        let v = self.byte(a);
+        B::Bit { v, pos: bit.bit }
+    }
+
+    /// Writes a boolean into bit `pos` of the byte at `a`.
+    pub(crate) fn write_bit_at(&mut self, a: Addr, pos: u8, val: B) {
+        let old = self.byte(a);
+        let mask = 1i64 << pos;
+        let new = match val {
+            B::K(true) => self.b.ins().bor_imm_s(old, mask),
+            B::K(false) => self.b.ins().band_imm_s(old, !mask & 0xFF),
+            B::Bit { .. } => {
+                let bitv = val.at_bit(&mut self.b, pos);
+                let cleared = self.b.ins().band_imm_s(old, !mask & 0xFF);
+                self.b.ins().bor(cleared, bitv)
+            }
+        };
+        self.set_byte(a, new);
+    }
+
+    /// Evaluates a contact (compares may take a fatal exit).
+    fn contact(&mut self, c: &Contact) -> (B, bool) {
+        match *c {
+            Contact::Bit { bit, negated } => (self.read_bit(bit), negated),
+            Contact::ImmediateInput { bit, negated }
+                if bit.area != Area::I || bit.byte >= self.env.layout.area_size(Area::I) =>
+            {
+                (B::K(false), negated)
+            }
+            Contact::ImmediateInput { bit, negated } => {
+                let a = Addr::img(self.env.layout.phys_in + bit.byte);
+                let v = self.byte(a);
+                (B::Bit { v, pos: bit.bit }, negated)
+            }
+            Contact::Compare {
+                ty,
+                op,
+                ref lhs,
+                ref rhs,
+            } => (self.compare(ty, op, lhs, rhs), false),
+        }
+    }
+
+    fn compare(&mut self, ty: CmpType, op: CmpOp, lhs: &Operand, rhs: &Operand) -> B {
+        let w = ty.width();
+        let fail = OnFail::Fatal(FatalCode::CompareIndirect);
+        let a = self.read_operand(lhs, w, fail);
+        let b = self.read_operand(rhs, w, fail);
+        let r = match ty {
+            CmpType::Byte => self.b.ins().icmp(int_cc(op, false), a, b),
+            CmpType::Int => {
+                let a = self.b.ins().ireduce(I16, a);
+                let b = self.b.ins().ireduce(I16, b);
+                self.b.ins().icmp(int_cc(op, true), a, b)
+            }
+            CmpType::DInt => self.b.ins().icmp(int_cc(op, true), a, b),
+            CmpType::Real => {
+                let fa = self
+                    .b
+                    .ins()
+                    .bitcast(F32, cranelift_codegen::ir::MemFlagsData::new(), a);
+                let fb = self
+                    .b
+                    .ins()
+                    .bitcast(F32, cranelift_codegen::ir::MemFlagsData::new(), b);
+                let nan = self.b.ins().fcmp(FloatCC::Unordered, fa, fb);
+                self.fatal_if(nan, FatalCode::CompareNaN);
+                self.b.ins().fcmp(float_cc(op), fa, fb)
+            }
+        };
+        let v = self.b.ins().uextend(I32, r);
+        B::Bit { v, pos: 0 }
+    }
+
+    pub(crate) fn lower_bits(&mut self, op: &Op) {
+        match op {
+            Op::Load(c) => {
+                let (v, neg) = self.contact(c);
+                let v = if neg { v.not(&mut self.b) } else { v };
+                self.stack.push(v);
+            }
+            Op::And(c) => {
+                let (v, neg) = self.contact(c);
+                let top = self.stack.top();
+                let r = if neg {
+                    top.and_not(&mut self.b, v)
+                } else {
+                    top.and(&mut self.b, v)
+                };
+                self.stack.set_top(r);
+            }
+            Op::Or(c) => {
+                let (v, neg) = self.contact(c);
+                let top = self.stack.top();
+                let r = if neg {
+                    top.or_not(&mut self.b, v)
+                } else {
+                    top.or(&mut self.b, v)
+                };
+                self.stack.set_top(r);
+            }
+            Op::Not => {
+                let t = self.stack.top().not(&mut self.b);
+                self.stack.set_top(t);
+            }
+            Op::AndBlock | Op::OrBlock => {
+                let s0 = self.stack.pop();
+                let s1 = self.stack.top();
+                let r = if matches!(op, Op::AndBlock) {
+                    s0.and(&mut self.b, s1)
+                } else {
+                    s0.or(&mut self.b, s1)
+                };
+                self.stack.set_top(r);
+            }
+            Op::Dup => {
+                let t = self.stack.top();
+                self.stack.push(t);
+            }
+            Op::ReadSecond => {
+                let s1 = self.stack.level(1);
+                self.stack.set_top(s1);
+            }
+            Op::Pop => {
+                self.stack.pop();
+            }
+            Op::Pick(n) => {
+                let v = self.stack.level(usize::from(*n));
+                self.stack.push(v);
+            }
+            Op::AndEno => {
+                let a = self.sched(Sched::ENO);
+                let v = self.byte(a);
+                let t = self.stack.top().and(&mut self.b, B::Bit { v, pos: 0 });
+                self.stack.set_top(t);
+            }
+            Op::Edge { slot, falling } => self.edge(slot.0, *falling),
+            Op::Assign { bit, immediate } => {
+                let pf = self.pf();
+                let a = self.bit_byte(*bit);
+                self.write_bit_at(a, bit.bit, pf);
+                if *immediate
+                    && bit.area == Area::Q
+                    && bit.byte < self.env.layout.area_size(Area::Q)
+                {
+                    let a = Addr::img(self.env.layout.phys_out + bit.byte);
+                    self.write_bit_at(a, bit.bit, pf);
+                }
+            }
+            Op::SetRange {
+                start,
+                count,
+                value,
+                immediate,
+            } => self.set_range(*start, count, *value, *immediate),
+            _ => {}
+        }
+    }
+
+    /// `EU`/`ED` inline (spec §5.1, runtime `edge::execute`): out = edge AND NOT first scan.
+    fn edge(&mut self, slot: u16, falling: bool) {
+        if slot >= self.env.layout.profile.profile().max_edges {
+            self.stack.set_top(B::K(false));
+            return;
+        }
+        let v = self.pf();
+        let at = Addr::img(self.env.layout.edges + u32::from(slot));
+        let mem = self.byte(at);
+        let memb = B::Bit { v: mem, pos: 0 };
+        let out = if falling {
+            memb.and_not(&mut self.b, v)
+        } else {
+            v.and_not(&mut self.b, memb)
+        };
+        let fa = self.sched(Sched::FIRST_SCAN);
+        let first = self.byte(fa);
+        let out = out.and_not(&mut self.b, B::Bit { v: first, pos: 0 });
+        let v01 = v.to01(&mut self.b);
+        self.set_byte(at, v01);
+        self.stack.set_top(out);
+    }
+
+    /// `S`/`R`/`SI`/`RI`: inline when the count is a constant; otherwise the runtime does it.
+    fn set_range(&mut self, start: BitLoc, count: &Operand, value: bool, immediate: bool) {
+        let pf = self.pf();
+        if pf == B::K(false) {
+            return;
+        }
+        if let Operand::Const(k) = *count {
+            let n = k & 0xFF;
+            if n == 0 {
+                return;
+            }
+            let per_byte = matches!(start.area, Area::TimerBit | Area::CounterBit);
+            let size = self.env.layout.area_size(start.area);
+            let first = if per_byte {
+                start.byte
+            } else {
+                start.byte * 8 + u32::from(start.bit)
+            };
+            let limit = if per_byte { size } else { size * 8 };
+            if first + n > limit {
+                self.guarded(pf, |s| s.record_error_k(ErrorCode::OperandRange));
+                return;
+            }
+            if n <= 64 {
+                let bits: Vec<(Addr, u8)> = (0..n)
+                    .map(|i| {
+                        if per_byte {
+                            (self.area_addr(start.area, start.byte + i), 0)
+                        } else {
+                            let b = first + i;
+                            (self.area_addr(start.area, b / 8), (b % 8) as u8)
+                        }
+                    })
+                    .collect();
+                let phys = immediate && start.area == Area::Q;
+                let out = self.env.layout.phys_out;
+                let base_q = self.env.layout.base(Area::Q);
+                // Conditional write without branching: new = pf ? value : old.
+                for (a, pos) in bits {
+                    self.cond_write_bit(a, pos, pf, value);
+                    if phys {
+                        let pa = Addr::img(out + (a.off - base_q));
+                        self.cond_write_bit(pa, pos, pf, value);
+                    }
+                }
+                return;
+            }
+        }
+        self.set_range_helper(pf, start, count, value, immediate);
+    }
+
+    /// Sets (or clears) a bit where `pf` holds, leaves it elsewhere.
+    fn cond_write_bit(&mut self, a: Addr, pos: u8, pf: B, value: bool) {
+        let old = self.byte(a);
+        let new = match pf {
+            B::K(true) => {
+                let m = 1i64 << pos;
+                if value {
+                    self.b.ins().bor_imm_s(old, m)
+                } else {
+                    self.b.ins().band_imm_s(old, !m & 0xFF)
+                }
+            }
+            _ => {
+                let m = pf.at_bit(&mut self.b, pos);
+                if value {
+                    self.b.ins().bor(old, m)
+                } else {
+                    self.b.ins().band_not(old, m)
+                }
+            }
+        };
+        self.set_byte(a, new);
+    }
+
+    /// Runs `f` only where `pf` holds (a branch unless `pf` is constant); the cache survives.
+    pub(crate) fn guarded(&mut self, pf: B, f: impl FnOnce(&mut Self)) {
+        match pf {
+            B::K(false) => {}
+            B::K(true) => f(self),
+            _ => {
+                let c = pf.cond(&mut self.b);
+                self.diamond(c, f, |_| {});
+            }
+        }
+    }
+
+    /// Reads a byte operand used as a count (S/R/timer resets).
+    pub(crate) fn count_value(&mut self, count: &Operand, fail: OnFail) -> Value {
+        self.read_operand(count, Width::Byte, fail)
+    }
+}
+
+fn int_cc(op: CmpOp, signed: bool) -> IntCC {
+    match (op, signed) {
+        (CmpOp::Eq, _) => IntCC::Equal,
+        (CmpOp::Ne, _) => IntCC::NotEqual,
+        (CmpOp::Ge, true) => IntCC::SignedGreaterThanOrEqual,
+        (CmpOp::Le, true) => IntCC::SignedLessThanOrEqual,
+        (CmpOp::Gt, true) => IntCC::SignedGreaterThan,
+        (CmpOp::Lt, true) => IntCC::SignedLessThan,
+        (CmpOp::Ge, false) => IntCC::UnsignedGreaterThanOrEqual,
+        (CmpOp::Le, false) => IntCC::UnsignedLessThanOrEqual,
+        (CmpOp::Gt, false) => IntCC::UnsignedGreaterThan,
+        (CmpOp::Lt, false) => IntCC::UnsignedLessThan,
+    }
+}
+
+fn float_cc(op: CmpOp) -> FloatCC {
+    match op {
+        CmpOp::Eq => FloatCC::Equal,
+        CmpOp::Ne => FloatCC::NotEqual,
+        CmpOp::Ge => FloatCC::GreaterThanOrEqual,
+        CmpOp::Le => FloatCC::LessThanOrEqual,
+        CmpOp::Gt => FloatCC::GreaterThan,
+        CmpOp::Lt => FloatCC::LessThan,
+    }
+}

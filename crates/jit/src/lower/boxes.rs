@@ -1,0 +1,342 @@
+//! Box instructions (spec §4.7–4.12).
+//!
+//! The hot, simple ones are inline: moves, SWAP, integer `+`/`-`, INC/DEC, word logic and
+//! INV with their SMB1 rules (copied from `stljit_runtime::arith`/`bitops`, and checked against
+//! them by the differential tests). Everything with an intricate rule (multiplication, division,
+//! reals, shifts, rotates, conversions) calls the runtime's own computation through the value
+//! shim [`Helper::Value`] and applies the outcome it returns. Writes that the flag rule forbids
+//! are done as a write of the old value (`select`), which leaves the same bytes without a branch.
+
+use super::Lower;
+use super::cache::Addr;
+use super::mem::{OnFail, Place};
+use super::value::B;
+use crate::helpers::{self, Helper, ValueOp};
+use cranelift_codegen::ir::{
+    InstBuilder, Value,
+    condcodes::IntCC,
+    types::{I32, I64},
+};
+use stljit_core::ir::{ArithOp, BoxOp, LogicOp, Operand};
+use stljit_core::{Area, Width};
+
+impl Lower<'_, '_> {
+    fn smb1(&self) -> Addr {
+        self.area_addr(Area::SM, 1)
+    }
+
+    /// SMB1 := (SMB1 AND NOT clear_mask) OR bits (bits within the mask).
+    fn put_flags(&mut self, clear_mask: i64, bits: Value) {
+        let a = self.smb1();
+        let old = self.byte(a);
+        let kept = self.b.ins().band_imm_s(old, !clear_mask & 0xFF);
+        let new = self.b.ins().bor(kept, bits);
+        self.set_byte(a, new);
+    }
+
+    /// SM1.0 and SM1.2 bits of a result (`r` sign-extended to i32 for the negative test).
+    fn zn_bits(&mut self, r: Value) -> Value {
+        let z = self.b.ins().icmp_imm_s(IntCC::Equal, r, 0);
+        let z = self.b.ins().uextend(I32, z);
+        let n = self.b.ins().ushr_imm_s(r, 31);
+        let n = self.b.ins().ishl_imm_s(n, 2);
+        self.b.ins().bor(z, n)
+    }
+
+    fn dst_place(&mut self, dst: &Operand, w: Width, fail: OnFail) -> Place {
+        self.place(dst, w, true, fail)
+            .unwrap_or(Place::Static(Addr::img(0)))
+    }
+
+    pub(crate) fn lower_box(&mut self, bx: &BoxOp) {
+        match *bx {
+            BoxOp::Move {
+                width,
+                ref src,
+                ref dst,
+            } => self.boxed(|s, f| {
+                let v = s.read_operand(src, width, f);
+                let p = s.dst_place(dst, width, f);
+                s.write_place(p, width, v);
+                B::K(true)
+            }),
+            BoxOp::Swap { ref dst } => self.boxed(|s, f| {
+                let p = s.dst_place(dst, Width::Word, f);
+                let v = s.read_place(p, Width::Word);
+                let hi = s.b.ins().ishl_imm_s(v, 8);
+                let lo = s.b.ins().ushr_imm_s(v, 8);
+                let r = s.b.ins().bor(hi, lo);
+                let r = s.b.ins().band_imm_s(r, 0xFFFF);
+                s.write_place(p, Width::Word, r);
+                B::K(true)
+            }),
+            BoxOp::IntArith {
+                op: op @ (ArithOp::Add | ArithOp::Sub),
+                width,
+                ref src,
+                ref dst,
+            } => self.boxed(|s, f| {
+                let a = s.read_operand(src, width, f);
+                let p = s.dst_place(dst, width, f);
+                let d = s.read_place(p, width);
+                s.add_sub(op == ArithOp::Add, width, p, d, a)
+            }),
+            BoxOp::Step {
+                width: width @ (Width::Word | Width::DWord),
+                up,
+                ref dst,
+            } => self.boxed(|s, f| {
+                let p = s.dst_place(dst, width, f);
+                let d = s.read_place(p, width);
+                let one = s.iconst(I32, 1);
+                s.add_sub(up, width, p, d, one)
+            }),
+            BoxOp::Logic {
+                op,
+                width,
+                ref src,
+                ref dst,
+            } => self.boxed(|s, f| {
+                let a = s.read_operand(src, width, f);
+                let p = s.dst_place(dst, width, f);
+                let d = s.read_place(p, width);
+                let r = match op {
+                    LogicOp::And => s.b.ins().band(d, a),
+                    LogicOp::Or => s.b.ins().bor(d, a),
+                    LogicOp::Xor => s.b.ins().bxor(d, a),
+                };
+                s.write_place(p, width, r);
+                s.zero_flag(r);
+                B::K(true)
+            }),
+            BoxOp::Invert { width, ref dst } => self.boxed(|s, f| {
+                let p = s.dst_place(dst, width, f);
+                let d = s.read_place(p, width);
+                let r = s.b.ins().bnot(d);
+                let r = s.b.ins().band_imm_s(r, i64::from(width.mask()));
+                s.write_place(p, width, r);
+                s.zero_flag(r);
+                B::K(true)
+            }),
+            BoxOp::IntArith {
+                op,
+                width,
+                ref src,
+                ref dst,
+            } => {
+                let sub = helpers::sub_code(width, helpers::arith_code(op));
+                self.value_box(ValueOp::IntArith, sub, Some((src, width)), dst, width, true)
+            }
+            BoxOp::Step { width, up, ref dst } => {
+                let sub = helpers::sub_code(width, u32::from(up));
+                self.value_box(ValueOp::Step, sub, None, dst, width, true)
+            }
+            BoxOp::MulWide { ref src, ref dst } => self.value_box(
+                ValueOp::MulWide,
+                4,
+                Some((src, Width::Word)),
+                dst,
+                Width::DWord,
+                true,
+            ),
+            BoxOp::DivWide { ref src, ref dst } => self.value_box(
+                ValueOp::DivWide,
+                4,
+                Some((src, Width::Word)),
+                dst,
+                Width::DWord,
+                true,
+            ),
+            BoxOp::RealArith {
+                op,
+                ref src,
+                ref dst,
+            } => {
+                let sub = helpers::sub_code(Width::DWord, helpers::arith_code(op));
+                self.value_box(
+                    ValueOp::RealArith,
+                    sub,
+                    Some((src, Width::DWord)),
+                    dst,
+                    Width::DWord,
+                    true,
+                )
+            }
+            BoxOp::RealFunc {
+                func,
+                ref src,
+                ref dst,
+            } => {
+                let sub = helpers::sub_code(Width::DWord, helpers::real_fn_code(func));
+                self.value_box(
+                    ValueOp::RealFunc,
+                    sub,
+                    Some((src, Width::DWord)),
+                    dst,
+                    Width::DWord,
+                    false,
+                )
+            }
+            BoxOp::Shift {
+                left,
+                width,
+                ref dst,
+                ref count,
+            } => {
+                let op = if left {
+                    ValueOp::ShiftL
+                } else {
+                    ValueOp::ShiftR
+                };
+                let sub = helpers::sub_code(width, 0);
+                self.value_box(op, sub, Some((count, Width::Byte)), dst, width, true)
+            }
+            BoxOp::Rotate {
+                left,
+                width,
+                ref dst,
+                ref count,
+            } => {
+                let op = if left { ValueOp::RotL } else { ValueOp::RotR };
+                let sub = helpers::sub_code(width, 0);
+                self.value_box(op, sub, Some((count, Width::Byte)), dst, width, true)
+            }
+            BoxOp::Convert {
+                conv,
+                ref src,
+                ref dst,
+            } => {
+                let (sw, dw) = stljit_runtime::convert::widths(conv);
+                let sub = helpers::sub_code(dw, helpers::conv_code(conv));
+                self.value_box(ValueOp::Convert, sub, Some((src, sw)), dst, dw, false)
+            }
+            BoxOp::ImmediateRead { input, .. } | BoxOp::ImmediateWrite { output: input, .. }
+                if input >= self.io_limit(bx) =>
+            {
+                self.boxed(|s, f| {
+                    s.fail_now(f, stljit_core::ErrorCode::OperandRange as u16);
+                    B::K(false)
+                })
+            }
+            BoxOp::ImmediateRead { input, ref dst } => self.boxed(|s, f| {
+                let a = Addr::img(s.env.layout.phys_in + input);
+                let v = s.byte(a);
+                let p = s.dst_place(dst, Width::Byte, f);
+                s.write_place(p, Width::Byte, v);
+                B::K(true)
+            }),
+            BoxOp::ImmediateWrite { ref src, output } => self.boxed(|s, f| {
+                let v = s.read_operand(src, Width::Byte, f);
+                let q = s.area_addr(Area::Q, output);
+                s.write_static(q, Width::Byte, v);
+                let o = Addr::img(s.env.layout.phys_out + output);
+                s.write_static(o, Width::Byte, v);
+                B::K(true)
+            }),
+            BoxOp::BlockMove { .. } | BoxOp::Fill { .. } | BoxOp::ShiftRegister { .. } => {
+                self.lower_block_box(bx)
+            }
+        }
+    }
+
+    /// The byte count of the I or Q area an immediate box addresses.
+    fn io_limit(&self, bx: &BoxOp) -> u32 {
+        let area = if matches!(bx, BoxOp::ImmediateRead { .. }) {
+            Area::I
+        } else {
+            Area::Q
+        };
+        self.env.layout.area_size(area)
+    }
+
+    fn zero_flag(&mut self, r: Value) {
+        let z = self.b.ins().icmp_imm_s(IntCC::Equal, r, 0);
+        let z = self.b.ins().uextend(I32, z);
+        self.put_flags(1, z);
+    }
+
+    /// Inline `+`/`-` (and INC/DEC of words and dwords) with the OK/OVF rules of
+    /// `arith::int_arith`: on overflow OUT keeps its value, SM1.1 = 1, SM1.0 = SM1.2 = 0.
+    fn add_sub(&mut self, add: bool, width: Width, p: Place, d: Value, a: Value) -> B {
+        let (r, ovf) = match width {
+            Width::DWord => {
+                let d64 = self.b.ins().sextend(I64, d);
+                let a64 = self.b.ins().sextend(I64, a);
+                let r64 = if add {
+                    self.b.ins().iadd(d64, a64)
+                } else {
+                    self.b.ins().isub(d64, a64)
+                };
+                let r = self.b.ins().ireduce(I32, r64);
+                let back = self.b.ins().sextend(I64, r);
+                (r, self.b.ins().icmp(IntCC::NotEqual, back, r64))
+            }
+            _ => {
+                let ds = self.sext(d, width);
+                let as_ = self.sext(a, width);
+                let r = if add {
+                    self.b.ins().iadd(ds, as_)
+                } else {
+                    self.b.ins().isub(ds, as_)
+                };
+                let back = self.sext(r, width);
+                (r, self.b.ins().icmp(IntCC::NotEqual, back, r))
+            }
+        };
+        let zn = self.zn_bits(r);
+        let two = self.iconst(I32, 2);
+        let bits = self.b.ins().select(ovf, two, zn);
+        self.put_flags(7, bits);
+        let masked = self.b.ins().band_imm_s(r, i64::from(width.mask()));
+        let out = self.b.ins().select(ovf, d, masked);
+        self.write_place(p, width, out);
+        let ok = self.b.ins().bxor_imm_s(ovf, 1);
+        let ok = self.b.ins().uextend(I32, ok);
+        B::Bit { v: ok, pos: 0 }
+    }
+
+    /// A box computed by the runtime (value shim): reads IN1 (`src`) and OUT, calls, applies the
+    /// SMB1 masks, writes OUT when the outcome has a value. `read_out` is false for boxes whose
+    /// OUT is not an input (the shim then sees 0).
+    fn value_box(
+        &mut self,
+        vop: ValueOp,
+        sub: u32,
+        src: Option<(&Operand, Width)>,
+        dst: &Operand,
+        dw: Width,
+        read_out: bool,
+    ) {
+        self.boxed(|s, f| {
+            let in1 = match src {
+                Some((o, w)) => s.read_operand(o, w, f),
+                None => s.iconst(I32, 0),
+            };
+            let p = s.dst_place(dst, dw, f);
+            let old = s.read_place(p, dw);
+            let out = if read_out { old } else { s.iconst(I32, 0) };
+            let opc = s.iconst(I32, vop as i64);
+            let subv = s.iconst(I32, i64::from(sub));
+            let r = s.call_pure(Helper::Value, &[opc, subv, out, in1]);
+            let setm = s.b.ins().ushr_imm_s(r, 40);
+            let setm = s.b.ins().ireduce(I32, setm);
+            let setm = s.b.ins().band_imm_s(setm, 0xFF);
+            let clr = s.b.ins().ushr_imm_s(r, 48);
+            let clr = s.b.ins().ireduce(I32, clr);
+            let clr = s.b.ins().band_imm_s(clr, 0xFF);
+            let a = s.smb1();
+            let sm = s.byte(a);
+            let kept = s.b.ins().band_not(sm, clr);
+            let nsm = s.b.ins().bor(kept, setm);
+            s.set_byte(a, nsm);
+            let has = s.b.ins().ushr_imm_s(r, 32);
+            let has = s.b.ins().ireduce(I32, has);
+            let has = s.b.ins().band_imm_s(has, 1);
+            let val = s.b.ins().ireduce(I32, r);
+            let val = s.b.ins().band_imm_s(val, i64::from(dw.mask()));
+            let w = s.b.ins().select(has, val, old);
+            s.write_place(p, dw, w);
+            B::Bit { v: has, pos: 0 }
+        })
+    }
+}

@@ -1,0 +1,296 @@
+//! Program control: JMP/LBL, CALL/RET/CRET, END/MEND, STOP, WDR, FOR/NEXT and SCR segments.
+//!
+//! The loop budget is counted exactly at the interpreter's events (a taken backward JMP, a NEXT
+//! that loops back) with the runtime's rule (`scan::loop_tick`, inlined: saturating increment,
+//! fatal when the count exceeds `LOOP_LIMIT`).
+
+use super::Lower;
+use super::mem::OnFail;
+use super::value::B;
+use cranelift_codegen::ir::{
+    Block, InstBuilder,
+    condcodes::IntCC,
+    types::{I16, I32},
+};
+use cranelift_module::Module;
+use stljit_core::ir::{Op, Operand};
+use stljit_core::layout::Sched;
+use stljit_core::{ErrorCode, FatalCode, PouId, Width};
+
+impl Lower<'_, '_> {
+    /// One loop-budget event; takes the Watchdog fatal exit when the budget is exhausted.
+    fn loop_tick(&mut self) {
+        let ca = self.sched(Sched::LOOP_COUNT);
+        let n = self.load_ne(ca, I32);
+        let n1 = self.b.ins().iadd_imm_s(n, 1);
+        let wrapped = self.b.ins().icmp_imm_s(IntCC::Equal, n1, 0);
+        let n1 = self.b.ins().select(wrapped, n, n1);
+        self.store_ne(ca, n1);
+        let la = self.sched(Sched::LOOP_LIMIT);
+        let limit = self.load_ne(la, I32);
+        let over = self.b.ins().icmp(IntCC::UnsignedGreaterThan, n1, limit);
+        self.fatal_if(over, FatalCode::Watchdog);
+    }
+
+    /// If `pf`: (count a loop event if `backward`, then) go to the leader at `target`; else
+    /// fall through with the state kept.
+    fn branch_if(&mut self, pf: B, target: usize, backward: bool) {
+        match pf {
+            B::K(false) => {}
+            B::K(true) => {
+                if backward {
+                    self.loop_tick();
+                }
+                self.jump_to_op(target);
+                self.live = false;
+            }
+            _ => {
+                let c = pf.cond(&mut self.b);
+                let taken = self.b.create_block();
+                let cont = self.b.create_block();
+                self.b.ins().brif(c, taken, &[], cont, &[]);
+                self.b.seal_block(taken);
+                self.b.seal_block(cont);
+                self.b.switch_to_block(taken);
+                let saved = self.cache.clone();
+                if backward {
+                    self.loop_tick();
+                }
+                self.jump_to_op(target);
+                self.cache = saved;
+                self.b.switch_to_block(cont);
+            }
+        }
+    }
+
+    /// Returns 0 from the POU if `pf` (RET/CRET/END/MEND).
+    fn return_if(&mut self, pf: B) {
+        match pf {
+            B::K(false) => {}
+            B::K(true) => {
+                self.ret_ok();
+                self.live = false;
+            }
+            _ => {
+                let c = pf.cond(&mut self.b);
+                let (t, cont) = (self.b.create_block(), self.b.create_block());
+                self.b.ins().brif(c, t, &[], cont, &[]);
+                self.b.seal_block(t);
+                self.b.seal_block(cont);
+                self.b.switch_to_block(t);
+                let saved = self.cache.clone();
+                self.ret_ok();
+                self.cache = saved;
+                self.b.switch_to_block(cont);
+            }
+        }
+    }
+
+    /// A failure block for FOR/NEXT operands: records the error and continues at `past`.
+    /// The cache must be clean when the checks start (they only branch here before any
+    /// cached write), so the block starts from an empty cache.
+    fn loop_fail_block(&mut self, past: usize) -> Block {
+        let err = self.b.create_block();
+        let code = self.b.append_block_param(err, I32);
+        // cranelift-frontend only switches away from a filled block: end this one first.
+        let cont = self.b.create_block();
+        self.b.ins().jump(cont, &[]);
+        self.b.seal_block(cont);
+        let saved = std::mem::take(&mut self.cache);
+        self.b.switch_to_block(err);
+        self.record_error(code);
+        self.jump_to_op(past);
+        self.cache = saved;
+        self.b.switch_to_block(cont);
+        err
+    }
+
+    /// `FOR` (interpreter `exec_for`): skipped without PF; INDX, INIT, FINAL resolved in that
+    /// order (an error skips the loop); INIT stored; `INIT > FINAL` sets S0 and skips.
+    fn lower_for(&mut self, index: &Operand, init: &Operand, limit: &Operand, past: usize) {
+        let pf = self.pf();
+        let not_pf = pf.not(&mut self.b);
+        self.branch_if(not_pf, past, false);
+        if !self.live {
+            return;
+        }
+        self.flush();
+        let err = self.loop_fail_block(past);
+        let fail = OnFail::Branch(err);
+        let dst = self.place(index, Width::Word, true, fail);
+        let first = self.read_operand(init, Width::Word, fail);
+        let last = self.read_operand(limit, Width::Word, fail);
+        if let Some(p) = dst {
+            self.write_place(p, Width::Word, first);
+        }
+        let f16 = self.b.ins().ireduce(I16, first);
+        let l16 = self.b.ins().ireduce(I16, last);
+        let over = self.b.ins().icmp(IntCC::SignedGreaterThan, f16, l16);
+        let over = self.b.ins().uextend(I32, over);
+        let top = self.stack.top();
+        self.stack.set_top(B::K(true));
+        self.branch_if(B::Bit { v: over, pos: 0 }, past, false);
+        self.stack.set_top(top);
+    }
+
+    /// `NEXT` (interpreter `exec_next`): S0 = 1; INDX += 1 (wrapping); loop back (counting the
+    /// budget) while INDX <= FINAL; an operand error records it and leaves the loop.
+    fn lower_next(&mut self, index: &Operand, limit: &Operand, body: usize) {
+        self.stack.set_top(B::K(true));
+        self.flush();
+        let past = self.op + 1;
+        let err = self.loop_fail_block(past);
+        let fail = OnFail::Branch(err);
+        let Some(p) = self.place(index, Width::Word, true, fail) else {
+            return;
+        };
+        let i = self.read_place(p, Width::Word);
+        let i1 = self.b.ins().iadd_imm_s(i, 1);
+        let i1 = self.b.ins().band_imm_s(i1, 0xFFFF);
+        self.write_place(p, Width::Word, i1);
+        let last = self.read_operand(limit, Width::Word, fail);
+        let a16 = self.b.ins().ireduce(I16, i1);
+        let l16 = self.b.ins().ireduce(I16, last);
+        let again = self.b.ins().icmp(IntCC::SignedLessThanOrEqual, a16, l16);
+        let again = self.b.ins().uextend(I32, again);
+        self.branch_if(B::Bit { v: again, pos: 0 }, body, true);
+    }
+
+    pub(crate) fn lower_control(&mut self, op: &Op) {
+        let pou = self.env.prog.pou(self.pou);
+        match op {
+            Op::Jump(l) => {
+                let target = pou.label_target(*l).index();
+                let pf = self.pf();
+                self.branch_if(pf, target, target <= self.op);
+            }
+            Op::Label(_) | Op::Nop => {}
+            Op::Call(callee) => self.call(*callee),
+            Op::Return { conditional } | Op::End { conditional } => {
+                let pf = if *conditional { self.pf() } else { B::K(true) };
+                self.return_if(pf);
+            }
+            Op::Stop => {
+                let pf = self.pf();
+                if pf != B::K(false) {
+                    let a = self.sched(Sched::STOP_REQ);
+                    let old = self.byte(a);
+                    let p = pf.to01(&mut self.b);
+                    let new = self.b.ins().bor(old, p);
+                    self.set_byte(a, new);
+                }
+            }
+            Op::Wdr => {
+                let pf = self.pf();
+                self.guarded(pf, |s| {
+                    let z = s.iconst(I32, 0);
+                    let a = s.sched(Sched::LOOP_COUNT);
+                    s.store_ne(a, z);
+                });
+            }
+            Op::For {
+                index,
+                init,
+                limit,
+                next,
+            } => self.lower_for(index, init, limit, next.index() + 1),
+            Op::Next { head } => {
+                if let Some(Op::For { index, limit, .. }) = pou.ops.get(head.index()) {
+                    self.lower_next(index, limit, head.index() + 1)
+                }
+            }
+            Op::ScrBegin { bit } => {
+                let v = self.read_bit(*bit);
+                let a = self.sched(Sched::SCR_ENABLE);
+                let v01 = v.to01(&mut self.b);
+                self.set_byte(a, v01);
+                self.gate = v;
+                self.stack.push(v);
+            }
+            Op::ScrTransition { to, from } => {
+                let pf = self.pf();
+                let (ta, fa) = (self.bit_byte(*to), self.bit_byte(*from));
+                // Conditional set then reset, as straight-line read-modify-writes.
+                let old = self.byte(ta);
+                let m = pf.at_bit(&mut self.b, to.bit);
+                let new = self.b.ins().bor(old, m);
+                self.set_byte(ta, new);
+                let old = self.byte(fa);
+                let m = pf.at_bit(&mut self.b, from.bit);
+                let new = self.b.ins().band_not(old, m);
+                self.set_byte(fa, new);
+            }
+            Op::ScrCondEnd { end } => {
+                let pf = self.pf();
+                self.branch_if(pf, end.index(), false);
+            }
+            Op::ScrEnd => {
+                let a = self.sched(Sched::SCR_ENABLE);
+                let one = self.iconst(I32, 1);
+                self.set_byte(a, one);
+                self.gate = B::K(true);
+            }
+            _ => {}
+        }
+    }
+
+    /// `CALL`: if PF, the callee runs one frame deeper with a fresh stack (its own function);
+    /// nesting beyond the profile's limit is error 0x0008 and the call is skipped.
+    fn call(&mut self, callee: PouId) {
+        let pf = self.pf();
+        if pf == B::K(false) {
+            return;
+        }
+        let max = i64::from(self.env.layout.profile.profile().max_call_depth);
+        let exits_one = self
+            .env
+            .info
+            .get(callee.index())
+            .is_some_and(|i| i.exits_one);
+        let fref = match self.pou_refs.get(&callee) {
+            Some(f) => *f,
+            None => {
+                let id = self.env.pou_funcs[callee.index()];
+                let f = self.module.declare_func_in_func(id, self.b.func);
+                self.pou_refs.insert(callee, f);
+                f
+            }
+        };
+        let gate_before = self.gate;
+        self.guarded(pf, |s| {
+            let too_deep =
+                s.b.ins()
+                    .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, s.depth, max);
+            s.diamond(
+                too_deep,
+                |s| s.record_error_k(ErrorCode::CallNesting),
+                |s| {
+                    s.flush_forget();
+                    let d1 = s.b.ins().iadd_imm_s(s.depth, 1);
+                    let call = s.b.ins().call(fref, &[s.image, d1]);
+                    let status = s.b.inst_results(call)[0];
+                    let exit = s.b.create_block();
+                    let cont = s.b.create_block();
+                    s.b.set_cold_block(exit);
+                    s.b.ins().brif(status, exit, &[], cont, &[]);
+                    s.b.seal_block(exit);
+                    s.b.seal_block(cont);
+                    s.b.switch_to_block(exit);
+                    s.b.ins().return_(&[status]);
+                    s.b.switch_to_block(cont);
+                },
+            );
+        });
+        self.gate = if exits_one {
+            gate_before
+        } else {
+            self.gate_reload()
+        };
+    }
+
+    fn gate_reload(&mut self) -> B {
+        let a = self.sched(Sched::SCR_ENABLE);
+        let v = self.byte(a);
+        B::Bit { v, pos: 0 }
+    }
+}

@@ -1,0 +1,130 @@
+//! Control flow inside one op: two-armed diamonds and the frame every box instruction runs in.
+//!
+//! Both keep the byte cache across the op: the cache is flushed (made clean) before the branch,
+//! every arm starts from that clean copy and flushes its own writes, and the join keeps only the
+//! entries no arm replaced ([`Cache::meet`]). The logic stack and the gate are untouched by these
+//! ops, so their compile-time values stay valid after the join.
+
+use super::Lower;
+use super::cache::Cache;
+use super::mem::OnFail;
+use super::value::B;
+use cranelift_codegen::ir::{Block, InstBuilder, Value, types::I32};
+
+impl Lower<'_, '_> {
+    /// Ends the current arm: flush, remember its cache, jump to `join`.
+    fn close_arm(&mut self, join: Block, arms: &mut Vec<Cache>) {
+        self.flush();
+        arms.push(std::mem::take(&mut self.cache));
+        self.b.ins().jump(join, &[]);
+    }
+
+    /// `if cond { then } else { other }` with the cache kept across.
+    pub(crate) fn diamond(
+        &mut self,
+        cond: Value,
+        then: impl FnOnce(&mut Self),
+        other: impl FnOnce(&mut Self),
+    ) {
+        self.flush();
+        let start = self.cache.clone();
+        let (t, e, j) = (
+            self.b.create_block(),
+            self.b.create_block(),
+            self.b.create_block(),
+        );
+        self.b.ins().brif(cond, t, &[], e, &[]);
+        self.b.seal_block(t);
+        self.b.seal_block(e);
+        let mut arms = Vec::with_capacity(2);
+        self.b.switch_to_block(t);
+        self.cache = start.clone();
+        then(self);
+        self.close_arm(j, &mut arms);
+        self.b.switch_to_block(e);
+        self.cache = start;
+        other(self);
+        self.close_arm(j, &mut arms);
+        self.b.seal_block(j);
+        self.b.switch_to_block(j);
+        self.cache = Cache::meet(&arms);
+    }
+
+    /// Runs a box instruction (spec §4.0): nothing but `ENO = 0` when PF is 0; otherwise `run`
+    /// reads its inputs, computes and writes, returning ENO (1, or 0 for a flag-rule failure). A
+    /// pointer that fails to resolve (or an explicit branch to the failure block with a code)
+    /// records the error and clears ENO, writing nothing.
+    pub(crate) fn boxed(&mut self, run: impl FnOnce(&mut Self, OnFail) -> B) {
+        let pf = self.pf();
+        if pf == B::K(false) {
+            self.set_eno(B::K(false));
+            return;
+        }
+        self.flush();
+        let start = self.cache.clone();
+        let (r, err, j) = (
+            self.b.create_block(),
+            self.b.create_block(),
+            self.b.create_block(),
+        );
+        let code = self.b.append_block_param(err, I32);
+        let skip = if pf == B::K(true) {
+            self.b.ins().jump(r, &[]);
+            None
+        } else {
+            let s = self.b.create_block();
+            let c = pf.cond(&mut self.b);
+            self.b.ins().brif(c, r, &[], s, &[]);
+            self.b.seal_block(s);
+            Some(s)
+        };
+        self.b.seal_block(r);
+        let mut arms = Vec::with_capacity(3);
+        self.b.switch_to_block(r);
+        self.cache = start.clone();
+        let eno = run(self, OnFail::Branch(err));
+        self.set_eno(eno);
+        self.close_arm(j, &mut arms);
+
+        self.b.seal_block(err);
+        self.b.switch_to_block(err);
+        self.cache = start.clone();
+        self.record_error(code);
+        self.set_eno(B::K(false));
+        self.close_arm(j, &mut arms);
+
+        if let Some(s) = skip {
+            self.b.switch_to_block(s);
+            self.cache = start;
+            self.set_eno(B::K(false));
+            self.close_arm(j, &mut arms);
+        }
+        self.b.seal_block(j);
+        self.b.switch_to_block(j);
+        self.cache = Cache::meet(&arms);
+    }
+
+    /// Branches to the failure block with a static error code when `cond` holds.
+    pub(crate) fn fail_if(&mut self, cond: Value, fail: OnFail, code: u16) {
+        if let OnFail::Branch(err) = fail {
+            let cont = self.b.create_block();
+            let c = self.iconst(I32, i64::from(code));
+            self.b.ins().brif(
+                cond,
+                err,
+                &[cranelift_codegen::ir::BlockArg::Value(c)],
+                cont,
+                &[],
+            );
+            self.b.seal_block(cont);
+            self.b.switch_to_block(cont);
+        }
+    }
+
+    /// Jumps to the failure block unconditionally (a statically known error) and continues in an
+    /// unreachable block so the caller's code stays well-formed.
+    pub(crate) fn fail_now(&mut self, fail: OnFail, code: u16) {
+        let one = self.iconst(I32, 1);
+        self.fail_if(one, fail, code);
+    }
+}

@@ -1,0 +1,229 @@
+//! Value operands: constants, direct locations and pointers.
+//!
+//! Direct locations are range-checked by the front end against the same profile, so they become
+//! loads and stores at constant offsets (big-endian words through `bswap`). A pointer operand is
+//! read as a dword, resolved by the runtime's `pointer::resolve` (through its shim, so the rule
+//! exists once) and accessed at the resulting image offset; a failed resolution branches to the
+//! caller's failure path. Because a pointer may alias any cached byte, dirty bytes are stored
+//! before a pointer access and the cache is forgotten after a pointer write.
+
+use super::cache::Addr;
+use super::{Lower, mf};
+use crate::helpers::Helper;
+use cranelift_codegen::ir::{
+    Block, BlockArg, InstBuilder, Value,
+    condcodes::IntCC,
+    types::{I16, I32, I64},
+};
+use stljit_core::ir::{Loc, Operand};
+use stljit_core::{FatalCode, Width};
+
+/// Where a value operand lives once resolved.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Place {
+    /// A static address (through the cache).
+    Static(Addr),
+    /// An absolute address computed at run time (image pointer plus resolved offset).
+    Dyn(Value),
+}
+
+/// What a failed pointer resolution does.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum OnFail {
+    /// Branch to this block, passing the error code (`i32`).
+    Branch(Block),
+    /// Abort the scan with this fatal code (compares).
+    Fatal(FatalCode),
+}
+
+impl Lower<'_, '_> {
+    /// The static address of a location.
+    pub(crate) fn loc_addr(&self, loc: Loc) -> Addr {
+        self.area_addr(loc.area, loc.offset)
+    }
+
+    /// Reads `width` big-endian bytes at a static address, zero-extended to `i32`.
+    pub(crate) fn read_static(&mut self, a: Addr, width: Width) -> Value {
+        if width == Width::Byte {
+            return self.byte(a);
+        }
+        let n = width.bytes();
+        if (0..n).all(|i| self.cache.get(a.plus(i)).is_some()) {
+            // All bytes are in registers (typically just written): assemble them.
+            let mut acc = self.byte(a);
+            for i in 1..n {
+                let hi = self.b.ins().ishl_imm_s(acc, 8);
+                let lo = self.byte(a.plus(i));
+                acc = self.b.ins().bor(hi, lo);
+            }
+            return acc;
+        }
+        let d = self.cache.take_dirty_in(a, n);
+        for (da, v) in d {
+            let base = self.base(da);
+            self.b.ins().istore8(mf(), v, base, da.off as i32);
+        }
+        let base = self.base(a);
+        self.load_be(base, a.off as i32, width)
+    }
+
+    fn load_be(&mut self, base: Value, off: i32, width: Width) -> Value {
+        match width {
+            Width::Byte => self.b.ins().uload8(I32, mf(), base, off),
+            Width::Word => {
+                let v = self.b.ins().load(I16, mf(), base, off);
+                let s = self.b.ins().bswap(v);
+                self.b.ins().uextend(I32, s)
+            }
+            Width::DWord => {
+                let v = self.b.ins().load(I32, mf(), base, off);
+                self.b.ins().bswap(v)
+            }
+        }
+    }
+
+    fn store_be(&mut self, base: Value, off: i32, width: Width, v: Value) {
+        match width {
+            Width::Byte => {
+                self.b.ins().istore8(mf(), v, base, off);
+            }
+            Width::Word => {
+                let w = self.b.ins().ireduce(I16, v);
+                let s = self.b.ins().bswap(w);
+                self.b.ins().store(mf(), s, base, off);
+            }
+            Width::DWord => {
+                let s = self.b.ins().bswap(v);
+                self.b.ins().store(mf(), s, base, off);
+            }
+        }
+    }
+
+    /// Writes the low `width` bytes of `v` (an `i32`) big-endian at a static address.
+    pub(crate) fn write_static(&mut self, a: Addr, width: Width, v: Value) {
+        match width {
+            Width::Byte => {
+                let m = self.b.ins().band_imm_s(v, 0xFF);
+                self.set_byte(a, m);
+            }
+            _ => {
+                // Keep the written bytes in registers: a later bit or byte read of them (flags,
+                // coils on the same word) then needs no load.
+                let n = width.bytes();
+                for i in 0..n {
+                    let sh = 8 * (n - 1 - i);
+                    let s = if sh == 0 {
+                        v
+                    } else {
+                        self.b.ins().ushr_imm_s(v, i64::from(sh))
+                    };
+                    let m = self.b.ins().band_imm_s(s, 0xFF);
+                    self.cache.put_clean(a.plus(i), m);
+                }
+                let base = self.base(a);
+                self.store_be(base, a.off as i32, width, v);
+            }
+        }
+    }
+
+    /// Resolves a pointer held at `loc` for a `width` access; on failure takes `fail`.
+    fn resolve(&mut self, loc: Loc, width: Width, write: bool, fail: OnFail) -> Value {
+        let pa = self.loc_addr(loc);
+        let ptr = self.read_static(pa, Width::DWord);
+        let w = self.iconst(I32, i64::from(width.bytes()));
+        let wr = self.iconst(I32, i64::from(write));
+        // The shim packs its result: bit 32 set = success with the image offset in bits 0-31,
+        // else the error code in bits 0-31.
+        let r = self.call_pure(Helper::Pointer, &[ptr, w, wr]);
+        let okbit = self.b.ins().ushr_imm_s(r, 32);
+        let okbit = self.b.ins().band_imm_s(okbit, 1);
+        let bad = self.b.ins().icmp_imm_s(IntCC::Equal, okbit, 0);
+        let payload = self.b.ins().ireduce(I32, r);
+        match fail {
+            OnFail::Fatal(code) => self.fatal_if(bad, code),
+            OnFail::Branch(err) => {
+                let cont = self.b.create_block();
+                self.b
+                    .ins()
+                    .brif(bad, err, &[BlockArg::Value(payload)], cont, &[]);
+                self.b.seal_block(cont);
+                self.b.switch_to_block(cont);
+            }
+        }
+        let off = self.b.ins().uextend(I64, payload);
+        self.b.ins().iadd(self.image, off)
+    }
+
+    /// Resolves an operand to a place (constants and `&` have none: the caller handles them).
+    pub(crate) fn place(
+        &mut self,
+        o: &Operand,
+        width: Width,
+        write: bool,
+        fail: OnFail,
+    ) -> Option<Place> {
+        match *o {
+            Operand::Mem(loc) => Some(Place::Static(self.loc_addr(loc))),
+            Operand::Indirect(loc) => Some(Place::Dyn(self.resolve(loc, width, write, fail))),
+            Operand::Const(_) | Operand::AddressOf(_) => None,
+        }
+    }
+
+    /// Reads a resolved place.
+    pub(crate) fn read_place(&mut self, p: Place, width: Width) -> Value {
+        match p {
+            Place::Static(a) => self.read_static(a, width),
+            Place::Dyn(addr) => {
+                self.flush();
+                self.load_be(addr, 0, width)
+            }
+        }
+    }
+
+    /// Writes a resolved place.
+    pub(crate) fn write_place(&mut self, p: Place, width: Width, v: Value) {
+        match p {
+            Place::Static(a) => self.write_static(a, width, v),
+            Place::Dyn(addr) => {
+                self.flush_forget();
+                self.store_be(addr, 0, width, v);
+            }
+        }
+    }
+
+    /// Reads an operand's value (zero-extended `i32`), resolving pointers.
+    pub(crate) fn read_operand(&mut self, o: &Operand, width: Width, fail: OnFail) -> Value {
+        match *o {
+            Operand::Const(k) => self.iconst(I32, i64::from(k & width.mask())),
+            Operand::AddressOf(loc) => {
+                let code = loc.area.pointer_code().unwrap_or(0);
+                let p = (u32::from(code) << 24) | (loc.offset & 0x00FF_FFFF);
+                self.iconst(I32, i64::from(p & width.mask()))
+            }
+            _ => match self.place(o, width, false, fail) {
+                Some(p) => self.read_place(p, width),
+                None => self.iconst(I32, 0),
+            },
+        }
+    }
+
+    /// Sign-extends the low `width` bits of an `i32` to `i32`.
+    pub(crate) fn sext(&mut self, v: Value, width: Width) -> Value {
+        match width {
+            Width::Byte => {
+                let s = self.b.ins().ishl_imm_s(v, 24);
+                self.b.ins().sshr_imm_s(s, 24)
+            }
+            Width::Word => {
+                let s = self.b.ins().ishl_imm_s(v, 16);
+                self.b.ins().sshr_imm_s(s, 16)
+            }
+            Width::DWord => v,
+        }
+    }
+
+    /// Whether an operand is a pointer (needs run-time resolution).
+    pub(crate) fn is_indirect(o: &Operand) -> bool {
+        matches!(o, Operand::Indirect(_))
+    }
+}

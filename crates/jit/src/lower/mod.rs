@@ -1,0 +1,418 @@
+//! Lowering of one POU to one Cranelift function.
+//!
+//! Every POU becomes `fn(image: i64, depth: i32) -> i32`: `image` is the image's first byte,
+//! `depth` the call depth (0 for the main program, which also selects the L frame), and the
+//! result 0 to continue or [`ScanStatus::Fatal`] when a fatal error aborted the scan (the error
+//! is already recorded in the image). Subroutines are separate functions so that a POU called
+//! from many places is compiled once.
+//!
+//! Straight-line code between two block leaders (see [`crate::analysis`]) is lowered with the
+//! logic stack as compile-time booleans ([`value::Stack`]) and the image bytes it touches in SSA
+//! values ([`cache::Cache`]); both are written back only at block boundaries, helper calls and
+//! exits. The submodules lower the instruction groups: bit logic, boxes, control flow, memory
+//! operands and the stateful instructions that call the runtime.
+
+pub(crate) mod bits;
+pub(crate) mod boxes;
+pub(crate) mod cache;
+pub(crate) mod control;
+pub(crate) mod flow;
+pub(crate) mod mem;
+pub(crate) mod stateful;
+pub(crate) mod value;
+
+use crate::analysis::PouInfo;
+use crate::helpers::{Helper, HelperIds};
+use cache::{Addr, Cache};
+use cranelift_codegen::ir::{
+    Block, FuncRef, InstBuilder, MemFlagsData, SourceLoc, Type, Value,
+    types::{I16, I32, I64},
+};
+use cranelift_frontend::{FunctionBuilder, Variable};
+use cranelift_jit::JITModule;
+use cranelift_module::{FuncId, Module};
+use std::collections::HashMap;
+use stljit_core::ir::{Op, Program};
+use stljit_core::layout::{Layout, Sched};
+use stljit_core::{Area, ErrorCode, FatalCode, PouId, ScanStatus};
+use value::{B, Stack};
+
+/// What all POU functions of one program share.
+pub(crate) struct Env<'a> {
+    pub(crate) prog: &'a Program,
+    pub(crate) layout: &'a Layout,
+    /// Address of the program's boxed [`Layout`], passed to every runtime shim.
+    pub(crate) layout_ptr: i64,
+    pub(crate) pou_funcs: Vec<FuncId>,
+    pub(crate) helpers: &'a HelperIds,
+    pub(crate) info: Vec<PouInfo>,
+}
+
+/// Memory flags for every image access: the image is never null and every direct offset is in
+/// range, but words may be unaligned.
+pub(crate) fn mf() -> MemFlagsData {
+    MemFlagsData::new().with_notrap()
+}
+
+/// The state of lowering one POU.
+pub(crate) struct Lower<'e, 'f> {
+    pub(crate) env: &'e Env<'e>,
+    pub(crate) module: &'e mut JITModule,
+    pub(crate) b: FunctionBuilder<'f>,
+    pub(crate) pou: PouId,
+    pub(crate) image: Value,
+    pub(crate) lbase: Value,
+    pub(crate) depth: Value,
+    pub(crate) st: Variable,
+    pub(crate) stack: Stack,
+    /// The block's entry value of `st`, to recognise an unchanged stack.
+    pub(crate) entry_st: Option<Value>,
+    pub(crate) gate: B,
+    pub(crate) cache: Cache,
+    pub(crate) leaders: HashMap<usize, Block>,
+    pub(crate) fnrefs: HashMap<Helper, FuncRef>,
+    pub(crate) pou_refs: HashMap<PouId, FuncRef>,
+    /// The op being lowered (recorded as the error site).
+    pub(crate) op: usize,
+    /// False after an unconditional transfer until the next leader.
+    pub(crate) live: bool,
+    /// The first instruction this engine cannot compile, if any.
+    pub(crate) unsupported: Option<String>,
+}
+
+impl<'e, 'f> Lower<'e, 'f> {
+    pub(crate) fn depth(&self) -> u8 {
+        self.env.prog.logic_stack_depth
+    }
+
+    /// `PF = S0 AND gate`.
+    pub(crate) fn pf(&mut self) -> B {
+        let top = self.stack.top();
+        let gate = self.gate;
+        top.and(&mut self.b, gate)
+    }
+
+    // ---- raw memory --------------------------------------------------------------------------
+
+    /// The base pointer of an address.
+    pub(crate) fn base(&self, a: Addr) -> Value {
+        if a.local { self.lbase } else { self.image }
+    }
+
+    fn off32(a: Addr) -> i32 {
+        // Image offsets are far below 2^31 (images are a few kB); checked at compile time.
+        a.off as i32
+    }
+
+    /// A byte through the cache.
+    pub(crate) fn byte(&mut self, a: Addr) -> Value {
+        if let Some(v) = self.cache.get(a) {
+            return v;
+        }
+        let base = self.base(a);
+        let v = self.b.ins().uload8(I32, mf(), base, Self::off32(a));
+        self.cache.put_clean(a, v);
+        v
+    }
+
+    /// Writes a byte through the cache (`v` must have its upper 24 bits zero).
+    pub(crate) fn set_byte(&mut self, a: Addr, v: Value) {
+        self.cache.put_dirty(a, v);
+    }
+
+    /// Stores the given dirty entries.
+    fn store_entries(&mut self, entries: Vec<(Addr, Value)>) {
+        for (a, v) in entries {
+            let base = self.base(a);
+            self.b.ins().istore8(mf(), v, base, Self::off32(a));
+        }
+    }
+
+    /// Stores every dirty byte; the cache stays valid.
+    pub(crate) fn flush(&mut self) {
+        let d = self.cache.take_all_dirty();
+        self.store_entries(d);
+    }
+
+    /// Stores every dirty byte and forgets everything (before code that may write anywhere).
+    pub(crate) fn flush_forget(&mut self) {
+        self.flush();
+        self.cache = Cache::default();
+    }
+
+    /// Loads `ty` in native byte order at a static address (scheduler fields).
+    pub(crate) fn load_ne(&mut self, a: Addr, ty: Type) -> Value {
+        let n = ty.bytes();
+        let d = self.cache.take_dirty_in(a, n);
+        self.store_entries(d);
+        let base = self.base(a);
+        self.b.ins().load(ty, mf(), base, Self::off32(a))
+    }
+
+    /// Stores `v` (of type `ty`) in native byte order at a static address.
+    pub(crate) fn store_ne(&mut self, a: Addr, v: Value) {
+        let ty = self.b.func.dfg.value_type(v);
+        self.cache.forget(a, ty.bytes());
+        let base = self.base(a);
+        self.b.ins().store(mf(), v, base, Self::off32(a));
+    }
+
+    /// Image address of a scheduler field.
+    pub(crate) fn sched(&self, field: u32) -> Addr {
+        Addr::img(self.env.layout.sched(field))
+    }
+
+    /// Image address of a byte of an area (L: relative to the current frame).
+    pub(crate) fn area_addr(&self, area: Area, off: u32) -> Addr {
+        if area == Area::L {
+            Addr { local: true, off }
+        } else {
+            Addr::img(self.env.layout.addr(area, off, 0))
+        }
+    }
+
+    // ---- helpers and errors ------------------------------------------------------------------
+
+    pub(crate) fn iconst(&mut self, ty: Type, v: i64) -> Value {
+        self.b.ins().iconst(ty, v)
+    }
+
+    /// Calls a runtime shim after flushing and forgetting the cache (it may touch any byte).
+    pub(crate) fn call_helper(&mut self, h: Helper, args: &[Value]) -> Value {
+        self.flush_forget();
+        self.call_pure(h, args)
+    }
+
+    /// Calls a runtime shim that never touches the image.
+    pub(crate) fn call_pure(&mut self, h: Helper, args: &[Value]) -> Value {
+        let fref = match self.fnrefs.get(&h) {
+            Some(f) => *f,
+            None => {
+                let id = self.env.helpers.id(h);
+                let f = self.module.declare_func_in_func(id, self.b.func);
+                self.fnrefs.insert(h, f);
+                f
+            }
+        };
+        let mut all = Vec::with_capacity(args.len() + 2);
+        if h.takes_image() {
+            all.push(self.image);
+        }
+        if h.takes_layout() {
+            let layout = self.iconst(I64, self.env.layout_ptr);
+            all.push(layout);
+        }
+        all.extend_from_slice(args);
+        let call = self.b.ins().call(fref, &all);
+        self.b.inst_results(call)[0]
+    }
+
+    /// Records a non-fatal error for the current op (`code` an `i32` value).
+    pub(crate) fn record_error(&mut self, code: Value) {
+        let c16 = self.b.ins().ireduce(I16, code);
+        let a = self.sched(Sched::LAST_ERR);
+        self.store_ne(a, c16);
+        self.record_site();
+        // Every non-fatal error clears ENO, boxes or not (the interpreter's `error`).
+        self.set_eno(B::K(false));
+    }
+
+    fn record_site(&mut self) {
+        let pou = self.iconst(I16, i64::from(self.pou.0 as u16));
+        let a = self.sched(Sched::ERR_POU);
+        self.store_ne(a, pou);
+        let op = self.iconst(I32, self.op as i64);
+        let a = self.sched(Sched::ERR_OP);
+        self.store_ne(a, op);
+    }
+
+    /// Records a statically known non-fatal error.
+    pub(crate) fn record_error_k(&mut self, code: ErrorCode) {
+        let c = self.iconst(I32, i64::from(code as u16));
+        self.record_error(c);
+    }
+
+    /// Sets ENO.
+    pub(crate) fn set_eno(&mut self, v: B) {
+        let v01 = v.to01(&mut self.b);
+        let a = self.sched(Sched::ENO);
+        self.set_byte(a, v01);
+    }
+
+    /// Emits the fatal exit of the current op in the current block: record, flush, return.
+    pub(crate) fn fatal_here(&mut self, code: FatalCode) {
+        self.flush();
+        let c = self.iconst(I16, i64::from(code as u16));
+        let a = self.sched(Sched::FATAL);
+        self.store_ne(a, c);
+        self.record_site();
+        let st = self.iconst(I32, ScanStatus::Fatal as i64);
+        self.b.ins().return_(&[st]);
+    }
+
+    /// Branches to a fatal exit when `cond` (non-zero) holds; code continues in a fresh block
+    /// that keeps the cache (its only predecessor is this branch).
+    pub(crate) fn fatal_if(&mut self, cond: Value, code: FatalCode) {
+        let exit = self.b.create_block();
+        let cont = self.b.create_block();
+        self.b.set_cold_block(exit);
+        self.b.ins().brif(cond, exit, &[], cont, &[]);
+        self.b.seal_block(exit);
+        self.b.seal_block(cont);
+        self.b.switch_to_block(exit);
+        let saved = self.cache.clone();
+        self.fatal_here(code);
+        self.cache = saved;
+        self.b.switch_to_block(cont);
+    }
+
+    // ---- blocks ------------------------------------------------------------------------------
+
+    /// Writes the stack register and every dirty byte back (end of a block).
+    pub(crate) fn spill_state(&mut self) {
+        let unchanged = self.entry_st.is_some_and(|st| {
+            self.stack.lv.iter().enumerate().all(|(i, l)| {
+                *l == B::Bit {
+                    v: st,
+                    pos: i as u8,
+                }
+            })
+        });
+        if !unchanged {
+            let r = self.stack.to_reg(&mut self.b);
+            self.b.def_var(self.st, r);
+        }
+        self.flush();
+    }
+
+    /// Starts lowering in `block` with state reloaded from the image and the stack register.
+    pub(crate) fn enter(&mut self, block: Block, at_op: usize) {
+        self.b.switch_to_block(block);
+        self.cache = Cache::default();
+        let st = self.b.use_var(self.st);
+        self.entry_st = Some(st);
+        self.stack = Stack::from_reg(st, self.depth());
+        self.gate = self.gate_at(at_op);
+        self.live = true;
+    }
+
+    /// The gate at the start of op `at` of this POU: 1 where the analysis proves it, else read.
+    pub(crate) fn gate_at(&mut self, at: usize) -> B {
+        let known = self.env.info[self.pou.index()]
+            .gate_one
+            .get(at)
+            .copied()
+            .unwrap_or(false);
+        if known {
+            B::K(true)
+        } else {
+            let a = self.sched(Sched::SCR_ENABLE);
+            let v = self.byte(a);
+            B::Bit { v, pos: 0 }
+        }
+    }
+
+    /// Ends the current block with a jump to the leader at op `target`.
+    pub(crate) fn jump_to_op(&mut self, target: usize) {
+        if let Some(&blk) = self.leaders.get(&target) {
+            self.spill_state();
+            self.b.ins().jump(blk, &[]);
+        } else {
+            // The analysis makes every target a leader; returning keeps codegen total anyway.
+            self.ret_ok();
+        }
+    }
+
+    /// Returns 0 (continue) after writing the state back.
+    pub(crate) fn ret_ok(&mut self) {
+        self.flush();
+        let z = self.iconst(I32, 0);
+        self.b.ins().return_(&[z]);
+    }
+
+    /// Lowers the whole POU.
+    pub(crate) fn lower_pou(&mut self) {
+        let pou = self.env.prog.pou(self.pou);
+        let info = &self.env.info[self.pou.index()];
+        // Op 0 needs a block only when a jump targets it (a loop to the top of the POU).
+        let top_targeted = pou.ops.iter().any(|op| {
+            matches!(op, Op::Jump(l) if pou.labels.get(l.index()).is_some_and(|t| t.index() == 0))
+        });
+        for (i, &lead) in info.leader.iter().enumerate() {
+            if lead && (i != 0 || top_targeted) {
+                let blk = self.b.create_block();
+                self.leaders.insert(i, blk);
+            }
+        }
+        // The end of the op list is a leader too, for jumps past the last op.
+        let end = pou.ops.len();
+        let end_blk = self.b.create_block();
+        self.leaders.insert(end, end_blk);
+
+        for (i, op) in pou.ops.iter().enumerate() {
+            if let Some(&blk) = self.leaders.get(&i) {
+                if self.live {
+                    // (At op 0 this writes the initial stack into the register.)
+                    self.spill_state();
+                    self.b.ins().jump(blk, &[]);
+                }
+                self.enter(blk, i);
+            }
+            if !self.live {
+                // Unreachable ops after an unconditional transfer: lower them into a block
+                // without predecessors so that every op still has CLIF (and a srcloc).
+                let blk = self.b.create_block();
+                self.enter(blk, i);
+            }
+            self.op = i;
+            self.b.set_srcloc(SourceLoc::new(i as u32 + 1));
+            self.lower_op(op);
+        }
+        if self.live {
+            self.spill_state();
+            self.b.ins().jump(end_blk, &[]);
+        }
+        self.enter(end_blk, end);
+        self.b.set_srcloc(SourceLoc::default());
+        self.ret_ok();
+        self.live = false;
+    }
+
+    fn lower_op(&mut self, op: &Op) {
+        match op {
+            Op::Load(_)
+            | Op::And(_)
+            | Op::Or(_)
+            | Op::Not
+            | Op::AndBlock
+            | Op::OrBlock
+            | Op::Dup
+            | Op::ReadSecond
+            | Op::Pop
+            | Op::Pick(_)
+            | Op::AndEno
+            | Op::Edge { .. }
+            | Op::Assign { .. }
+            | Op::SetRange { .. } => self.lower_bits(op),
+            Op::ResetTimers { .. }
+            | Op::ResetCounters { .. }
+            | Op::Timer { .. }
+            | Op::Counter { .. } => self.lower_stateful(op),
+            Op::Box(bx) => self.lower_box(bx),
+            Op::Jump(_)
+            | Op::Label(_)
+            | Op::Call(_)
+            | Op::Return { .. }
+            | Op::End { .. }
+            | Op::Stop
+            | Op::Wdr
+            | Op::Nop
+            | Op::For { .. }
+            | Op::Next { .. }
+            | Op::ScrBegin { .. }
+            | Op::ScrTransition { .. }
+            | Op::ScrCondEnd { .. }
+            | Op::ScrEnd => self.lower_control(op),
+        }
+    }
+}

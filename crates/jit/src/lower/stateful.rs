@@ -1,0 +1,178 @@
+//! Timers, counters, their resets and the run-time ranges of `S`/`R`, `BM*`, `FILL`, `SHRB`:
+//! calls into the runtime, which owns these semantics (spec §5).
+
+use super::Lower;
+use super::mem::OnFail;
+use super::value::B;
+use crate::helpers::Helper;
+use cranelift_codegen::ir::{InstBuilder, Value, condcodes::IntCC, types::I32};
+use stljit_core::ir::{BitLoc, BoxOp, Op, Operand};
+use stljit_core::{ErrorCode, Width};
+
+impl Lower<'_, '_> {
+    /// Records a non-zero runtime status as a non-fatal error (a diamond, rarely taken).
+    fn error_if_status(&mut self, status: Value) {
+        let bad = self.b.ins().icmp_imm_s(IntCC::NotEqual, status, 0);
+        self.diamond(bad, |s| s.record_error(status), |_| {});
+    }
+
+    /// Reads a word preset; a failing pointer records 0x0006 and skips the instruction.
+    fn with_preset(&mut self, preset: &Operand, f: impl FnOnce(&mut Self, Value)) {
+        if !Self::is_indirect(preset) {
+            let v = self.read_operand(
+                preset,
+                Width::Word,
+                OnFail::Fatal(stljit_core::FatalCode::CompareIndirect),
+            );
+            let v = self.sext(v, Width::Word);
+            f(self, v);
+            return;
+        }
+        // A pointer preset: resolve first; the failure path records the error and skips.
+        self.flush();
+        let start = self.cache.clone();
+        let err = self.b.create_block();
+        let code = self.b.append_block_param(err, I32);
+        let join = self.b.create_block();
+        let v = self.read_operand(preset, Width::Word, OnFail::Branch(err));
+        let v = self.sext(v, Width::Word);
+        f(self, v);
+        self.flush();
+        let ok_cache = std::mem::take(&mut self.cache);
+        self.b.ins().jump(join, &[]);
+        self.b.seal_block(err);
+        self.b.switch_to_block(err);
+        self.cache = start;
+        self.record_error(code);
+        self.flush();
+        let err_cache = std::mem::take(&mut self.cache);
+        self.b.ins().jump(join, &[]);
+        self.b.seal_block(join);
+        self.b.switch_to_block(join);
+        self.cache = super::cache::Cache::meet(&[ok_cache, err_cache]);
+    }
+
+    pub(crate) fn lower_stateful(&mut self, op: &Op) {
+        match op {
+            Op::Timer {
+                kind,
+                timer,
+                preset,
+            } => {
+                let (kind, n) = (*kind, timer.0);
+                self.with_preset(preset, |s, pv| {
+                    let input = s.stack.top().to01(&mut s.b);
+                    let gate = s.gate.to01(&mut s.b);
+                    let nv = s.iconst(I32, i64::from(n));
+                    let k = s.iconst(I32, i64::from(kind.code()));
+                    let st = s.call_helper(Helper::Timer, &[nv, k, input, gate, pv]);
+                    s.error_if_status(st);
+                });
+            }
+            Op::Counter {
+                kind,
+                counter,
+                preset,
+            } => {
+                let (kind, n) = (*kind, counter.0);
+                self.with_preset(preset, |s, pv| {
+                    let stack = s.stack.to_reg(&mut s.b);
+                    let gate = s.gate.to01(&mut s.b);
+                    let nv = s.iconst(I32, i64::from(n));
+                    let k = s.iconst(I32, i64::from(kind.code()));
+                    let st = s.call_helper(Helper::Counter, &[nv, k, stack, gate, pv]);
+                    s.error_if_status(st);
+                });
+            }
+            Op::ResetTimers { first, count } => {
+                self.reset_range(Helper::TimerReset, u32::from(first.0), count)
+            }
+            Op::ResetCounters { first, count } => {
+                self.reset_range(Helper::CounterReset, u32::from(first.0), count)
+            }
+            _ => {}
+        }
+    }
+
+    fn reset_range(&mut self, h: Helper, first: u32, count: &Operand) {
+        let pf = self.pf();
+        let count = *count;
+        self.guarded_failing(pf, move |s, fail| {
+            let c = s.count_value(&count, fail);
+            let f = s.iconst(I32, i64::from(first));
+            let st = s.call_helper(h, &[f, c]);
+            s.error_if_status(st);
+        });
+    }
+
+    /// Like [`Lower::guarded`], with a failure block for pointer operands that records the
+    /// error (no ENO: these are not boxes).
+    pub(crate) fn guarded_failing(&mut self, pf: B, f: impl FnOnce(&mut Self, OnFail)) {
+        if pf == B::K(false) {
+            return;
+        }
+        self.flush();
+        let start = self.cache.clone();
+        let (r, err, j) = (
+            self.b.create_block(),
+            self.b.create_block(),
+            self.b.create_block(),
+        );
+        let code = self.b.append_block_param(err, I32);
+        let skip = self.b.create_block();
+        let c = pf.cond(&mut self.b);
+        self.b.ins().brif(c, r, &[], skip, &[]);
+        self.b.seal_block(r);
+        self.b.seal_block(skip);
+        let mut arms = Vec::new();
+        self.b.switch_to_block(r);
+        self.cache = start.clone();
+        f(self, OnFail::Branch(err));
+        self.flush();
+        arms.push(std::mem::take(&mut self.cache));
+        self.b.ins().jump(j, &[]);
+        self.b.seal_block(err);
+        self.b.switch_to_block(err);
+        self.cache = start.clone();
+        self.record_error(code);
+        self.flush();
+        arms.push(std::mem::take(&mut self.cache));
+        self.b.ins().jump(j, &[]);
+        self.b.switch_to_block(skip);
+        self.cache = start;
+        arms.push(std::mem::take(&mut self.cache));
+        self.b.ins().jump(j, &[]);
+        self.b.seal_block(j);
+        self.b.switch_to_block(j);
+        self.cache = super::cache::Cache::meet(&arms);
+    }
+
+    /// `S`/`R` with a count only known at run time: not supported by the runtime shims yet.
+    pub(crate) fn set_range_helper(
+        &mut self,
+        _pf: B,
+        _start: BitLoc,
+        _count: &Operand,
+        _value: bool,
+        _immediate: bool,
+    ) {
+        self.unsupported("S/R with a run-time count");
+    }
+
+    /// Block moves, FILL and SHRB.
+    pub(crate) fn lower_block_box(&mut self, bx: &BoxOp) {
+        let what = match bx {
+            BoxOp::BlockMove { .. } => "BMB/BMW/BMD",
+            BoxOp::Fill { .. } => "FILL",
+            _ => "SHRB",
+        };
+        self.unsupported(what);
+        let _ = ErrorCode::OperandRange;
+    }
+
+    fn unsupported(&mut self, what: &str) {
+        if self.unsupported.is_none() {
+            self.unsupported = Some(format!("{what} (POU {} op {})", self.pou.0, self.op));
+        }
+    }
+}

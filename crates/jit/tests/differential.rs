@@ -1,0 +1,133 @@
+//! The JIT against the reference interpreter: generated programs (the diff crate's generator of
+//! valid programs) and hand-written programs per instruction group, whole image compared after
+//! every scan.
+
+mod common;
+
+use common::{check, check_case, check_with, stimulus, stl};
+use stljit_diff::generate::{GenConfig, case_from_seed};
+use stljit_diff::oracle::RunOptions;
+
+/// Generated cases per run (more in release builds, where each takes milliseconds).
+const SEEDS: u64 = if cfg!(debug_assertions) { 60 } else { 400 };
+
+#[test]
+fn generated_programs_agree() {
+    let cfg = GenConfig {
+        scans: 30,
+        ..GenConfig::default()
+    };
+    let mut compiled = 0u64;
+    for seed in 0..SEEDS {
+        let case = case_from_seed(seed, &cfg);
+        if check_case(&case) {
+            compiled += 1;
+        }
+    }
+    assert!(
+        compiled >= 100,
+        "only {compiled} of 150 generated programs compiled"
+    );
+}
+
+#[test]
+fn bit_logic_and_stack() {
+    let p = stl(
+        "LD I0.0\nA I0.1\nLDN I0.2\nO I0.3\nALD\n= Q0.0\nLD I1.0\nLPS\nA I1.1\n= Q0.1\nLRD\nAN I1.2\n= Q0.2\nLPP\nON I1.3\n= Q0.3\n\
+         LD I0.4\nLD I0.5\nLD I0.6\nLD I0.7\nOLD\nALD\nNOT\n= M0.0\nLDS 2\n= M0.1\nLD M0.0\nEU\n= M1.0\nLD I0.0\nED\n= M1.1\n\
+         LD I0.0\nS Q1.0, 3\nLD I0.1\nR Q1.1, 1\nLD SM0.5\n= V10.3\nLDI I0.3\n=I Q2.0\n",
+    );
+    for seed in 0..4 {
+        check(&p, &stimulus(seed, 40));
+    }
+}
+
+#[test]
+fn nine_level_truncation() {
+    let p = stl(
+        "LD SM0.0\nLDN SM0.0\nLDN SM0.0\nLDN SM0.0\nLDN SM0.0\nLDN SM0.0\nLDN SM0.0\nLDN SM0.0\nLDN SM0.0\nLDN SM0.0\nOLD\nOLD\nOLD\nOLD\nOLD\nOLD\nOLD\nOLD\nOLD\n= Q0.0\n",
+    );
+    check(&p, &stimulus(1, 3));
+}
+
+#[test]
+fn moves_compares_and_arithmetic() {
+    let p = stl(
+        "LD I0.0\nMOVW IW0, VW10\nMOVB IB1, VB20\nMOVD ID0, VD30\n+I IW2, VW10\n-I 1000, VW10\nAENO\n= Q0.0\n\
+         LD SM0.0\n+D VD30, VD40\nINCW VW50\nDECB VB52\nANDW IW4, VW54\nORB 16#0F, VB56\nXORD ID4, VD60\nINVW VW64\n\
+         *I IW6, VW70\n/I IW8, VW72\nMUL IW2, VD74\nDIV IW4, VD78\nSLW VW80, 3\nRRD VD82, 5\nSWAP VW86\n\
+         LDW>= VW10, 100\n= Q0.1\nLDB< IB0, IB1\n= Q0.2\nAD<> VD30, 0\n= Q0.3\nMOVR 1.5, VD90\n+R VD90, VD94\nLDR> VD94, 2.0\n= Q0.4\n\
+         ITD IW0, VD100\nDTR VD100, VD104\nROUND VD104, VD108\nBTI IB3, VW112\nSEG IB2, VB114\n",
+    );
+    for seed in 0..4 {
+        check(&p, &stimulus(seed, 30));
+    }
+}
+
+#[test]
+fn timers_and_counters() {
+    let p = stl(
+        "LD I0.0\nTON T37, 5\nLD I0.1\nTONR T3, 20\nLD I0.2\nTOF T2, 8\nLD T37\n= Q0.0\nLD T3\n= Q0.1\nLD T2\n= Q0.2\n\
+         LD I0.3\nLD I0.4\nCTU C1, 3\nLD I0.5\nLD I0.6\nCTD C2, 2\nLD I0.3\nLD I0.5\nLD I0.7\nCTUD C3, 2\n\
+         LD C1\n= Q1.0\nLD I1.0\nR T3, 1\nLD I1.1\nR C1, 2\n",
+    );
+    for seed in 0..4 {
+        check(&p, &stimulus(seed, 60));
+    }
+}
+
+#[test]
+fn control_flow_and_scr() {
+    let p = stl(
+        "LD I0.0\nJMP 1\nLD SM0.0\n= Q0.0\nLBL 1\nLD SM0.0\nFOR VW0, 1, IW2\nLD SM0.0\nINCW VW10\nNEXT\n\
+         LD SM0.1\nS S0.0, 1\nLSCR S0.0\nLD I0.1\nSCRT S0.1\nLD SM0.0\n= Q0.5\nSCRE\nLSCR S0.1\nLD I0.2\nSCRT S0.0\nLD I0.3\nCSCRE\nLD SM0.0\n= Q0.6\nSCRE\n\
+         LD I0.4\nCALL SBR_0\nLD I0.5\nSTOP\nMEND\nSUBROUTINE_BLOCK SBR_0:SBR0\nBEGIN\nLD SM0.0\nINCW VW20\nLD I1.0\nCRET\nLD SM0.0\n= Q1.0\nEND_SUBROUTINE_BLOCK\n",
+    );
+    for seed in 0..4 {
+        check(&p, &stimulus(seed, 30));
+    }
+}
+
+#[test]
+fn watchdog_on_endless_loop() {
+    let p = stl("LBL 0\nLD SM0.0\nINCW VW0\nJMP 0\n");
+    check_with(
+        &p,
+        &stimulus(2, 3),
+        RunOptions {
+            loop_limit: 1000,
+            max_diffs: 8,
+        },
+    );
+    let p = stl("LD SM0.0\nFOR VW0, 1, 32767\nLD SM0.0\nNEXT\n");
+    check_with(
+        &p,
+        &stimulus(3, 3),
+        RunOptions {
+            loop_limit: 500,
+            max_diffs: 8,
+        },
+    );
+}
+
+#[test]
+fn error_paths() {
+    // Bad pointers (boxes: non-fatal 0x0006; compares: fatal), division by zero, overflow, NaN.
+    let p = stl(
+        "LD SM0.0\nMOVD 16#0B000000, VD0\nMOVW *VD0, VW10\nAENO\n= Q0.0\nMOVD &VB100, VD4\nMOVW 7, *VD4\n\
+         /I 0, VW20\nMOVW 32767, VW22\n+I 1, VW22\nMOVD 16#7FC00000, VD30\nLD I0.0\nLDR= VD30, VD30\n= Q0.1\n",
+    );
+    for seed in 0..3 {
+        check(&p, &stimulus(seed, 6));
+    }
+    let p = stl("LD SM0.0\nMOVD 16#06FFFFFF, VD0\nLD I0.1\nLDW= *VD0, 5\n= Q0.0\n");
+    check(&p, &stimulus(5, 4));
+}
+
+#[test]
+fn call_nesting_limit() {
+    let p = stl(
+        "LD SM0.0\nCALL SBR_0\nMEND\nSUBROUTINE_BLOCK SBR_0:SBR0\nBEGIN\nLD SM0.0\nINCW VW0\nCALL SBR_0\nEND_SUBROUTINE_BLOCK\n",
+    );
+    check(&p, &stimulus(1, 3));
+}
