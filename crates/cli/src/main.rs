@@ -7,6 +7,11 @@ use std::process::ExitCode;
 
 mod check;
 mod dump_ir;
+mod duration;
+mod engines;
+mod project;
+mod run;
+mod used;
 
 /// Compile PLC statement-list programs to native code, run them on virtual time, and prove the
 /// JIT equal to the reference interpreter.
@@ -23,6 +28,8 @@ enum Command {
     Check(check::Args),
     /// Print the checked IR, one op per line with its source line.
     DumpIr(dump_ir::Args),
+    /// Simulate programs on virtual time (JIT by default) with stimulus, watch and trace.
+    Run(run::Args),
 }
 
 fn main() -> ExitCode {
@@ -40,6 +47,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Check(args) => check::main(args),
         Command::DumpIr(args) => dump_ir::main(args),
+        Command::Run(args) => run::main(args),
     };
     match result {
         Ok(code) => code,
