@@ -28,12 +28,22 @@ pub(crate) enum Helper {
     Pointer,
     ScanBegin,
     ScanEnd,
+    SetRange,
+    BlockMove,
+    Fill,
+    ShiftRegister,
+    PointerEnd,
     /// `stljit_jit_value(op, width_or_sub, out, in1) -> u64` packed outcome.
     Value,
 }
 
 impl Helper {
-    pub(crate) const ALL: [Helper; 8] = [
+    pub(crate) const ALL: [Helper; 13] = [
+        Helper::SetRange,
+        Helper::BlockMove,
+        Helper::Fill,
+        Helper::ShiftRegister,
+        Helper::PointerEnd,
         Helper::Timer,
         Helper::TimerReset,
         Helper::Counter,
@@ -54,6 +64,11 @@ impl Helper {
             Helper::Pointer => "stljit_rt_pointer",
             Helper::ScanBegin => "stljit_rt_scan_begin",
             Helper::ScanEnd => "stljit_rt_scan_end",
+            Helper::SetRange => "stljit_rt_set_range",
+            Helper::BlockMove => "stljit_rt_block_move",
+            Helper::Fill => "stljit_rt_fill",
+            Helper::ShiftRegister => "stljit_rt_shift_register",
+            Helper::PointerEnd => "stljit_rt_pointer_end",
             Helper::Value => "stljit_jit_value",
         }
     }
@@ -82,6 +97,11 @@ impl Helper {
             Helper::ScanBegin => (&[I64], I32),
             Helper::ScanEnd => (&[I32], I32),
             Helper::Value => (&[I32, I32, I32, I32], I64),
+            Helper::SetRange => (&[I32; 7], I32),
+            Helper::BlockMove => (&[I32; 6], I32),
+            Helper::Fill => (&[I32; 4], I32),
+            Helper::ShiftRegister => (&[I32; 6], I32),
+            Helper::PointerEnd => (&[I32], I32),
         }
     }
 

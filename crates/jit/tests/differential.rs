@@ -24,10 +24,8 @@ fn generated_programs_agree() {
             compiled += 1;
         }
     }
-    assert!(
-        compiled >= 100,
-        "only {compiled} of 150 generated programs compiled"
-    );
+    // Every instruction the generator emits is compiled; nothing may be skipped.
+    assert_eq!(compiled, SEEDS, "some generated programs were not compiled");
 }
 
 #[test]

@@ -128,6 +128,19 @@ impl Lower<'_, '_> {
 
     /// Resolves a pointer held at `loc` for a `width` access; on failure takes `fail`.
     fn resolve(&mut self, loc: Loc, width: Width, write: bool, fail: OnFail) -> Value {
+        let (off, _) = self.resolve_off(loc, width, write, fail);
+        let off = self.b.ins().uextend(I64, off);
+        self.b.ins().iadd(self.image, off)
+    }
+
+    /// Resolves a pointer held at `loc`: its image offset (`i32`) and the raw pointer.
+    pub(crate) fn resolve_off(
+        &mut self,
+        loc: Loc,
+        width: Width,
+        write: bool,
+        fail: OnFail,
+    ) -> (Value, Value) {
         let pa = self.loc_addr(loc);
         let ptr = self.read_static(pa, Width::DWord);
         let w = self.iconst(I32, i64::from(width.bytes()));
@@ -150,8 +163,7 @@ impl Lower<'_, '_> {
                 self.b.switch_to_block(cont);
             }
         }
-        let off = self.b.ins().uextend(I64, payload);
-        self.b.ins().iadd(self.image, off)
+        (payload, ptr)
     }
 
     /// Resolves an operand to a place (constants and `&` have none: the caller handles them).

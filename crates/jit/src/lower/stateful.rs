@@ -5,9 +5,10 @@ use super::Lower;
 use super::mem::OnFail;
 use super::value::B;
 use crate::helpers::Helper;
-use cranelift_codegen::ir::{InstBuilder, Value, condcodes::IntCC, types::I32};
+use cranelift_codegen::ir::{BlockArg, InstBuilder, Value, condcodes::IntCC, types::I32};
 use stljit_core::ir::{BitLoc, BoxOp, Op, Operand};
-use stljit_core::{ErrorCode, Width};
+use stljit_core::{Area, ErrorCode, Width};
+use stljit_runtime::ffi::FfiCode;
 
 impl Lower<'_, '_> {
     /// Records a non-zero runtime status as a non-fatal error (a diamond, rarely taken).
@@ -147,32 +148,149 @@ impl Lower<'_, '_> {
         self.cache = super::cache::Cache::meet(&arms);
     }
 
-    /// `S`/`R` with a count only known at run time: not supported by the runtime shims yet.
+    /// `S`/`R` with a count only known at run time: the runtime's `set_range_imm`.
     pub(crate) fn set_range_helper(
         &mut self,
-        _pf: B,
-        _start: BitLoc,
-        _count: &Operand,
-        _value: bool,
-        _immediate: bool,
+        pf: B,
+        start: BitLoc,
+        count: &Operand,
+        value: bool,
+        immediate: bool,
     ) {
-        self.unsupported("S/R with a run-time count");
+        let count = *count;
+        self.guarded_failing(pf, move |s, fail| {
+            let n = s.count_value(&count, fail);
+            let args = [
+                s.iconst(I32, i64::from(start.area.ffi_code())),
+                s.iconst(I32, i64::from(start.byte)),
+                s.iconst(I32, i64::from(start.bit)),
+                s.depth,
+                n,
+                s.iconst(I32, i64::from(value)),
+                s.iconst(I32, i64::from(immediate)),
+            ];
+            let st = s.call_helper(Helper::SetRange, &args);
+            s.error_if_status(st);
+        });
     }
 
-    /// Block moves, FILL and SHRB.
+    /// The run an operand starts (interpreter `span`): image offset and area end, as `i32`s.
+    fn span(
+        &mut self,
+        o: &Operand,
+        width: Width,
+        write: bool,
+        fail: OnFail,
+    ) -> Option<(Value, Value)> {
+        match *o {
+            Operand::Mem(loc) => {
+                let size = self.env.layout.area_size(loc.area);
+                if loc.offset >= size {
+                    return None;
+                }
+                if loc.area == Area::L {
+                    let fb = self.frame_off();
+                    let start = self.b.ins().iadd_imm_s(fb, i64::from(loc.offset));
+                    let end = self.b.ins().iadd_imm_s(fb, i64::from(size));
+                    Some((start, end))
+                } else {
+                    let base = self.env.layout.base(loc.area);
+                    Some((
+                        self.iconst(I32, i64::from(base + loc.offset)),
+                        self.iconst(I32, i64::from(base + size)),
+                    ))
+                }
+            }
+            Operand::Indirect(loc) => {
+                let (off, ptr) = self.resolve_off(loc, width, write, fail);
+                let end = self.call_pure(Helper::PointerEnd, &[ptr]);
+                Some((off, end))
+            }
+            Operand::Const(_) | Operand::AddressOf(_) => None,
+        }
+    }
+
+    /// Image offset (`i32`) of the current L frame.
+    fn frame_off(&mut self) -> Value {
+        let size = i64::from(self.env.layout.area_size(Area::L));
+        let d = self.b.ins().imul_imm_s(self.depth, size);
+        self.b
+            .ins()
+            .iadd_imm_s(d, i64::from(self.env.layout.base(Area::L)))
+    }
+
+    /// Branches to the failure block with the (dynamic) status when it is not 0.
+    fn fail_on_status(&mut self, st: Value, fail: OnFail) {
+        if let OnFail::Branch(err) = fail {
+            let cont = self.b.create_block();
+            self.b
+                .ins()
+                .brif(st, err, &[BlockArg::Value(st)], cont, &[]);
+            self.b.seal_block(cont);
+            self.b.switch_to_block(cont);
+        }
+    }
+
+    /// Block moves, FILL and SHRB (interpreter `exec_box` order of operand reads).
     pub(crate) fn lower_block_box(&mut self, bx: &BoxOp) {
-        let what = match bx {
-            BoxOp::BlockMove { .. } => "BMB/BMW/BMD",
-            BoxOp::Fill { .. } => "FILL",
-            _ => "SHRB",
-        };
-        self.unsupported(what);
-        let _ = ErrorCode::OperandRange;
-    }
-
-    fn unsupported(&mut self, what: &str) {
-        if self.unsupported.is_none() {
-            self.unsupported = Some(format!("{what} (POU {} op {})", self.pou.0, self.op));
+        let range = ErrorCode::OperandRange as u16;
+        match *bx {
+            BoxOp::BlockMove {
+                width,
+                ref src,
+                ref dst,
+                ref count,
+            } => self.boxed(|s, f| {
+                let n = s.count_value(count, f);
+                let Some((ss, se)) = s.span(src, width, false, f) else {
+                    s.fail_now(f, range);
+                    return B::K(false);
+                };
+                let Some((ds, de)) = s.span(dst, width, true, f) else {
+                    s.fail_now(f, range);
+                    return B::K(false);
+                };
+                let w = s.iconst(I32, i64::from(width.bytes()));
+                let st = s.call_helper(Helper::BlockMove, &[ss, se, ds, de, w, n]);
+                s.fail_on_status(st, f);
+                B::K(true)
+            }),
+            BoxOp::Fill {
+                ref src,
+                ref dst,
+                ref count,
+            } => self.boxed(|s, f| {
+                let v = s.read_operand(src, Width::Word, f);
+                let n = s.count_value(count, f);
+                let Some((ds, de)) = s.span(dst, Width::Word, true, f) else {
+                    s.fail_now(f, range);
+                    return B::K(false);
+                };
+                let st = s.call_helper(Helper::Fill, &[v, ds, de, n]);
+                s.fail_on_status(st, f);
+                B::K(true)
+            }),
+            BoxOp::ShiftRegister {
+                data,
+                start,
+                ref len,
+            } => self.boxed(|s, f| {
+                let d = s.read_bit(data).to01(&mut s.b);
+                let n = s.count_value(len, f);
+                let n = s.sext(n, Width::Byte);
+                let args = [
+                    d,
+                    s.iconst(I32, i64::from(start.area.ffi_code())),
+                    s.iconst(I32, i64::from(start.byte)),
+                    s.iconst(I32, i64::from(start.bit)),
+                    s.depth,
+                    n,
+                ];
+                let st = s.call_helper(Helper::ShiftRegister, &args);
+                s.fail_on_status(st, f);
+                B::K(true)
+            }),
+            _ => {}
         }
     }
 }
