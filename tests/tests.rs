@@ -1,4 +1,5 @@
 //! The workspace's single integration-test binary. Each module covers one test area and
 //! discovers its cases from data files under `tests/`, so a new case is a new file.
 
+mod conformance;
 mod tidy;
