@@ -2,4 +2,5 @@
 //! discovers its cases from data files under `tests/`, so a new case is a new file.
 
 mod conformance;
+mod diagnostics;
 mod tidy;

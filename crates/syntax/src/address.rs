@@ -5,22 +5,10 @@ use crate::lexer::Tok;
 use crate::operand::{Syn, resolve};
 use crate::symbols::SymbolTable;
 use std::fmt;
-use stljit_core::ir::{BitLoc, Loc, Operand};
+use stljit_core::ir::{BitLoc, Operand};
 use stljit_core::{CpuProfile, FileId, Width};
 
-/// A resolved address.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Address {
-    /// A bit (`I0.3`, `T37`, `C5`).
-    Bit(BitLoc),
-    /// A value (`IB1`, `AIW0`, `VW100`, `VD50`, `AC0` as a dword, `SMB28`).
-    Value {
-        /// Where it lives.
-        loc: Loc,
-        /// Its width.
-        width: Width,
-    },
-}
+pub use stljit_core::ir::Address;
 
 /// Why an address was rejected.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -52,6 +40,7 @@ pub fn parse_address(
         diags: Vec::new(),
         file: FileId(0),
         line: 1,
+        file_names: Vec::new(),
     };
     let tok = Tok {
         text,

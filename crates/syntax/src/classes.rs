@@ -148,9 +148,21 @@ pub(crate) struct Cx<'s> {
     pub(crate) file: FileId,
     /// Line being checked.
     pub(crate) line: u32,
+    /// File names, for "first defined in …" notes.
+    pub(crate) file_names: Vec<String>,
 }
 
 impl Cx<'_> {
+    /// "line N" when `span` is in the current file, else "line N of FILE".
+    pub(crate) fn place(&self, span: Span) -> String {
+        if span.file == self.file {
+            format!("line {}", span.line)
+        } else {
+            let name = self.file_names.get(span.file.index()).map_or("?", String::as_str);
+            format!("line {} of {name}", span.line)
+        }
+    }
+
     /// The span of a token on the current line.
     pub(crate) fn span(&self, t: Tok<'_>) -> Span {
         Span {
@@ -198,6 +210,7 @@ impl Cx<'_> {
                     Some(help.to_owned()),
                 ))
             }
+            Err(ResolveError::Invalid) => Err(Reported),
             Err(ResolveError::PouSymbol(name)) => Err(self.report(
                 Code::OperandClass,
                 t,

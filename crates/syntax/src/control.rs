@@ -141,7 +141,7 @@ impl Lowerer<'_> {
                 let (index, init, limit) = (index?, init?, limit?);
                 let max = usize::from(self.cx.profile.max_for_depth);
                 if ps.fors.len() >= max {
-                    return Err(self.cx.report(
+                    self.cx.report(
                         Code::ForDepth,
                         self.mnemonic,
                         format!("FOR loops nested deeper than {max}"),
@@ -149,7 +149,7 @@ impl Lowerer<'_> {
                             "the {} allows {max} nested FOR loops",
                             self.cx.profile.model
                         )),
-                    ));
+                    );
                 }
                 let span = self.cx.span(self.mnemonic);
                 ps.fors.push((ps.next_idx(), span));
@@ -201,10 +201,7 @@ impl Lowerer<'_> {
                                 "`{}` is already a segment flag in another block",
                                 clip(o[0].text)
                             ),
-                            Some(format!(
-                                "first used on line {} of file {}",
-                                first.line, first.file.0
-                            )),
+                            Some(format!("first used on {}", self.cx.place(first))),
                         );
                     }
                     Some(_) => {}
@@ -317,6 +314,7 @@ impl Lowerer<'_> {
             .names
             .iter()
             .filter_map(|(name, &(_, k))| match k {
+                PouKind::Subroutine(n) if *name == format!("SBR{n}") => Some(name.clone()),
                 PouKind::Subroutine(n) => Some(format!("{name} (SBR{n})")),
                 _ => None,
             })

@@ -150,9 +150,13 @@ pub fn render_human(d: &Diagnostic, sources: &Sources) -> String {
                 _ => " ",
             });
         }
-        let width = (d.end_col.saturating_sub(d.col)).max(1) as usize;
-        let width = width.min(end.saturating_sub(col0).max(1));
-        caret.push_str(&"^".repeat(width));
+        let len = (d.end_col.saturating_sub(d.col)).max(1) as usize;
+        let stop = (col0 + len).min(end);
+        let width: usize = chars[col0..stop]
+            .iter()
+            .map(|&c| if is_wide(c) { 2 } else { 1 })
+            .sum();
+        caret.push_str(&"^".repeat(width.max(1)));
         let _ = writeln!(out, "{pad} | {caret}");
     }
     if let Some(help) = &d.help {

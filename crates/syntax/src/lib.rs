@@ -29,7 +29,7 @@ pub use address::{Address, AddressError, parse_address};
 pub use codes::{Code, Severity};
 pub use decode::Encoding;
 pub use diag::{Diagnostic, SourceText, Sources, render_human, render_json};
-pub use print::{print_op, print_program};
+pub use print::{print_address, print_op, print_program};
 pub use symbols::{PouRef, SymbolTable};
 
 use classes::Cx;
@@ -125,10 +125,10 @@ pub fn compile(
     });
     let profile_data = profile.profile();
     let program = {
-        let texts: Vec<(FileId, &str)> = sources.files[..files.len()]
+        let texts: Vec<(FileId, &str, &str)> = sources.files[..files.len()]
             .iter()
             .enumerate()
-            .map(|(i, s)| (FileId::new(i), s.text.as_str()))
+            .map(|(i, s)| (FileId::new(i), s.text.as_str(), s.name.as_str()))
             .collect();
         let pous = structure::structure(&texts, profile_data, &mut diags);
         let cx = Cx {
@@ -137,6 +137,7 @@ pub fn compile(
             diags: std::mem::take(&mut diags),
             file: FileId(0),
             line: 0,
+            file_names: files.iter().map(|f| f.name.clone()).collect(),
         };
         let names = files.iter().map(|f| f.name.clone()).collect();
         let (program, d) = program::lower(&pous, cx, names);
@@ -164,3 +165,6 @@ pub fn compile_str(name: &str, text: &str, profile: ProfileId) -> Compilation {
         profile,
     )
 }
+
+#[cfg(test)]
+mod roundtrip_tests;

@@ -316,6 +316,8 @@ pub(crate) enum ResolveError {
     UnknownSymbol(String),
     /// A symbol that names a POU where a memory operand is needed.
     PouSymbol(String),
+    /// A symbol whose definition was rejected (already reported).
+    Invalid,
 }
 
 /// Strips the quotes of a `"quoted symbol"`.
@@ -327,6 +329,7 @@ fn lookup(name: &str, symbols: Option<&SymbolTable>) -> Result<Syn, ResolveError
     match symbols.and_then(|s| s.get(name)) {
         Some(SymTarget::Operand(syn)) => Ok(*syn),
         Some(SymTarget::Pou(_)) => Err(ResolveError::PouSymbol(name.to_owned())),
+        Some(SymTarget::Invalid) => Err(ResolveError::Invalid),
         None => Err(ResolveError::UnknownSymbol(name.to_owned())),
     }
 }

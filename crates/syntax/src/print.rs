@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 use stljit_core::ir::{
-    ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, Conversion, LogicOp, Op, Operand, Pou,
+    Address, ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, Conversion, LogicOp, Op, Operand, Pou,
     PouKind, Program, RealFn,
 };
 use stljit_core::{Area, Width};
@@ -243,6 +243,14 @@ fn box_op(x: &BoxOp) -> String {
         }
         BoxOp::ImmediateRead { input, dst } => format!("BIR IB{input}, {}", b(dst)),
         BoxOp::ImmediateWrite { src, output } => format!("BIW {}, QB{output}", b(src)),
+    }
+}
+
+/// An address the way STL text and `--watch` spell it (`Q0.1`, `VW100`, `AC0`, `T37`).
+pub fn print_address(a: &Address) -> String {
+    match *a {
+        Address::Bit(b) => bit(b),
+        Address::Value { loc: l, width } => loc(l.area, l.offset, width),
     }
 }
 

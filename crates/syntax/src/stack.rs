@@ -30,18 +30,18 @@ impl StackCheck {
     }
 
     fn need(&self, n: u8, op: &str, span: Span, text: &str, diags: &mut Vec<Diagnostic>) {
-        if self.depth.is_some_and(|d| d < n) {
-            let what = if n == 1 {
-                "no level".to_owned()
-            } else {
-                format!("{n} levels, but fewer")
+        if let Some(d) = self.depth.filter(|&d| d < n) {
+            let loaded = match d {
+                0 => "nothing was loaded".to_owned(),
+                1 => "only 1 level was loaded".to_owned(),
+                d => format!("only {d} levels were loaded"),
             };
             diags.push(
                 Diagnostic::new(
                     Code::StackUnderflow,
                     span,
                     text,
-                    format!("{op} consumes {what} were loaded in this rung"),
+                    format!("`{op}` reads {n} stack level(s) but {loaded} in this rung"),
                 )
                 .help("start the rung with LD/LDN (or LPS before the branch); the level read here holds an older rung's value"),
             );

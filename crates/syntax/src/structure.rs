@@ -45,6 +45,7 @@ struct Builder<'a, 'd> {
     pous: Vec<PouSrc<'a>>,
     diags: &'d mut Vec<Diagnostic>,
     profile: &'static CpuProfile,
+    names: Vec<&'a str>,
 }
 
 fn span(file: FileId, line: u32, t: Tok<'_>) -> Span {
@@ -75,10 +76,12 @@ impl<'a> Builder<'a, '_> {
                 PouKind::Subroutine(n) => format!("subroutine SBR{n} is defined twice"),
                 PouKind::Interrupt(n) => format!("interrupt routine INT{n} is defined twice"),
             };
-            let help = format!(
-                "first defined at line {} of file {}",
-                prev.decl.line, prev.decl.file.0
-            );
+            let help = if prev.decl.file == file {
+                format!("first defined on line {}", prev.decl.line)
+            } else {
+                let name = self.names.get(prev.decl.file.index()).copied().unwrap_or("?");
+                format!("first defined on line {} of {name}", prev.decl.line)
+            };
             self.error(decl, text, what, Some(&help));
         } else if let Some(prev) = self
             .pous
@@ -208,7 +211,7 @@ impl<'a> Builder<'a, '_> {
 /// Groups every file's lines into POUs; the main program comes first (an empty one if no file
 /// has main code).
 pub(crate) fn structure<'a>(
-    files: &[(FileId, &'a str)],
+    files: &[(FileId, &'a str, &'a str)],
     profile: &'static CpuProfile,
     diags: &mut Vec<Diagnostic>,
 ) -> Vec<PouSrc<'a>> {
@@ -216,8 +219,9 @@ pub(crate) fn structure<'a>(
         pous: Vec::new(),
         diags,
         profile,
+        names: files.iter().map(|f| f.2).collect(),
     };
-    for &(file, text) in files {
+    for &(file, text, _) in files {
         structure_file(&mut b, file, text);
     }
     let mut pous = b.pous;

@@ -25,6 +25,8 @@ pub(crate) enum SymTarget {
     Operand(Syn),
     /// A block.
     Pou(PouRef),
+    /// A symbol whose line has an error (already reported): uses stay silent.
+    Invalid,
 }
 
 /// A parsed symbol table: names to addresses.
@@ -42,6 +44,11 @@ impl SymbolTable {
     /// Whether the table is empty.
     pub fn is_empty(&self) -> bool {
         self.map.is_empty()
+    }
+
+    /// Every symbol name, in no particular order (for reverse look-ups by the CLI).
+    pub fn names(&self) -> impl Iterator<Item = &str> {
+        self.map.keys().map(String::as_str)
     }
 
     /// The symbol's target.
@@ -86,6 +93,10 @@ impl SymbolTable {
             let target = match parse_target(addr) {
                 Ok(t) => t,
                 Err(why) => {
+                    table
+                        .map
+                        .entry(name_text.clone())
+                        .or_insert((SymTarget::Invalid, number));
                     diags.push(
                         Diagnostic::new(
                             Code::SymbolAddress,
@@ -242,7 +253,7 @@ mod tests {
     fn bad_address_and_duplicate_are_located() {
         let text = "A\tI0.0\nB\tXY12\nA\tI0.1\n";
         let (t, d) = SymbolTable::parse(text, FileId(1));
-        assert_eq!(t.len(), 1);
+        assert_eq!(t.get("B"), Some(&SymTarget::Invalid));
         assert_eq!(d.len(), 2);
         assert_eq!(
             (d[0].code, d[0].line, d[0].col),
