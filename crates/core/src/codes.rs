@@ -39,7 +39,8 @@ pub enum ErrorCode {
     CallNesting = 0x0008,
     /// Operand out of range (an S/R/BM* count runs past the area end).
     OperandRange = 0x0091,
-    /// Bad count field (SHRB length 0 or above 64, FILL/BM count 0).
+    /// Bad count field (SHRB length 0 or above 64). Block-move and FILL counts use
+    /// [`ErrorCode::OperandRange`] (spec §4.7).
     CountField = 0x0092,
 }
 
