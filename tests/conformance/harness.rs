@@ -24,10 +24,17 @@ pub(crate) type EngineCtor = fn(&Program) -> Result<Box<dyn Engine>, String>;
 pub(crate) type EngineEntry = (&'static str, EngineCtor);
 
 /// Every engine a case runs on. All of them run every case; none is ever skipped.
-pub(crate) const ENGINES: &[EngineEntry] = &[("interp", interp)];
+pub(crate) const ENGINES: &[EngineEntry] = &[("interp", interp), ("jit", jit)];
 
 fn interp(p: &Program) -> Result<Box<dyn Engine>, String> {
     match stljit_interp::Interpreter::new(p) {
+        Ok(e) => Ok(Box::new(e)),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+fn jit(p: &Program) -> Result<Box<dyn Engine>, String> {
+    match stljit_jit::JitProgram::compile(p, &stljit_jit::JitOptions::default()) {
         Ok(e) => Ok(Box::new(e)),
         Err(e) => Err(e.to_string()),
     }
