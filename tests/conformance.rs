@@ -136,3 +136,31 @@ fn malformed_cases_are_rejected_with_the_file_name() {
         );
     }
 }
+
+#[test]
+fn known_failure_markers_are_strict() {
+    let dir = std::env::temp_dir().join(format!("stljit-conformance-known-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let still_failing = format!("known_failure = \"reason A\"\n{WRONG}");
+    let now_passing = still_failing.replace("reason A", "reason B").replace(
+        "expect = { \"Q0.0\" = 0, \"VW0\" = \"16#0001\" }",
+        "expect = { \"Q0.0\" = 1 }",
+    );
+    std::fs::write(dir.join("a.toml"), still_failing).expect("write");
+    std::fs::write(dir.join("b.toml"), now_passing).expect("write");
+    let got = run_dir(&dir, ENGINES);
+    let _ = std::fs::remove_dir_all(&dir);
+    let summary = got.expect("two cases");
+    assert_eq!(summary.cases, 2);
+    assert_eq!(summary.known.len(), 1, "{:?}", summary.known);
+    assert!(summary.known[0].starts_with("a.toml: reason A\n"));
+    let failures: Vec<String> = summary.failures.iter().map(Failure::to_string).collect();
+    assert_eq!(
+        failures,
+        vec![
+            "b.toml: marked known_failure (\"reason B\") but passes on every engine: remove the \
+             marker"
+                .to_string()
+        ]
+    );
+}
