@@ -9,10 +9,15 @@
 //! - [`coverage`] counts what was generated.
 //! - [`canon`] puts generated IR in the front end's canonical form.
 
+pub mod campaign;
 pub mod canon;
 pub mod coverage;
+pub mod engines;
 pub mod generate;
 pub mod inject;
 pub mod locate;
 pub mod oracle;
+pub mod repro;
 pub mod rng;
+pub mod roundtrip;
+pub mod shrink;

@@ -264,7 +264,7 @@ impl Gen<'_, '_> {
         if self.c.chance(5, 6) {
             Operand::Const(n)
         } else {
-            self.value(Width::Byte, Class::IN)
+            self.variable(Width::Byte)
         }
     }
 
@@ -299,7 +299,7 @@ impl Gen<'_, '_> {
 
     /// `SHRB DATA, S_BIT, N` with the register inside its area for constant `N`.
     fn shift_register(&mut self) -> BoxOp {
-        let data = self.bit_in();
+        let data = self.bit_read(false);
         let area = [Area::V, Area::M, Area::Q][self.c.weighted(&[3, 3, 1])];
         let len = self.c.range(1, 64);
         let bits = self.p.area_size(area) * 8;
@@ -314,7 +314,7 @@ impl Gen<'_, '_> {
             bit: (first % 8) as u8,
         };
         let len = if self.c.chance(1, 8) {
-            self.value(Width::Byte, Class::IN)
+            self.variable(Width::Byte)
         } else if self.c.chance(1, 3) {
             Operand::Const((len as u8).wrapping_neg().into())
         } else {

@@ -159,7 +159,13 @@ impl Gen<'_, '_> {
 
     /// A bit an instruction reads (class BIT).
     pub(crate) fn bit_in(&mut self) -> BitLoc {
-        match self.c.weighted(&[6, 3, 5, 1, 4, 3, 1, 2, 2]) {
+        self.bit_read(true)
+    }
+
+    /// A bit an instruction reads; `tc` allows timer and counter bits (SHRB's DATA does not).
+    pub(crate) fn bit_read(&mut self, tc: bool) -> BitLoc {
+        let tc = u32::from(tc) * 2;
+        match self.c.weighted(&[6, 3, 5, 1, 4, 3, 1, tc, tc]) {
             0 => self.plain_bit(Area::I, false),
             1 => self.plain_bit(Area::Q, false),
             2 => self.plain_bit(Area::M, false),
@@ -408,7 +414,18 @@ impl Gen<'_, '_> {
         if self.c.chance(5, 6) {
             Operand::Const(self.c.range(1.min(max), max.min(255)))
         } else {
-            self.value(Width::Byte, Class::IN)
+            self.variable(Width::Byte)
         }
+    }
+
+    /// A variable input (no constant): counts read at run time, which may be out of range.
+    pub(crate) fn variable(&mut self, w: Width) -> Operand {
+        self.value(
+            w,
+            Class {
+                no_const: true,
+                ..Class::IN
+            },
+        )
     }
 }

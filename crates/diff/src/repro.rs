@@ -1,0 +1,383 @@
+//! Reproducer directories: what a divergence leaves behind, and what `tests/regressions/` holds.
+//!
+//! ```text
+//! program.stl    the program, printed from the IR (it compiles back to the same IR)
+//! stimulus.csv   inputs, analog inputs and HMI writes per scan, in runtime::sim's CSV format
+//! meta           key = value lines: profile, seed, engines, loop limit, the time of every scan
+//! README.txt     what failed: the scan, the first differing bytes with both values, the seed
+//! ```
+//! `stimulus.csv` uses scan numbers; scan times need not be regular, so they are listed in
+//! `meta` (`times = ...`), which is what [`read_case`] uses to replay a case exactly.
+
+use crate::generate::{Case, HmiWrite, ScanInput, Stimulus};
+use crate::oracle::{FUZZ_LOOP_LIMIT, Finding};
+use std::collections::BTreeMap;
+use std::fmt::{self, Write as _};
+use std::path::Path;
+use stljit_core::ir::{Address, BitLoc, Loc};
+use stljit_core::{Area, ProfileId, Width};
+use stljit_runtime::sim;
+
+/// Facts about a case that are not in the program or the stimulus.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Meta {
+    /// The CPU profile.
+    pub profile: ProfileId,
+    /// The program seed, when the case came from the generator.
+    pub seed: Option<u64>,
+    /// The two engines compared, by name.
+    pub engines: String,
+    /// The loop budget per scan.
+    pub loop_limit: u32,
+}
+
+impl Meta {
+    /// Meta for a generated case.
+    pub fn new(profile: ProfileId, seed: Option<u64>, engines: &str) -> Meta {
+        Meta {
+            profile,
+            seed,
+            engines: engines.to_owned(),
+            loop_limit: FUZZ_LOOP_LIMIT,
+        }
+    }
+}
+
+/// Why a reproducer directory could not be read.
+#[derive(Debug)]
+pub enum ReproError {
+    /// A file could not be read or written.
+    Io(std::path::PathBuf, std::io::Error),
+    /// `meta` is malformed.
+    Meta(String),
+    /// `program.stl` does not compile.
+    Program(String),
+    /// `stimulus.csv` is malformed.
+    Stimulus(String),
+}
+
+impl fmt::Display for ReproError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ReproError::Io(p, e) => write!(f, "{}: {e}", p.display()),
+            ReproError::Meta(m) => write!(f, "meta: {m}"),
+            ReproError::Program(m) => write!(f, "program.stl: {m}"),
+            ReproError::Stimulus(m) => write!(f, "stimulus.csv: {m}"),
+        }
+    }
+}
+
+impl std::error::Error for ReproError {}
+
+fn name(a: &Address) -> String {
+    match *a {
+        Address::Bit(b) => format!("{}{}.{}", b.area.prefix(), b.byte, b.bit),
+        Address::Value { loc, width } => match loc.area {
+            Area::AI => format!("AIW{}", loc.offset),
+            _ => format!("{}{}{}", loc.area.prefix(), width.suffix(), loc.offset),
+        },
+    }
+}
+
+/// The stimulus as runtime::sim CSV: one column per input byte, analog word or HMI address that
+/// is ever non-zero or written, one row per scan where something changes.
+pub fn stimulus_csv(profile: ProfileId, s: &Stimulus) -> String {
+    let p = profile.profile();
+    let mut cols: Vec<Address> = Vec::new();
+    let nonzero_in = |i: usize| {
+        s.scans
+            .iter()
+            .any(|x| x.inputs.get(i).is_some_and(|&b| b != 0))
+    };
+    let nonzero_ai = |i: usize| s.scans.iter().any(|x| x.ai.get(i).is_some_and(|&w| w != 0));
+    for i in 0..p.inputs as usize {
+        if nonzero_in(i) {
+            cols.push(Address::Value {
+                loc: Loc {
+                    area: Area::I,
+                    offset: i as u32,
+                },
+                width: Width::Byte,
+            });
+        }
+    }
+    for i in 0..(p.analog_inputs / 2) as usize {
+        if nonzero_ai(i) {
+            cols.push(Address::Value {
+                loc: Loc {
+                    area: Area::AI,
+                    offset: 2 * i as u32,
+                },
+                width: Width::Word,
+            });
+        }
+    }
+    for w in s.scans.iter().flat_map(|x| &x.writes) {
+        if !cols.contains(&w.addr) {
+            cols.push(w.addr);
+        }
+    }
+    let mut out = String::from("scan");
+    for c in &cols {
+        let _ = write!(out, ",{}", name(c));
+    }
+    out.push('\n');
+    let mut prev: Vec<Option<u32>> = vec![Some(0); cols.len()];
+    for (k, x) in s.scans.iter().enumerate() {
+        let cells: Vec<Option<u32>> = cols
+            .iter()
+            .map(|c| match *c {
+                Address::Value { loc, .. } if loc.area == Area::I => {
+                    x.inputs.get(loc.offset as usize).map(|&b| u32::from(b))
+                }
+                Address::Value { loc, .. } if loc.area == Area::AI => {
+                    x.ai.get(loc.offset as usize / 2).map(|&w| u32::from(w))
+                }
+                _ => x
+                    .writes
+                    .iter()
+                    .rev()
+                    .find(|w| w.addr == *c)
+                    .map(|w| w.value),
+            })
+            .collect();
+        let changed: Vec<Option<u32>> = cells
+            .iter()
+            .zip(&cols)
+            .enumerate()
+            .map(|(i, (v, c))| {
+                let held = matches!(c, Address::Value { loc, .. } if matches!(loc.area, Area::I | Area::AI));
+                if held && *v == prev[i] { None } else { *v }
+            })
+            .collect();
+        if k == 0 || changed.iter().any(Option::is_some) {
+            let _ = write!(out, "{k}");
+            for v in &changed {
+                match v {
+                    Some(v) => {
+                        let _ = write!(out, ",{v}");
+                    }
+                    None => out.push(','),
+                }
+            }
+            out.push('\n');
+        }
+        for (i, v) in cells.into_iter().enumerate() {
+            if v.is_some() {
+                prev[i] = v;
+            }
+        }
+    }
+    out
+}
+
+/// The `meta` file.
+pub fn meta_text(meta: &Meta, s: &Stimulus) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "profile = {}", meta.profile.name());
+    if let Some(seed) = meta.seed {
+        let _ = writeln!(out, "seed = {seed}");
+    }
+    let _ = writeln!(out, "engines = {}", meta.engines);
+    let _ = writeln!(out, "loop_limit = {}", meta.loop_limit);
+    let _ = writeln!(out, "scans = {}", s.len());
+    let times: Vec<String> = s.scans.iter().map(|x| x.t_ms.to_string()).collect();
+    let _ = writeln!(out, "times = {}", times.join(" "));
+    out
+}
+
+/// Writes a reproducer directory (created if missing).
+pub fn write_repro(
+    dir: &Path,
+    case: &Case,
+    meta: &Meta,
+    finding: Option<&Finding>,
+) -> Result<(), ReproError> {
+    let io = |e| ReproError::Io(dir.to_path_buf(), e);
+    std::fs::create_dir_all(dir).map_err(io)?;
+    let put = |file: &str, text: String| {
+        std::fs::write(dir.join(file), text).map_err(|e| ReproError::Io(dir.join(file), e))
+    };
+    put("program.stl", stljit_syntax::print_program(&case.program))?;
+    put("stimulus.csv", stimulus_csv(meta.profile, &case.stimulus))?;
+    put("meta", meta_text(meta, &case.stimulus))?;
+    let mut readme = String::new();
+    let _ = writeln!(
+        readme,
+        "stljit differential fuzzing reproducer ({} ops, {} scans, profile {}).\n",
+        case.program.op_count(),
+        case.stimulus.len(),
+        meta.profile.name()
+    );
+    match finding {
+        Some(f) => {
+            let _ = writeln!(readme, "{f}");
+        }
+        None => readme.push_str("No failure recorded: the engines agreed.\n"),
+    }
+    if let Some(seed) = meta.seed {
+        let _ = writeln!(
+            readme,
+            "Program seed: {seed} (stljit_diff::generate::case_from_seed)."
+        );
+    }
+    let _ = writeln!(
+        readme,
+        "Engines: {}; loop budget per scan: {}.\nScan times (ms) are listed in `meta`; \
+         `stimulus.csv` gives inputs per scan number.\nReplay: `cargo test --release -p \
+         stljit-harness regressions` once this directory is in tests/regressions/.",
+        meta.engines, meta.loop_limit
+    );
+    put("README.txt", readme)
+}
+
+fn read(dir: &Path, file: &str) -> Result<String, ReproError> {
+    std::fs::read_to_string(dir.join(file)).map_err(|e| ReproError::Io(dir.join(file), e))
+}
+
+/// Parses a `meta` file into its fields and the scan times.
+pub fn parse_meta(text: &str) -> Result<(Meta, Vec<u64>), ReproError> {
+    let kv: BTreeMap<&str, &str> = text
+        .lines()
+        .filter(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#'))
+        .filter_map(|l| l.split_once('='))
+        .map(|(k, v)| (k.trim(), v.trim()))
+        .collect();
+    let profile = kv
+        .get("profile")
+        .and_then(|p| ProfileId::from_name(p))
+        .ok_or_else(|| ReproError::Meta("missing or unknown `profile`".into()))?;
+    let num = |k: &str| -> Result<Option<u64>, ReproError> {
+        kv.get(k)
+            .map(|v| {
+                v.parse()
+                    .map_err(|_| ReproError::Meta(format!("bad `{k}`")))
+            })
+            .transpose()
+    };
+    let times: Vec<u64> = match kv.get("times") {
+        Some(t) => t
+            .split_whitespace()
+            .map(|x| {
+                x.parse()
+                    .map_err(|_| ReproError::Meta(format!("bad time `{x}`")))
+            })
+            .collect::<Result<_, _>>()?,
+        None => {
+            let n =
+                num("scans")?.ok_or_else(|| ReproError::Meta("no `scans` or `times`".into()))?;
+            (0..n).map(|k| 10 * k).collect()
+        }
+    };
+    let meta = Meta {
+        profile,
+        seed: num("seed")?,
+        engines: kv.get("engines").copied().unwrap_or("").to_owned(),
+        loop_limit: num("loop_limit")?.map_or(FUZZ_LOOP_LIMIT, |v| v as u32),
+    };
+    Ok((meta, times))
+}
+
+/// Builds a per-scan stimulus from runtime::sim CSV text and the scan times.
+pub fn parse_stimulus(
+    profile: ProfileId,
+    csv: &str,
+    times: &[u64],
+) -> Result<Stimulus, ReproError> {
+    let p = profile.profile();
+    let resolve = |s: &str| -> Result<Address, String> {
+        stljit_syntax::parse_address(s, p, None).map_err(|e| e.to_string())
+    };
+    let st =
+        sim::Stimulus::parse(csv, p, &resolve).map_err(|e| ReproError::Stimulus(e.to_string()))?;
+    if st.time_base() != sim::TimeBase::Scan {
+        return Err(ReproError::Stimulus("reproducers use scan numbers".into()));
+    }
+    let mut inputs = vec![0u8; p.inputs as usize];
+    let mut ai = vec![0u16; (p.analog_inputs / 2) as usize];
+    let mut rows = st.rows().iter().peekable();
+    let mut scans = Vec::with_capacity(times.len());
+    for (k, &t) in times.iter().enumerate() {
+        let mut writes = Vec::new();
+        while let Some(row) = rows.next_if(|r| r.at <= k as u64) {
+            for (col, cell) in st.columns().iter().zip(&row.cells) {
+                let Some(v) = *cell else { continue };
+                match col.address {
+                    Address::Value { loc, width } if loc.area == Area::I => {
+                        for i in 0..width.bytes() {
+                            if let Some(b) = inputs.get_mut((loc.offset + i) as usize) {
+                                *b = (v >> (8 * (width.bytes() - 1 - i))) as u8;
+                            }
+                        }
+                    }
+                    Address::Bit(BitLoc {
+                        area: Area::I,
+                        byte,
+                        bit,
+                    }) => {
+                        if let Some(b) = inputs.get_mut(byte as usize) {
+                            *b = (*b & !(1 << bit)) | (((v & 1) as u8) << bit);
+                        }
+                    }
+                    Address::Value { loc, .. } if loc.area == Area::AI => {
+                        if let Some(w) = ai.get_mut(loc.offset as usize / 2) {
+                            *w = v as u16;
+                        }
+                    }
+                    addr => writes.push(HmiWrite { addr, value: v }),
+                }
+            }
+        }
+        scans.push(ScanInput {
+            t_ms: t,
+            inputs: inputs.clone(),
+            ai: ai.clone(),
+            writes,
+        });
+    }
+    Ok(Stimulus { scans })
+}
+
+/// Reads a reproducer directory back into a case.
+pub fn read_case(dir: &Path) -> Result<(Case, Meta), ReproError> {
+    let (meta, times) = parse_meta(&read(dir, "meta")?)?;
+    let text = read(dir, "program.stl")?;
+    let c = stljit_syntax::compile_str("program.stl", &text, meta.profile);
+    let Some(program) = c.program else {
+        let first = c
+            .diagnostics
+            .iter()
+            .find(|d| d.severity == stljit_syntax::Severity::Error)
+            .map(|d| stljit_syntax::render_human(d, &c.sources))
+            .unwrap_or_default();
+        return Err(ReproError::Program(first));
+    };
+    let stimulus = parse_stimulus(meta.profile, &read(dir, "stimulus.csv")?, &times)?;
+    Ok((Case { program, stimulus }, meta))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::{GenConfig, case_from_seed};
+    use crate::roundtrip::normalized;
+
+    #[test]
+    fn repro_directory_reads_back_the_same_case() {
+        let dir = std::env::temp_dir().join(format!("stljit-repro-test-{}", std::process::id()));
+        for seed in 0..40 {
+            let case = case_from_seed(seed, &GenConfig::default());
+            let meta = Meta::new(case.program.profile, Some(seed), "interp jit(none)");
+            write_repro(&dir, &case, &meta, None).unwrap();
+            let (back, m) = read_case(&dir).unwrap();
+            assert_eq!(m, meta);
+            assert_eq!(
+                normalized(&back.program),
+                normalized(&case.program),
+                "seed {seed}"
+            );
+            assert_eq!(back.stimulus, case.stimulus, "seed {seed}");
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
