@@ -6,9 +6,11 @@ use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 mod check;
+mod diff;
 mod dump_ir;
 mod duration;
 mod engines;
+mod fuzz;
 mod project;
 mod run;
 mod used;
@@ -30,6 +32,10 @@ enum Command {
     DumpIr(dump_ir::Args),
     /// Simulate programs on virtual time (JIT by default) with stimulus, watch and trace.
     Run(run::Args),
+    /// Run one program on the interpreter and the JIT side by side with random stimulus.
+    Diff(diff::Args),
+    /// Differential fuzzing: generated programs on the JIT and the interpreter, compared.
+    Fuzz(fuzz::Args),
 }
 
 fn main() -> ExitCode {
@@ -48,6 +54,8 @@ fn main() -> ExitCode {
         Command::Check(args) => check::main(args),
         Command::DumpIr(args) => dump_ir::main(args),
         Command::Run(args) => run::main(args),
+        Command::Diff(args) => diff::main(args),
+        Command::Fuzz(args) => fuzz::main(args),
     };
     match result {
         Ok(code) => code,
