@@ -5,8 +5,10 @@
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
+mod bench;
 mod check;
 mod diff;
+mod dump_clif;
 mod dump_ir;
 mod duration;
 mod engines;
@@ -30,6 +32,10 @@ enum Command {
     Check(check::Args),
     /// Print the checked IR, one op per line with its source line.
     DumpIr(dump_ir::Args),
+    /// Print the annotated Cranelift IR the JIT generates.
+    DumpClif(dump_clif::Args),
+    /// Compare JIT and interpreter speed (compile time, ns per scan and per instruction).
+    Bench(bench::Args),
     /// Simulate programs on virtual time (JIT by default) with stimulus, watch and trace.
     Run(run::Args),
     /// Run one program on the interpreter and the JIT side by side with random stimulus.
@@ -56,6 +62,8 @@ fn main() -> ExitCode {
         Command::Run(args) => run::main(args),
         Command::Diff(args) => diff::main(args),
         Command::Fuzz(args) => fuzz::main(args),
+        Command::DumpClif(args) => dump_clif::main(args),
+        Command::Bench(args) => bench::main(args),
     };
     match result {
         Ok(code) => code,

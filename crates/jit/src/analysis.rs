@@ -97,9 +97,27 @@ fn leaders(pou: &Pou) -> Vec<bool> {
             lead[i] = true;
         }
     }
+    // Very long straight-line code is cut into blocks of at most MAX_BLOCK ops: register
+    // allocation time grows faster than linearly with the values live across one block, and
+    // the cut costs only the write-back of the stack register and the dirty bytes.
+    let mut since = 0;
+    for l in lead.iter_mut().take(n) {
+        if *l {
+            since = 0;
+        } else {
+            since += 1;
+            if since >= MAX_BLOCK {
+                *l = true;
+                since = 0;
+            }
+        }
+    }
     lead.truncate(n);
     lead
 }
+
+/// Longest run of ops lowered as one basic block.
+pub(crate) const MAX_BLOCK: usize = 128;
 
 /// Forward dataflow of "gate is 1"; returns per-op facts and whether all exits have gate 1.
 fn gate_flow(pou: &Pou, exits_one: &[bool]) -> (Vec<bool>, bool) {

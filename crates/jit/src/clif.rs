@@ -79,7 +79,7 @@ pub fn clif_text(program: &Program, opts: &JitOptions) -> Result<String, JitErro
         out.push('\n');
     };
     // The layout address is only baked into shim calls; a dump never runs, so 0 is fine.
-    let built = build::build(program, opts, &layout, 0, false, &mut sink)?;
+    let built = build::build(program, opts, &layout, 0, None, false, &mut sink)?;
     drop(built);
     match failure {
         Some(e) => Err(JitError::Codegen(e)),

@@ -8,6 +8,7 @@ use crate::build::{self, Built};
 use crate::{JitError, JitOptions};
 use cranelift_jit::JITModule;
 use cranelift_module::Module;
+use std::sync::atomic::{AtomicU64, Ordering};
 use stljit_core::ir::Program;
 use stljit_core::layout::Layout;
 use stljit_core::{PouId, ScanStatus};
@@ -24,15 +25,47 @@ pub struct JitProgram {
     /// Boxed so its address, baked into the code for the runtime shims, never moves.
     layout: Box<Layout>,
     op_count: usize,
+    /// The executed-op counter of an instrumented build ([`JitProgram::compile_counting`]).
+    counter: Option<Box<AtomicU64>>,
 }
 
 impl JitProgram {
     /// Compiles `program` for the host CPU.
     pub fn compile(program: &Program, opts: &JitOptions) -> Result<JitProgram, JitError> {
+        Self::compile_with(program, opts, false)
+    }
+
+    /// Compiles an instrumented build that counts every executed op (slower; for `bench`'s
+    /// per-instruction figures). Read the count with [`JitProgram::executed_ops`].
+    pub fn compile_counting(program: &Program, opts: &JitOptions) -> Result<JitProgram, JitError> {
+        Self::compile_with(program, opts, true)
+    }
+
+    /// Ops executed so far by an instrumented build (`None` for a normal build).
+    pub fn executed_ops(&self) -> Option<u64> {
+        self.counter.as_deref().map(|c| c.load(Ordering::Relaxed))
+    }
+
+    fn compile_with(
+        program: &Program,
+        opts: &JitOptions,
+        count: bool,
+    ) -> Result<JitProgram, JitError> {
         let layout = Box::new(Layout::of(program.profile));
         let layout_ptr = &*layout as *const Layout as i64;
-        let Built { mut module, run_id } =
-            build::build(program, opts, &layout, layout_ptr, true, &mut |_, _| {})?;
+        // An atomic so that the code's plain stores through its address are legal interior
+        // mutation; it is only read between scans.
+        let counter = count.then(|| Box::new(AtomicU64::new(0)));
+        let counter_ptr = counter.as_deref().map(|c| c.as_ptr() as i64);
+        let Built { mut module, run_id } = build::build(
+            program,
+            opts,
+            &layout,
+            layout_ptr,
+            counter_ptr,
+            true,
+            &mut |_, _| {},
+        )?;
         module
             .finalize_definitions()
             .map_err(|e| JitError::Codegen(format!("{e:?}")))?;
@@ -61,6 +94,7 @@ impl JitProgram {
             run,
             layout,
             op_count: program.op_count(),
+            counter,
         })
     }
 

@@ -46,6 +46,8 @@ pub(crate) struct Env<'a> {
     pub(crate) pou_funcs: Vec<FuncId>,
     pub(crate) helpers: &'a HelperIds,
     pub(crate) info: Vec<PouInfo>,
+    /// Address of a `u64` that counts executed ops (the instrumented build for `bench`).
+    pub(crate) op_counter: Option<i64>,
 }
 
 /// Memory flags for every image access: the image is never null and every direct offset is in
@@ -366,6 +368,12 @@ impl<'e, 'f> Lower<'e, 'f> {
             }
             self.op = i;
             self.b.set_srcloc(SourceLoc::new(i as u32 + 1));
+            if let Some(addr) = self.env.op_counter {
+                let a = self.iconst(I64, addr);
+                let n = self.b.ins().load(I64, mf(), a, 0);
+                let n = self.b.ins().iadd_imm_s(n, 1);
+                self.b.ins().store(mf(), n, a, 0);
+            }
             self.lower_op(op);
         }
         if self.live {

@@ -1,0 +1,27 @@
+//! `stljit dump-clif`: the Cranelift IR the JIT generates for a program, with a comment naming
+//! the STL source line and op above the instructions of each op.
+
+use std::process::ExitCode;
+
+/// Arguments of `stljit dump-clif`.
+#[derive(clap::Args)]
+pub(crate) struct Args {
+    #[command(flatten)]
+    input: crate::check::Input,
+    /// Optimisation level the IR is generated for.
+    #[arg(long, value_enum, default_value = "none")]
+    opt: crate::engines::OptArg,
+}
+
+pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
+    let c = args.input.compile()?;
+    let Some(program) = crate::project::checked_program(&c) else {
+        return Ok(ExitCode::from(1));
+    };
+    let opts = stljit_jit::JitOptions {
+        opt: args.opt.into(),
+    };
+    let text = stljit_jit::clif_text(program, &opts)?;
+    print!("{text}");
+    Ok(ExitCode::SUCCESS)
+}
