@@ -126,8 +126,8 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
         );
     }
     println!(
-        "(compile times: JitProgram::compile; per-op figures use {} executed ops/scan counted by an instrumented build)",
-        "the"
+        "(compile times: JitProgram::compile; per-op figures divide by the executed ops per scan \
+         counted by an instrumented build)"
     );
     Ok(ExitCode::SUCCESS)
 }
