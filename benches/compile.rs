@@ -1,0 +1,30 @@
+//! JIT compile time on the corpus at both optimisation levels (targets: 10k instructions under
+//! 100 ms and 100k under 1 s with `--opt none`; see docs/performance.md).
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use stljit_core::ProfileId;
+use stljit_jit::{JitOptions, JitProgram, OptLevel};
+
+fn compile(c: &mut Criterion) {
+    for name in ["bitlogic_10k.stl", "mixed_10k.stl"] {
+        let path = stljit_harness::repo_root()
+            .join("benches/programs")
+            .join(name);
+        let text = std::fs::read_to_string(&path).unwrap_or_default();
+        let p = stljit_syntax::compile_str(name, &text, ProfileId::A5)
+            .program
+            .unwrap_or_else(|| panic!("{name} does not compile"));
+        for opt in [OptLevel::None, OptLevel::Speed] {
+            c.bench_function(&format!("compile/{name}/{}", opt.name()), |b| {
+                b.iter(|| JitProgram::compile(&p, &JitOptions { opt }).expect("compiles"))
+            });
+        }
+    }
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().sample_size(10);
+    targets = compile
+}
+criterion_main!(benches);
