@@ -230,6 +230,17 @@ fn print_summary(report: &campaign::Report, elapsed: Duration, jobs: usize) {
         rate(t.programs, elapsed) / jobs as f64,
         rate(t.scans, elapsed)
     );
+    let fatal: Vec<String> = t
+        .fatal_codes
+        .iter()
+        .map(|(&code, n)| match stljit_core::FatalCode::try_from(code) {
+            Ok(f) => format!("{n} x {f}"),
+            Err(c) => format!("{n} x code {c:#x}"),
+        })
+        .collect();
+    if !fatal.is_empty() {
+        let _ = writeln!(out, "fatal endings: {}", fatal.join("; "));
+    }
     let _ = writeln!(out, "coverage (generated ops per mnemonic):");
     let mut line = String::new();
     for (i, (m, n)) in report.coverage.mnemonics.iter().enumerate() {

@@ -51,6 +51,8 @@ pub struct Totals {
     pub stopped: u64,
     /// IR ops generated.
     pub ops: u64,
+    /// Programs per fatal error code they ended with.
+    pub fatal_codes: std::collections::BTreeMap<u16, u64>,
 }
 
 /// A failing program.
@@ -152,6 +154,9 @@ pub fn run(
                     Ok(s) => {
                         t.scans += s.scans;
                         t.fatal += u64::from(s.fatal);
+                        if s.fatal_code != 0 {
+                            *t.fatal_codes.entry(s.fatal_code).or_default() += 1;
+                        }
                         t.stopped += u64::from(s.stopped);
                     }
                     Err(f) => t.scans += u64::from(f.scan().unwrap_or(0)) + 1,

@@ -163,6 +163,8 @@ pub struct RunStats {
     pub stopped: bool,
     /// Whether a fatal error occurred (the watchdog, a NaN or bad pointer in a compare).
     pub fatal: bool,
+    /// The fatal error code at the end of the run (0 = none).
+    pub fatal_code: u16,
 }
 
 /// The cold-start image the oracle gives both engines.
@@ -283,5 +285,6 @@ pub fn run_pair(
         stats.fatal |= sa == ScanStatus::Fatal;
         stats.stopped |= sa != ScanStatus::Ok;
     }
+    stats.fatal_code = ia.fatal();
     Ok(stats)
 }

@@ -47,8 +47,104 @@ const BLOCK_AREAS: [Area; 7] = [
 ];
 
 impl Gen<'_, '_> {
-    /// Any box instruction.
+    /// Any box instruction; now and then with its input aliasing its output (the same location,
+    /// or one byte off), which is where read-before-write ordering shows.
     pub(crate) fn box_op(&mut self) -> BoxOp {
+        let b = self.box_op_raw();
+        if !self.c.chance(1, 6) {
+            return b;
+        }
+        match b {
+            BoxOp::IntArith { op, width, dst, .. } => BoxOp::IntArith {
+                op,
+                width,
+                src: self.alias(width, dst),
+                dst,
+            },
+            BoxOp::Logic { op, width, dst, .. } => BoxOp::Logic {
+                op,
+                width,
+                src: self.alias(width, dst),
+                dst,
+            },
+            BoxOp::RealArith { op, dst, .. } => BoxOp::RealArith {
+                op,
+                src: self.alias(Width::DWord, dst),
+                dst,
+            },
+            BoxOp::RealFunc { func, dst, .. } => BoxOp::RealFunc {
+                func,
+                src: self.alias(Width::DWord, dst),
+                dst,
+            },
+            BoxOp::Move { width, dst, src }
+                if !matches!(dst, Operand::Mem(Loc { area: Area::AQ, .. })) =>
+            {
+                let src = if matches!(src, Operand::AddressOf(_)) {
+                    src
+                } else {
+                    self.alias(width, dst)
+                };
+                BoxOp::Move { width, src, dst }
+            }
+            BoxOp::BlockMove {
+                width,
+                src,
+                dst,
+                count,
+            } => {
+                // Overlapping block moves: the destination one element above or below the source.
+                let dst = match src {
+                    Operand::Mem(Loc { area, offset }) if area != Area::SM => {
+                        let w = width.bytes();
+                        let n = match count {
+                            Operand::Const(n) => n,
+                            _ => 1,
+                        };
+                        let size = self.p.area_size(area);
+                        let up = offset + w;
+                        if up + n * w <= size {
+                            Operand::Mem(Loc { area, offset: up })
+                        } else if offset >= w {
+                            Operand::Mem(Loc {
+                                area,
+                                offset: offset - w,
+                            })
+                        } else {
+                            dst
+                        }
+                    }
+                    _ => dst,
+                };
+                BoxOp::BlockMove {
+                    width,
+                    src,
+                    dst,
+                    count,
+                }
+            }
+            other => other,
+        }
+    }
+
+    /// An input reading the output `dst` itself, or (for byte areas) a value one byte off.
+    fn alias(&mut self, w: Width, dst: Operand) -> Operand {
+        if let Operand::Mem(Loc { area, offset }) = dst
+            && matches!(area, Area::V | Area::M | Area::L | Area::Q | Area::S)
+            && self.c.chance(1, 3)
+        {
+            let size = self.p.area_size(area);
+            let off = if offset + w.bytes() < size && self.c.chance(1, 2) {
+                offset + 1
+            } else {
+                offset.saturating_sub(1)
+            };
+            return Operand::Mem(Loc { area, offset: off });
+        }
+        dst
+    }
+
+    fn box_op_raw(&mut self) -> BoxOp {
         match self
             .c
             .weighted(&[10, 1, 2, 1, 10, 2, 2, 1, 3, 1, 2, 1, 3, 5, 1, 1])
@@ -122,7 +218,23 @@ impl Gen<'_, '_> {
     }
 
     fn move_box(&mut self) -> BoxOp {
-        match self.c.weighted(&[3, 4, 3, 2]) {
+        match self.c.weighted(&[3, 4, 3, 2, 1]) {
+            // Real cells poisoned with NaN, infinities, -0.0 or a subnormal: the bit patterns
+            // real arithmetic must classify the same way in both engines.
+            4 => BoxOp::Move {
+                width: Width::DWord,
+                src: Operand::Const(self.c.pick(&[
+                    0x7FC0_0000,
+                    0xFFC0_0001,
+                    0x7F80_0000,
+                    0xFF80_0000,
+                    0x8000_0000,
+                    0x0000_0001,
+                    0x807F_FFFF,
+                    0x7F7F_FFFF,
+                ])),
+                dst: Operand::Mem(self.real_cell()),
+            },
             0 => BoxOp::Move {
                 width: Width::Byte,
                 src: self.value(Width::Byte, Class::IN),

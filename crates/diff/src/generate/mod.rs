@@ -44,8 +44,8 @@ impl Default for GenConfig {
     fn default() -> GenConfig {
         GenConfig {
             profile: None,
-            max_networks: 14,
-            max_subroutines: 4,
+            max_networks: 10,
+            max_subroutines: 3,
             max_ops_per_pou: 160,
             scans: 50,
         }
@@ -121,6 +121,15 @@ pub(crate) struct Gen<'c, 'a> {
     pub(crate) n_pous: u32,
     /// Whether the program may contain a loop without an exit (then it ends in the watchdog).
     pub(crate) allow_endless: bool,
+    /// Whether calls may go to any subroutine, including the caller (recursion ends in 0x0008).
+    pub(crate) recursion: bool,
+    /// Whether unstructured jumps (into and out of FOR bodies, crossing other jumps) appear; such
+    /// programs have no WDR, so every loop they make still ends in the watchdog.
+    pub(crate) wild_jumps: bool,
+    /// Wild-jump labels of the current POU not yet placed.
+    pub(crate) pending_wild: Vec<LabelId>,
+    /// Wild-jump labels of the current POU already placed (targets of backward jumps).
+    pub(crate) placed_wild: Vec<LabelId>,
 }
 
 impl<'c, 'a> Gen<'c, 'a> {
@@ -137,6 +146,10 @@ impl<'c, 'a> Gen<'c, 'a> {
             labels: Vec::new(),
             n_pous: 1,
             allow_endless: false,
+            recursion: false,
+            wild_jumps: false,
+            pending_wild: Vec::new(),
+            placed_wild: Vec::new(),
         }
     }
 
@@ -178,6 +191,10 @@ impl<'c, 'a> Gen<'c, 'a> {
 
     /// Finishes the POU being built.
     fn take_pou(&mut self, name: String, kind: PouKind) -> Pou {
+        for l in std::mem::take(&mut self.pending_wild) {
+            self.place_label(l);
+        }
+        self.placed_wild.clear();
         let ops = std::mem::take(&mut self.ops);
         // Every label was placed when its construct closed; a missing one would be a generator
         // bug, so fall back to op 0 rather than panic (the front-end check would then flag it).
@@ -196,6 +213,8 @@ impl<'c, 'a> Gen<'c, 'a> {
 
     fn program(&mut self) -> Program {
         self.allow_endless = self.c.chance(1, 40);
+        self.recursion = self.c.chance(1, 10);
+        self.wild_jumps = self.c.chance(1, 12);
         let plan = self.plan_subroutines();
         self.n_pous = 1 + plan.len() as u32;
         let mut pous = Vec::with_capacity(self.n_pous as usize);

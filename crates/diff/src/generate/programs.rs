@@ -102,7 +102,13 @@ impl Gen<'_, '_> {
             3,                              // control
             3,                              // immediate I/O
             4,                              // flags
+            if self.wild_jumps && ctx.scr.is_none() {
+                3
+            } else {
+                0
+            }, // wild jump
         ];
+        self.place_wild(ctx);
         match self.c.weighted(&weights) {
             0 => {
                 self.expr(0);
@@ -133,20 +139,53 @@ impl Gen<'_, '_> {
             10 => self.branches(ctx),
             11 => self.control(ctx),
             12 => self.immediate_io(),
-            _ => self.flag_network(),
+            13 => self.flag_network(),
+            _ => self.wild_jump(),
         }
     }
 
     fn has_callee(&self) -> bool {
-        (self.pou.0 + 1) < self.n_pous
+        (self.pou.0 + 1) < self.n_pous || (self.recursion && self.n_pous > 1)
     }
 
-    /// A subroutine the current POU may call (a higher number, so calls form a DAG).
+    /// A subroutine the current POU may call: a higher number (calls form a DAG), or in programs
+    /// with recursion now and then any subroutine, the caller included.
     fn callee(&mut self) -> Option<PouId> {
-        if !self.has_callee() {
-            return None;
+        let higher = (self.pou.0 + 1) < self.n_pous;
+        if self.recursion && self.n_pous > 1 && (!higher || self.c.chance(1, 4)) {
+            return Some(PouId(self.c.range(1, self.n_pous - 1)));
         }
-        Some(PouId(self.c.range(self.pou.0 + 1, self.n_pous - 1)))
+        higher.then(|| PouId(self.c.range(self.pou.0 + 1, self.n_pous - 1)))
+    }
+
+    /// Unstructured jumps: a jump to a label placed later at a random network boundary (possibly
+    /// inside a FOR body), or back to one placed earlier.
+    fn wild_jump(&mut self) {
+        let back = !self.placed_wild.is_empty() && self.c.chance(1, 3);
+        let l = if back {
+            self.c.pick(&self.placed_wild.clone())
+        } else {
+            match self.new_label() {
+                Some(l) => {
+                    self.pending_wild.push(l);
+                    l
+                }
+                None => return,
+            }
+        };
+        self.expr(1);
+        self.emit(Op::Jump(l));
+    }
+
+    /// Places some pending wild-jump labels here (never inside an SCR segment).
+    fn place_wild(&mut self, ctx: Ctx) {
+        if ctx.scr.is_some() || self.pending_wild.is_empty() || !self.c.chance(1, 3) {
+            return;
+        }
+        let i = self.c.below(self.pending_wild.len() as u32) as usize;
+        let l = self.pending_wild.swap_remove(i);
+        self.place_label(l);
+        self.placed_wild.push(l);
     }
 
     /// A contact: mostly a bit, sometimes a compare or an immediate input.
@@ -173,15 +212,29 @@ impl Gen<'_, '_> {
         } else {
             Class::IN
         };
-        let lhs = self.value(
-            ty.width(),
+        let lhs = self.cmp_operand(
+            ty,
             Class {
                 no_const: true,
                 ..k
             },
         );
-        let rhs = self.value(ty.width(), k);
+        let rhs = self.cmp_operand(ty, k);
         Contact::Compare { ty, op, lhs, rhs }
+    }
+
+    /// A compare operand. A bad pointer in a compare is fatal and ends the run, so pointers are
+    /// rare here (they still occur, to test that both engines stop alike).
+    fn cmp_operand(&mut self, ty: CmpType, k: Class) -> Operand {
+        let o = self.value(ty.width(), k);
+        if matches!(o, Operand::Indirect(_)) && !self.c.chance(1, 30) {
+            return if ty == CmpType::Real {
+                Operand::Mem(self.real_cell())
+            } else {
+                Operand::Mem(self.direct(ty.width(), false))
+            };
+        }
+        o
     }
 
     /// Ops that push exactly one value.
@@ -582,12 +635,17 @@ impl Gen<'_, '_> {
     fn control(&mut self, ctx: Ctx) {
         let main = self.pou == PouId(0);
         let top = ctx.depth == 0 && ctx.scr.is_none();
+        // END and CRET inside loops and segments leave FOR and SCR state behind: rarer, not never.
         let weights = [
             3,
-            u32::from(main && top),
-            u32::from(main && !ctx.in_loop),
+            if main && top {
+                3
+            } else {
+                u32::from(main && ctx.scr.is_none())
+            },
+            3 * u32::from(main && !ctx.in_loop && !self.wild_jumps),
             1,
-            u32::from(!main && top),
+            if !main && top { 3 } else { u32::from(!main) },
         ];
         self.expr(1);
         match self.c.weighted(&weights) {

@@ -31,8 +31,8 @@ fn structure_ok(p: &Program) -> Result<(), String> {
                 Op::Jump(_) | Op::Label(_) | Op::End { conditional: true } if scr_open => {
                     return Err(format!("{}: control op {i} inside SCR", pou.name));
                 }
-                Op::Call(id) if id.index() <= p.pous.iter().position(|q| q == pou).unwrap_or(0) => {
-                    return Err(format!("{}: call to {id} is not downward", pou.name));
+                Op::Call(id) if id.index() == 0 || id.index() >= p.pous.len() => {
+                    return Err(format!("{}: call to {id} is not a subroutine", pou.name));
                 }
                 Op::Wdr if pou.kind != PouKind::Main => return Err("WDR in a subroutine".into()),
                 _ => {}
