@@ -158,7 +158,10 @@ impl Cx<'_> {
         if span.file == self.file {
             format!("line {}", span.line)
         } else {
-            let name = self.file_names.get(span.file.index()).map_or("?", String::as_str);
+            let name = self
+                .file_names
+                .get(span.file.index())
+                .map_or("?", String::as_str);
             format!("line {} of {name}", span.line)
         }
     }

@@ -94,6 +94,9 @@ pub struct SourceText {
 pub struct Sources {
     /// The files.
     pub files: Vec<SourceText>,
+    /// Byte offsets of line starts per file, built on first use so that rendering many
+    /// diagnostics of a large file stays linear.
+    line_starts: std::sync::OnceLock<Vec<Vec<usize>>>,
 }
 
 impl Sources {
@@ -105,8 +108,30 @@ impl Sources {
     /// Line `line` (1-based) of file `id`, without its line end.
     pub fn line(&self, id: FileId, line: u32) -> Option<&str> {
         let text = &self.files.get(id.index())?.text;
-        let l = text.split('\n').nth((line as usize).checked_sub(1)?)?;
+        let starts = self.line_starts.get_or_init(|| {
+            self.files
+                .iter()
+                .map(|f| {
+                    std::iter::once(0)
+                        .chain(f.text.match_indices('\n').map(|(i, _)| i + 1))
+                        .collect()
+                })
+                .collect()
+        });
+        let starts = starts.get(id.index())?;
+        let i = (line as usize).checked_sub(1)?;
+        let start = *starts.get(i)?;
+        let end = starts.get(i + 1).map_or(text.len(), |e| e - 1);
+        let l = text.get(start..end)?;
         Some(l.strip_suffix('\r').unwrap_or(l))
+    }
+
+    /// Sources from decoded files.
+    pub fn new(files: Vec<SourceText>) -> Self {
+        Sources {
+            files,
+            line_starts: std::sync::OnceLock::new(),
+        }
     }
 }
 
@@ -215,12 +240,10 @@ mod tests {
     use super::*;
 
     fn sources() -> Sources {
-        Sources {
-            files: vec![SourceText {
-                name: "a.stl".into(),
-                text: "LD I0.0\r\n=\tQ16.0 // \"x\"\n".into(),
-            }],
-        }
+        Sources::new(vec![SourceText {
+            name: "a.stl".into(),
+            text: "LD I0.0\r\n=\tQ16.0 // \"x\"\n".into(),
+        }])
     }
 
     fn diag() -> Diagnostic {

@@ -160,8 +160,13 @@ fn digits(b: &[u8]) -> (u32, usize) {
 /// Parses a direct address (`VW100`, `I0.3`, `T37`, `AC0`).
 fn parse_address(t: &str) -> Result<Syn, SynError> {
     let b = t.as_bytes();
+    let first = b.first().map_or(0, u8::to_ascii_uppercase);
     for &(p, kind) in PREFIXES {
         let pb = p.as_bytes();
+        // Cheap first-letter filter: most operands are rejected by all but two or three entries.
+        if pb[0] != first {
+            continue;
+        }
         if b.len() <= pb.len() || !b[..pb.len()].eq_ignore_ascii_case(pb) {
             continue;
         }

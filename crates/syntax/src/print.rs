@@ -4,8 +4,8 @@
 
 use std::fmt::Write as _;
 use stljit_core::ir::{
-    Address, ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, Conversion, LogicOp, Op, Operand, Pou,
-    PouKind, Program, RealFn,
+    Address, ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, Conversion, LogicOp, Op, Operand,
+    Pou, PouKind, Program, RealFn,
 };
 use stljit_core::{Area, Width};
 

@@ -79,7 +79,11 @@ impl<'a> Builder<'a, '_> {
             let help = if prev.decl.file == file {
                 format!("first defined on line {}", prev.decl.line)
             } else {
-                let name = self.names.get(prev.decl.file.index()).copied().unwrap_or("?");
+                let name = self
+                    .names
+                    .get(prev.decl.file.index())
+                    .copied()
+                    .unwrap_or("?");
                 format!("first defined on line {} of {name}", prev.decl.line)
             };
             self.error(decl, text, what, Some(&help));
