@@ -3,4 +3,6 @@
 
 mod conformance;
 mod diagnostics;
+mod fuzz_smoke;
+mod regressions;
 mod tidy;
