@@ -19,6 +19,9 @@ pub enum Width {
 }
 
 impl Width {
+    /// Every width, narrowest first.
+    pub const ALL: [Width; 3] = [Width::Byte, Width::Word, Width::DWord];
+
     /// Size in bytes.
     #[inline]
     pub fn bytes(self) -> u32 {

@@ -694,3 +694,29 @@ pub enum Address {
         width: Width,
     },
 }
+
+/// Every variant of the small operation enums, in declaration order. The position of a variant in
+/// its `ALL` list is the integer code it crosses the JIT's `extern "C"` boundary as, and the
+/// program generator draws from the same lists, so one list serves both.
+macro_rules! all_variants {
+    ($($ty:ident: [$($v:ident),+ $(,)?];)+) => {$(
+        impl $ty {
+            /// Every variant, in declaration order.
+            pub const ALL: &'static [$ty] = &[$($ty::$v),+];
+        }
+    )+};
+}
+
+all_variants! {
+    ArithOp: [Add, Sub, Mul, Div];
+    LogicOp: [And, Or, Xor];
+    RealFn: [Sqrt, Ln, Exp, Sin, Cos, Tan];
+    Conversion: [
+        ByteToInt, IntToByte, IntToDInt, DIntToInt, DIntToReal, Round, Trunc, BcdToInt, IntToBcd,
+        Decode, Encode, Segment,
+    ];
+    CmpType: [Byte, Int, DInt, Real];
+    CmpOp: [Eq, Ne, Ge, Le, Gt, Lt];
+    TimerKind: [On, Retentive, Off];
+    CounterKind: [Up, Down, UpDown];
+}

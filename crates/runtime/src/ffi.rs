@@ -132,64 +132,31 @@ pub trait FfiCode: Copy + PartialEq + 'static {
     }
 }
 
-impl FfiCode for ArithOp {
-    const ALL: &'static [Self] = &[ArithOp::Add, ArithOp::Sub, ArithOp::Mul, ArithOp::Div];
+// The lists live with the enums in core, where the program generator uses them too.
+macro_rules! ffi_code_from_core {
+    ($($ty:ty),+) => {$(
+        impl FfiCode for $ty {
+            const ALL: &'static [Self] = <$ty>::ALL;
+        }
+    )+};
 }
-impl FfiCode for LogicOp {
-    const ALL: &'static [Self] = &[LogicOp::And, LogicOp::Or, LogicOp::Xor];
-}
-impl FfiCode for RealFn {
-    const ALL: &'static [Self] = &[
-        RealFn::Sqrt,
-        RealFn::Ln,
-        RealFn::Exp,
-        RealFn::Sin,
-        RealFn::Cos,
-        RealFn::Tan,
-    ];
-}
-impl FfiCode for Conversion {
-    const ALL: &'static [Self] = &[
-        Conversion::ByteToInt,
-        Conversion::IntToByte,
-        Conversion::IntToDInt,
-        Conversion::DIntToInt,
-        Conversion::DIntToReal,
-        Conversion::Round,
-        Conversion::Trunc,
-        Conversion::BcdToInt,
-        Conversion::IntToBcd,
-        Conversion::Decode,
-        Conversion::Encode,
-        Conversion::Segment,
-    ];
-}
-impl FfiCode for CmpType {
-    const ALL: &'static [Self] = &[CmpType::Byte, CmpType::Int, CmpType::DInt, CmpType::Real];
-}
-impl FfiCode for CmpOp {
-    const ALL: &'static [Self] = &[
-        CmpOp::Eq,
-        CmpOp::Ne,
-        CmpOp::Ge,
-        CmpOp::Le,
-        CmpOp::Gt,
-        CmpOp::Lt,
-    ];
-}
+ffi_code_from_core!(ArithOp, LogicOp, RealFn, Conversion, CmpType, CmpOp);
+
 impl FfiCode for Area {
     const ALL: &'static [Self] = &Area::ALL;
 }
 
 fn timer_kind(code: u32) -> Option<TimerKind> {
-    [TimerKind::On, TimerKind::Retentive, TimerKind::Off]
-        .into_iter()
+    TimerKind::ALL
+        .iter()
+        .copied()
         .find(|k| u32::from(k.code()) == code)
 }
 
 fn counter_kind(code: u32) -> Option<CounterKind> {
-    [CounterKind::Up, CounterKind::Down, CounterKind::UpDown]
-        .into_iter()
+    CounterKind::ALL
+        .iter()
+        .copied()
         .find(|k| u32::from(k.code()) == code)
 }
 
