@@ -1,0 +1,15 @@
+//! Fuzz target: the fuzzer's bytes drive the program generator; the generated IR, printed as STL
+//! and compiled again, must give back the same IR (and the front end must accept it).
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use stljit_diff::generate::{GenConfig, generate_program};
+use stljit_diff::rng::Choices;
+use stljit_diff::roundtrip::roundtrip;
+
+fuzz_target!(|data: &[u8]| {
+    let program = generate_program(&mut Choices::from_bytes(data), &GenConfig::default());
+    if let Err(e) = roundtrip(&program) {
+        panic!("{e}");
+    }
+});
