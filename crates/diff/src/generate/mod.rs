@@ -126,6 +126,10 @@ pub(crate) struct Gen<'c, 'a> {
     /// Whether unstructured jumps (into and out of FOR bodies, crossing other jumps) appear; such
     /// programs have no WDR, so every loop they make still ends in the watchdog.
     pub(crate) wild_jumps: bool,
+    /// Op limit of the POU being built (raised for the occasional very long main program).
+    pub(crate) room_limit: usize,
+    /// The POU being built is an interrupt routine (no CRET, END or WDR there).
+    pub(crate) in_interrupt: bool,
     /// Wild-jump labels of the current POU not yet placed.
     pub(crate) pending_wild: Vec<LabelId>,
     /// Wild-jump labels of the current POU already placed (targets of backward jumps).
@@ -148,6 +152,8 @@ impl<'c, 'a> Gen<'c, 'a> {
             allow_endless: false,
             recursion: false,
             wild_jumps: false,
+            room_limit: cfg.max_ops_per_pou,
+            in_interrupt: false,
             pending_wild: Vec::new(),
             placed_wild: Vec::new(),
         }
@@ -177,7 +183,7 @@ impl<'c, 'a> Gen<'c, 'a> {
 
     /// Whether the current POU has room for more ops.
     pub(crate) fn room(&self) -> bool {
-        self.ops.len() < self.cfg.max_ops_per_pou
+        self.ops.len() < self.room_limit
     }
 
     /// A new edge slot, or `None` when the profile's limit is reached.
@@ -195,6 +201,7 @@ impl<'c, 'a> Gen<'c, 'a> {
             self.place_label(l);
         }
         self.placed_wild.clear();
+        self.room_limit = self.cfg.max_ops_per_pou;
         let ops = std::mem::take(&mut self.ops);
         // Every label was placed when its construct closed; a missing one would be a generator
         // bug, so fall back to op 0 rather than panic (the front-end check would then flag it).
@@ -225,6 +232,20 @@ impl<'c, 'a> Gen<'c, 'a> {
             self.pou = PouId::new(i + 1);
             self.sub_body(sub);
             pous.push(self.take_pou(format!("SBR{i}"), PouKind::Subroutine(i as u16)));
+        }
+        // An interrupt routine is compiled and checked but never runs (spec P8); engines must
+        // still accept it. It is not counted in `n_pous`, so nothing calls it.
+        if self.c.chance(1, 15) {
+            self.pou = PouId::new(pous.len());
+            self.in_interrupt = true;
+            let networks = self.c.range(1, 3);
+            self.sub_body(&SubPlan {
+                chain_next: None,
+                networks,
+            });
+            let n = self.c.below(8) as u16;
+            pous.push(self.take_pou(format!("INT{n}"), PouKind::Interrupt(n)));
+            self.in_interrupt = false;
         }
         let mut program = Program {
             profile: self.p.id,

@@ -38,7 +38,15 @@ impl Gen<'_, '_> {
                 self.emit(Op::Call(id));
             }
         }
-        let n = self.c.range(1, self.cfg.max_networks);
+        // Now and then a main program four times as long: straight-line code past the JIT's
+        // basic-block cap.
+        let big = self.c.chance(1, 25);
+        let n = if big {
+            self.room_limit = 4 * self.cfg.max_ops_per_pou;
+            4 * self.cfg.max_networks
+        } else {
+            self.c.range(1, self.cfg.max_networks)
+        };
         let scr_at = self.c.chance(1, 5).then(|| self.c.below(n + 1));
         for k in 0..=n {
             if !self.room() {
@@ -635,6 +643,7 @@ impl Gen<'_, '_> {
     fn control(&mut self, ctx: Ctx) {
         let main = self.pou == PouId(0);
         let top = ctx.depth == 0 && ctx.scr.is_none();
+        let sub = !main && !self.in_interrupt;
         // END and CRET inside loops and segments leave FOR and SCR state behind: rarer, not never.
         let weights = [
             3,
@@ -645,7 +654,7 @@ impl Gen<'_, '_> {
             },
             3 * u32::from(main && !ctx.in_loop && !self.wild_jumps),
             1,
-            if !main && top { 3 } else { u32::from(!main) },
+            if sub && top { 3 } else { u32::from(sub) },
         ];
         self.expr(1);
         match self.c.weighted(&weights) {

@@ -31,7 +31,12 @@ fn structure_ok(p: &Program) -> Result<(), String> {
                 Op::Jump(_) | Op::Label(_) | Op::End { conditional: true } if scr_open => {
                     return Err(format!("{}: control op {i} inside SCR", pou.name));
                 }
-                Op::Call(id) if id.index() == 0 || id.index() >= p.pous.len() => {
+                Op::Call(id)
+                    if !matches!(
+                        p.pous.get(id.index()).map(|q| q.kind),
+                        Some(PouKind::Subroutine(_))
+                    ) =>
+                {
                     return Err(format!("{}: call to {id} is not a subroutine", pou.name));
                 }
                 Op::Wdr if pou.kind != PouKind::Main => return Err("WDR in a subroutine".into()),
