@@ -345,6 +345,55 @@ mod tests {
         assert_eq!(small.stimulus.len(), 1);
     }
 
+    /// The whole failure path on a real engine: a divergence found by the oracle (an interpreter
+    /// against one with a byte overwritten after scan 3) shrinks to scan 3 and a minimal program,
+    /// and its reproducer directory reads back to the same case.
+    #[test]
+    fn a_divergence_shrinks_and_writes_a_reproducer() {
+        use crate::engines::EngineKind;
+        use crate::inject::{Fault, Faulty};
+        use crate::oracle::{RunOptions, run_pair};
+        use crate::repro::{Meta, read_case, write_repro};
+        let case = case_from_seed(11, &GenConfig::default());
+        let layout = stljit_core::Layout::of(case.program.profile);
+        let offset = layout.addr(stljit_core::Area::V, 1500, 0);
+        let mut fails = |c: &Case| {
+            let mut a = EngineKind::Interp.build(&c.program).ok()?;
+            let b = EngineKind::Interp.build(&c.program).ok()?;
+            let fault = Fault::SetByte {
+                scan: 3,
+                offset,
+                value: 0xA5,
+            };
+            let mut b = Faulty::new(b, fault);
+            let r = run_pair(
+                &c.program,
+                &c.stimulus,
+                &mut *a,
+                &mut b,
+                &RunOptions::default(),
+            );
+            roundtrip(&c.program).ok()?;
+            r.err()
+        };
+        let finding = fails(&case).expect("the fault is found");
+        let (small, f) = shrink(&case, &finding, &mut fails, 3000);
+        assert_eq!(f.scan(), Some(3));
+        assert_eq!(small.stimulus.len(), 4);
+        assert!(small.program.op_count() <= 1, "{:#?}", small.program);
+        let dir = std::env::temp_dir().join(format!("stljit-shrink-test-{}", std::process::id()));
+        let meta = Meta::new(small.program.profile, Some(11), "interp faulty");
+        write_repro(&dir, &small, &meta, Some(&f)).unwrap();
+        let readme = std::fs::read_to_string(dir.join("README.txt")).unwrap();
+        assert!(
+            readme.contains("after scan 3") && readme.contains("VB1500"),
+            "{readme}"
+        );
+        let (back, _) = read_case(&dir).unwrap();
+        assert_eq!(back.stimulus, small.stimulus);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
     #[test]
     fn removing_every_single_op_keeps_programs_sound() {
         let cfg = GenConfig::default();
