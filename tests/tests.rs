@@ -3,6 +3,7 @@
 
 mod conformance;
 mod diagnostics;
+mod examples;
 mod fuzz_smoke;
 mod regressions;
 mod tidy;

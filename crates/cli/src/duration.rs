@@ -24,7 +24,7 @@ pub(crate) fn parse_duration(text: &str) -> Result<u64, String> {
         .parse()
         .map_err(|_| format!("`{text}` is not a duration (e.g. 10ms, 1.5s, 2m, 24h)"))?;
     let ms = value * scale;
-    if !(ms.is_finite() && ms >= 0.0 && ms <= 1e15) {
+    if !(ms.is_finite() && (0.0..=1e15).contains(&ms)) {
         return Err(format!("`{text}` is out of range"));
     }
     if ms.fract() != 0.0 {
