@@ -47,7 +47,10 @@ fn discover(dir: &Path, out: &mut Vec<Case>) {
         .unwrap_or_default();
     entries.sort();
     for path in entries {
-        let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
         let cpu = if name.contains(".s7-200") {
             ProfileId::S7_200
         } else {
@@ -55,7 +58,12 @@ fn discover(dir: &Path, out: &mut Vec<Case>) {
         };
         if path.is_dir() && name.ends_with(".project") {
             let mut files: Vec<_> = std::fs::read_dir(&path)
-                .map(|r| r.flatten().map(|e| e.path()).filter(|p| is_program(p)).collect())
+                .map(|r| {
+                    r.flatten()
+                        .map(|e| e.path())
+                        .filter(|p| is_program(p))
+                        .collect()
+                })
                 .unwrap_or_default();
             files.sort();
             out.push(Case {
@@ -98,7 +106,10 @@ fn load(p: &Path) -> SourceFile {
 /// The code a fixture is named after (`E003_out_of_range.stl` → `E003`).
 fn named_code(name: &str) -> Option<Code> {
     let base = name.rsplit('/').next().unwrap_or(name);
-    Code::ALL.iter().copied().find(|c| base.starts_with(c.name()))
+    Code::ALL
+        .iter()
+        .copied()
+        .find(|c| base.starts_with(c.name()))
 }
 
 #[test]
@@ -109,11 +120,18 @@ fn fixtures_match_expectations() {
         let files: Vec<_> = case.files.iter().map(|p| load(p)).collect();
         let symbols = case.symbols.as_deref().map(load);
         let c = compile(&files, symbols.as_ref(), case.cpu);
-        let rendered: Vec<_> = c.diagnostics.iter().map(|d| render_human(d, &c.sources)).collect();
+        let rendered: Vec<_> = c
+            .diagnostics
+            .iter()
+            .map(|d| render_human(d, &c.sources))
+            .collect();
         let actual = rendered.join("\n");
         if let Some(code) = named_code(&case.name) {
             if !c.diagnostics.iter().any(|d| d.code == code) {
-                failures.push(format!("{}: expected a {code} diagnostic, got:\n{actual}", case.name));
+                failures.push(format!(
+                    "{}: expected a {code} diagnostic, got:\n{actual}",
+                    case.name
+                ));
             }
         } else if c.error_count() > 0 {
             failures.push(format!("{}: expected no errors, got:\n{actual}", case.name));
@@ -129,7 +147,11 @@ fn fixtures_match_expectations() {
             continue;
         }
         let expected = std::fs::read_to_string(&case.expected).unwrap_or_else(|_| {
-            failures.push(format!("{}: missing {}", case.name, case.expected.display()));
+            failures.push(format!(
+                "{}: missing {}",
+                case.name,
+                case.expected.display()
+            ));
             String::new()
         });
         if expected.replace("\r\n", "\n") != actual {
@@ -174,14 +196,23 @@ fn compile_bytes(bytes: Vec<u8>) -> stljit_syntax::Compilation {
 
 #[test]
 fn no_input_makes_the_front_end_panic() {
-    assert!(compile_bytes(Vec::new()).program.is_some(), "an empty file is a valid program");
-    let garbage: Vec<u8> = (0..4096u32).map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8).collect();
+    assert!(
+        compile_bytes(Vec::new()).program.is_some(),
+        "an empty file is a valid program"
+    );
+    let garbage: Vec<u8> = (0..4096u32)
+        .map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8)
+        .collect();
     assert!(compile_bytes(garbage).error_count() > 0);
     let mut long = b"LD ".to_vec();
     long.extend(std::iter::repeat_n(b'V', 1 << 20));
     let c = compile_bytes(long);
     assert!(c.error_count() > 0);
-    assert!(c.diagnostics.iter().all(|d| d.text.len() < 200 && d.message.len() < 400));
+    assert!(
+        c.diagnostics
+            .iter()
+            .all(|d| d.text.len() < 200 && d.message.len() < 400)
+    );
     // Mutations of a valid program: cut, byte flips and splices, from a fixed-seed generator.
     let base = std::fs::read(root().join("ok/all_instructions.stl")).expect("fixture");
     let mut seed = 0x9E37_79B9_7F4A_7C15_u64;
@@ -217,14 +248,18 @@ fn compile_case(program: &str, symbols: Option<&str>) -> stljit_core::ir::Progra
     let files = [load(&root().join(program))];
     let symbols = symbols.map(|s| load(&root().join(s)));
     let c = compile(&files, symbols.as_ref(), ProfileId::A5);
-    c.program.unwrap_or_else(|| panic!("{program}: {:?}", c.diagnostics))
+    c.program
+        .unwrap_or_else(|| panic!("{program}: {:?}", c.diagnostics))
 }
 
 #[test]
 fn microwin_export_resolves_blocks_by_symbol_and_number() {
     use stljit_core::PouId;
     use stljit_core::ir::{CounterKind, Op, PouKind};
-    let p = compile_case("ok/microwin_export.awl", Some("ok/microwin_export.symbols.txt"));
+    let p = compile_case(
+        "ok/microwin_export.awl",
+        Some("ok/microwin_export.symbols.txt"),
+    );
     let names: Vec<_> = p.pous.iter().map(|p| (p.name.as_str(), p.kind)).collect();
     assert_eq!(
         names,
@@ -247,7 +282,10 @@ fn microwin_export_resolves_blocks_by_symbol_and_number() {
     // CALL Motor_Logic (block name), CALL SBR1 (number), CALL "Alarm Handler" (symbol → SBR2).
     assert_eq!(calls, [PouId(1), PouId(2), PouId(3)]);
     assert_eq!(p.counters.len(), 1);
-    assert_eq!((p.counters[0].id.0, p.counters[0].kind), (3, CounterKind::Up));
+    assert_eq!(
+        (p.counters[0].id.0, p.counters[0].kind),
+        (3, CounterKind::Up)
+    );
     assert_eq!(p.edges.len(), 1);
     // CRLF line ends and tab indentation: the first SBR0 instruction is on line 19, column 2.
     assert_eq!((p.pous[1].locs[0].line, p.pous[1].locs[0].col), (19, 2));
@@ -266,7 +304,10 @@ fn gbk_program_with_chinese_symbols_lowers_like_its_addresses() {
             Op::Load(c(bit(Area::I, 0, 0), false)),
             Op::Or(c(bit(Area::Q, 0, 0), false)),
             Op::And(c(bit(Area::I, 0, 1), true)),
-            Op::Assign { bit: bit(Area::Q, 0, 0), immediate: false },
+            Op::Assign {
+                bit: bit(Area::Q, 0, 0),
+                immediate: false
+            },
         ]
     );
     // Columns count characters, not GBK or UTF-8 bytes.
