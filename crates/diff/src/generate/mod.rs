@@ -11,6 +11,7 @@
 //! POUs, [`stimulus`] builds the per-scan inputs and scan times.
 
 pub mod boxes;
+pub mod control;
 pub mod operands;
 pub mod programs;
 pub mod stimulus;

@@ -10,7 +10,7 @@ use super::boxes::WIDTHS;
 use super::operands::Class;
 use super::{COUNTER_KINDS, Ctx, Gen, SubPlan, TIMER_KINDS};
 use stljit_core::ir::{ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, Loc, Op, Operand};
-use stljit_core::{Area, CounterId, OpIdx, PouId, TimerId, Width};
+use stljit_core::{Area, CounterId, PouId, TimerId, Width};
 
 const CMP_OPS: [CmpOp; 6] = [
     CmpOp::Eq,
@@ -164,36 +164,6 @@ impl Gen<'_, '_> {
             return Some(PouId(self.c.range(1, self.n_pous - 1)));
         }
         higher.then(|| PouId(self.c.range(self.pou.0 + 1, self.n_pous - 1)))
-    }
-
-    /// Unstructured jumps: a jump to a label placed later at a random network boundary (possibly
-    /// inside a FOR body), or back to one placed earlier.
-    fn wild_jump(&mut self) {
-        let back = !self.placed_wild.is_empty() && self.c.chance(1, 3);
-        let l = if back {
-            self.c.pick(&self.placed_wild.clone())
-        } else {
-            match self.new_label() {
-                Some(l) => {
-                    self.pending_wild.push(l);
-                    l
-                }
-                None => return,
-            }
-        };
-        self.expr(1);
-        self.emit(Op::Jump(l));
-    }
-
-    /// Places some pending wild-jump labels here (never inside an SCR segment).
-    fn place_wild(&mut self, ctx: Ctx) {
-        if ctx.scr.is_some() || self.pending_wild.is_empty() || !self.c.chance(1, 3) {
-            return;
-        }
-        let i = self.c.below(self.pending_wild.len() as u32) as usize;
-        let l = self.pending_wild.swap_remove(i);
-        self.place_label(l);
-        self.placed_wild.push(l);
     }
 
     /// A contact: mostly a bit, sometimes a compare or an immediate input.
@@ -713,169 +683,6 @@ impl Gen<'_, '_> {
                     bit,
                     immediate: true,
                 });
-            }
-        }
-    }
-
-    /// `cond; JMP l; <body>; LBL l`.
-    fn forward_jump(&mut self, ctx: Ctx) {
-        let Some(l) = self.new_label() else {
-            return;
-        };
-        self.expr(1);
-        self.emit(Op::Jump(l));
-        self.body(Ctx {
-            depth: ctx.depth + 1,
-            ..ctx
-        });
-        self.place_label(l);
-    }
-
-    /// `LBL l; <body>; cond; JMP l`, with a loop counter unless endless loops are allowed.
-    fn backward_loop(&mut self, ctx: Ctx) {
-        let Some(l) = self.new_label() else {
-            return;
-        };
-        let bounded = !self.allow_endless || self.c.chance(3, 4);
-        let cell = self.loop_cell(u32::from(ctx.depth) % 4);
-        if bounded {
-            self.emit(Op::Load(on(sm(0, 0))));
-            self.emit(Op::Box(BoxOp::Move {
-                width: Width::Word,
-                src: Operand::Const(0),
-                dst: Operand::Mem(cell),
-            }));
-        }
-        self.place_label(l);
-        self.body(Ctx {
-            in_loop: true,
-            depth: ctx.depth + 1,
-            ..ctx
-        });
-        if bounded {
-            self.emit(Op::Load(on(sm(0, 0))));
-            self.emit(Op::Box(BoxOp::Step {
-                width: Width::Word,
-                up: true,
-                dst: Operand::Mem(cell),
-            }));
-            let rhs = Operand::Const(self.c.range(1, 6));
-            self.emit(Op::Load(Contact::Compare {
-                ty: CmpType::Int,
-                op: CmpOp::Lt,
-                lhs: Operand::Mem(cell),
-                rhs,
-            }));
-        } else {
-            self.expr(1);
-        }
-        self.emit(Op::Jump(l));
-    }
-
-    /// `cond; FOR idx, init, final; <body>; NEXT`.
-    fn for_loop(&mut self, ctx: Ctx) {
-        if self.c.chance(2, 3) {
-            self.emit(Op::Load(on(sm(0, 0))));
-        } else {
-            self.expr(1);
-        }
-        let index = match self.c.weighted(&[6, 1, 1]) {
-            0 => Operand::Mem(self.loop_cell(4 + u32::from(ctx.for_depth))),
-            1 => Operand::Mem(Loc {
-                area: Area::L,
-                offset: 2 * self.c.below(8),
-            }),
-            _ => self.value(Width::Word, Class::OUT),
-        };
-        let init_v = self.c.range(0, 3);
-        let init = Operand::Const(init_v);
-        let limit = if self.c.chance(5, 6) {
-            // Nested loops multiply; keep inner ones short.
-            let span = if ctx.for_depth > 1 { 1 } else { 4 };
-            Operand::Const((init_v + self.c.below(span + 1)).wrapping_sub(self.c.below(2)) & 0xFFFF)
-        } else {
-            self.value(Width::Word, Class::IN)
-        };
-        let head = self.emit(Op::For {
-            index,
-            init,
-            limit,
-            next: OpIdx(0),
-        });
-        self.body(Ctx {
-            in_loop: true,
-            for_depth: ctx.for_depth + 1,
-            depth: ctx.depth + 1,
-            ..ctx
-        });
-        let next = self.emit(Op::Next { head });
-        if let Op::For { next: n, .. } = &mut self.ops[head.index()] {
-            *n = next;
-        }
-    }
-
-    /// The inside of a construct: zero to three networks (a FOR nest may grow past depth 3 by
-    /// itself, so that nesting up to the profile's limit is reached sometimes).
-    fn body(&mut self, ctx: Ctx) {
-        if ctx.for_depth > 0 && ctx.for_depth < self.p.max_for_depth && self.c.chance(1, 4) {
-            self.for_loop(Ctx {
-                depth: ctx.depth.min(2),
-                ..ctx
-            });
-            return;
-        }
-        for _ in 0..self.c.below(4) {
-            if !self.room() {
-                return;
-            }
-            self.network(ctx);
-        }
-    }
-
-    /// An SCR section: steps in this POU's own S byte, entered by the first scan.
-    fn scr_section(&mut self) {
-        let byte = self.pou.0;
-        if byte >= self.p.sequence_relays {
-            return;
-        }
-        let step = |bit: u32| BitLoc {
-            area: Area::S,
-            byte,
-            bit: bit as u8,
-        };
-        self.emit(Op::Load(on(sm(0, 1))));
-        self.emit(Op::SetRange {
-            start: step(0),
-            count: Operand::Const(1),
-            value: true,
-            immediate: false,
-        });
-        let n = self.c.range(1, 4);
-        for i in 0..n {
-            let me = step(i);
-            self.emit(Op::ScrBegin { bit: me });
-            let ctx = Ctx {
-                scr: Some(me),
-                ..Ctx::default()
-            };
-            let mut cond_ends = Vec::new();
-            for _ in 0..self.c.range(1, 3) {
-                match self.c.weighted(&[6, 3, 1]) {
-                    0 => self.network(ctx),
-                    1 => {
-                        self.expr(1);
-                        let to = step((i + 1 + self.c.below(n)) % n);
-                        self.emit(Op::ScrTransition { to, from: me });
-                    }
-                    _ => {
-                        self.expr(1);
-                        cond_ends.push(self.emit(Op::ScrCondEnd { end: OpIdx(0) }));
-                    }
-                }
-            }
-            let end = self.emit(Op::ScrEnd);
-            for at in cond_ends {
-                self.ops[at.index()] = Op::ScrCondEnd { end };
             }
         }
     }
