@@ -9,32 +9,6 @@ use stljit_core::ir::{ArithOp, BitLoc, BoxOp, Conversion, Loc, LogicOp, Operand,
 use stljit_core::{Area, Width};
 
 /// The three access widths.
-pub(crate) const WIDTHS: [Width; 3] = [Width::Byte, Width::Word, Width::DWord];
-const ARITH: [ArithOp; 4] = [ArithOp::Add, ArithOp::Sub, ArithOp::Mul, ArithOp::Div];
-const LOGIC: [LogicOp; 3] = [LogicOp::And, LogicOp::Or, LogicOp::Xor];
-const REAL_FNS: [RealFn; 6] = [
-    RealFn::Sqrt,
-    RealFn::Ln,
-    RealFn::Exp,
-    RealFn::Sin,
-    RealFn::Cos,
-    RealFn::Tan,
-];
-const CONVERSIONS: [Conversion; 12] = [
-    Conversion::ByteToInt,
-    Conversion::IntToByte,
-    Conversion::IntToDInt,
-    Conversion::DIntToInt,
-    Conversion::DIntToReal,
-    Conversion::Round,
-    Conversion::Trunc,
-    Conversion::BcdToInt,
-    Conversion::IntToBcd,
-    Conversion::Decode,
-    Conversion::Encode,
-    Conversion::Segment,
-];
-
 /// Areas a block move, FILL or SHRB may name directly.
 const BLOCK_AREAS: [Area; 7] = [
     Area::V,
@@ -157,7 +131,7 @@ impl Gen<'_, '_> {
             3 => self.fill(),
             4 => self.arith_box(),
             5 => {
-                let w = self.c.pick(&WIDTHS);
+                let w = self.c.pick(&Width::ALL);
                 BoxOp::Step {
                     width: w,
                     up: self.c.chance(1, 2),
@@ -165,23 +139,23 @@ impl Gen<'_, '_> {
                 }
             }
             6 => {
-                let w = self.c.pick(&WIDTHS);
+                let w = self.c.pick(&Width::ALL);
                 BoxOp::Logic {
-                    op: self.c.pick(&LOGIC),
+                    op: self.c.pick(LogicOp::ALL),
                     width: w,
                     src: self.value(w, Class::IN),
                     dst: self.value(w, Class::OUT),
                 }
             }
             7 => {
-                let w = self.c.pick(&WIDTHS);
+                let w = self.c.pick(&Width::ALL);
                 BoxOp::Invert {
                     width: w,
                     dst: self.value(w, Class::OUT),
                 }
             }
             8 => {
-                let w = self.c.pick(&WIDTHS);
+                let w = self.c.pick(&Width::ALL);
                 let left = self.c.chance(1, 2);
                 let dst = self.value(w, Class::OUT);
                 let count = self.shift_count(w);
@@ -275,13 +249,13 @@ impl Gen<'_, '_> {
     pub(crate) fn arith_box(&mut self) -> BoxOp {
         match self.c.weighted(&[6, 4, 1, 1, 3]) {
             0 => BoxOp::IntArith {
-                op: self.c.pick(&ARITH),
+                op: self.c.pick(ArithOp::ALL),
                 width: Width::Word,
                 src: self.value(Width::Word, Class::IN),
                 dst: self.value(Width::Word, Class::OUT),
             },
             1 => BoxOp::IntArith {
-                op: self.c.pick(&ARITH),
+                op: self.c.pick(ArithOp::ALL),
                 width: Width::DWord,
                 src: self.value(Width::DWord, Class::IN),
                 dst: self.value(Width::DWord, Class::OUT),
@@ -301,13 +275,13 @@ impl Gen<'_, '_> {
     fn real_box(&mut self) -> BoxOp {
         if self.c.chance(2, 3) {
             BoxOp::RealArith {
-                op: self.c.pick(&ARITH),
+                op: self.c.pick(ArithOp::ALL),
                 src: self.value(Width::DWord, Class::REAL_IN),
                 dst: self.value(Width::DWord, Class::REAL_OUT),
             }
         } else {
             BoxOp::RealFunc {
-                func: self.c.pick(&REAL_FNS),
+                func: self.c.pick(RealFn::ALL),
                 src: self.value(Width::DWord, Class::REAL_IN),
                 dst: self.value(Width::DWord, Class::REAL_OUT),
             }
@@ -329,7 +303,7 @@ impl Gen<'_, '_> {
     }
 
     fn convert(&mut self) -> BoxOp {
-        let conv = self.c.pick(&CONVERSIONS);
+        let conv = self.c.pick(Conversion::ALL);
         let (wi, wo, ri, ro) = match conv {
             Conversion::ByteToInt | Conversion::Decode => (Width::Byte, Width::Word, false, false),
             Conversion::IntToByte | Conversion::Encode => (Width::Word, Width::Byte, false, false),
@@ -381,7 +355,7 @@ impl Gen<'_, '_> {
     }
 
     fn block_move(&mut self) -> BoxOp {
-        let w = self.c.pick(&WIDTHS);
+        let w = self.c.pick(&Width::ALL);
         let want = if self.c.chance(1, 10) {
             self.c.range(1, 255)
         } else {

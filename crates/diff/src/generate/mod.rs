@@ -326,12 +326,5 @@ impl Gen<'_, '_> {
     }
 }
 
-/// Timer and counter numbers the generator prefers, so that instructions on the same object meet.
-pub(crate) const TIMER_KINDS: [TimerKind; 3] =
-    [TimerKind::On, TimerKind::Retentive, TimerKind::Off];
-/// Counter kinds in generator order.
-pub(crate) const COUNTER_KINDS: [CounterKind; 3] =
-    [CounterKind::Up, CounterKind::Down, CounterKind::UpDown];
-
 #[cfg(test)]
 mod tests;

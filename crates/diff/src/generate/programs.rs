@@ -6,20 +6,12 @@
 //! jumps, loops or ends is placed inside an SCR segment; WDR appears only in the main program
 //! outside every loop, so each loop either exits or runs into the watchdog.
 
-use super::boxes::WIDTHS;
 use super::operands::Class;
-use super::{COUNTER_KINDS, Ctx, Gen, SubPlan, TIMER_KINDS};
-use stljit_core::ir::{ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, Loc, Op, Operand};
+use super::{Ctx, Gen, SubPlan};
+use stljit_core::ir::{
+    ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, CounterKind, Loc, Op, Operand, TimerKind,
+};
 use stljit_core::{Area, CounterId, PouId, TimerId, Width};
-
-const CMP_OPS: [CmpOp; 6] = [
-    CmpOp::Eq,
-    CmpOp::Ne,
-    CmpOp::Ge,
-    CmpOp::Le,
-    CmpOp::Gt,
-    CmpOp::Lt,
-];
 
 impl Gen<'_, '_> {
     /// The main program: optional pointer setup, networks, an optional SCR section, calls that
@@ -184,7 +176,7 @@ impl Gen<'_, '_> {
     fn compare(&mut self) -> Contact {
         let ty = [CmpType::Byte, CmpType::Int, CmpType::DInt, CmpType::Real]
             [self.c.weighted(&[3, 5, 2, 2])];
-        let op = self.c.pick(&CMP_OPS);
+        let op = self.c.pick(CmpOp::ALL);
         let k = if ty == CmpType::Real {
             Class::REAL_IN
         } else {
@@ -388,12 +380,13 @@ impl Gen<'_, '_> {
         let kind = match self.timers.get(&n) {
             Some(&k) => k,
             None => {
-                let allowed: Vec<_> = TIMER_KINDS
-                    .into_iter()
+                let allowed: Vec<_> = TimerKind::ALL
+                    .iter()
+                    .copied()
                     .filter(|&k| self.p.timer_resolution(n, k).is_some())
                     .collect();
                 let k = if allowed.is_empty() {
-                    TIMER_KINDS[0]
+                    TimerKind::ALL[0]
                 } else {
                     self.c.pick(&allowed)
                 };
@@ -424,12 +417,12 @@ impl Gen<'_, '_> {
         let kind = match self.counters.get(&n) {
             Some(&k) => k,
             None => {
-                let k = self.c.pick(&COUNTER_KINDS);
+                let k = self.c.pick(&CounterKind::ALL);
                 self.counters.insert(n, k);
                 k
             }
         };
-        let inputs = if kind == COUNTER_KINDS[2] { 3 } else { 2 };
+        let inputs = if kind == CounterKind::ALL[2] { 3 } else { 2 };
         for i in 0..inputs {
             self.expr(if i + 1 == inputs { 2 } else { 1 });
         }
@@ -534,7 +527,7 @@ impl Gen<'_, '_> {
             },
         };
         self.emit(Op::Box(step));
-        let w = self.c.pick(&WIDTHS);
+        let w = self.c.pick(&Width::ALL);
         let ind = Operand::Indirect(cell);
         let op = if self.c.chance(1, 2) {
             let dst = self.value(w, Class::OUT);
