@@ -11,6 +11,9 @@ pub(crate) struct Args {
     /// Optimisation level the IR is generated for.
     #[arg(long, value_enum, default_value = "none")]
     opt: crate::engines::OptArg,
+    /// Print the generated machine code (Cranelift's disassembly) instead of the IR.
+    #[arg(long)]
+    asm: bool,
 }
 
 pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
@@ -21,7 +24,11 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     let opts = stljit_jit::JitOptions {
         opt: args.opt.into(),
     };
-    let text = stljit_jit::clif_text(program, &opts)?;
+    let text = if args.asm {
+        stljit_jit::asm_text(program, &opts)?
+    } else {
+        stljit_jit::clif_text(program, &opts)?
+    };
     print!("{text}");
     Ok(ExitCode::SUCCESS)
 }

@@ -219,6 +219,9 @@ fn lower_one(
         op: 0,
         live: true,
         unsupported: None,
+        pred: None,
+        pred_reads: Vec::new(),
+        free_box: false,
     };
     l.lower_pou();
     let unsupported = l.unsupported.take();

@@ -86,3 +86,31 @@ pub fn clif_text(program: &Program, opts: &JitOptions) -> Result<String, JitErro
         None => Ok(out),
     }
 }
+
+/// The machine code Cranelift generates for every function of `program` at `opts`, as its
+/// VCode disassembly (for `stljit dump-clif --asm`: counting host instructions per op).
+pub fn asm_text(program: &Program, opts: &JitOptions) -> Result<String, JitError> {
+    let layout = Layout::of(program.profile);
+    let module = build::new_module(opts)?;
+    let isa = cranelift_module::Module::isa(&module);
+    let mut out = String::new();
+    let mut failure = None;
+    let mut sink = |func: &Function, pou: usize| {
+        let mut ctx = cranelift_codegen::Context::for_function(func.clone());
+        ctx.set_disasm(true);
+        let mut cp = cranelift_codegen::control::ControlPlane::default();
+        match ctx.compile(isa, &mut cp) {
+            Ok(code) => {
+                let _ = writeln!(out, "; function {pou}");
+                out.push_str(code.vcode.as_deref().unwrap_or(""));
+            }
+            Err(e) => failure = Some(format!("{:?}", e.inner)),
+        }
+    };
+    let built = build::build(program, opts, &layout, 0, None, false, &mut sink)?;
+    drop(built);
+    match failure {
+        Some(e) => Err(JitError::Codegen(e)),
+        None => Ok(out),
+    }
+}

@@ -137,8 +137,7 @@ impl JitProgram {
     }
 
     fn body(&self, bytes: &mut [u8]) -> ScanStatus {
-        // SAFETY: as in `run_scans`; `bytes` is the whole image of the right layout.
-        let st = unsafe { (self.main)(bytes.as_mut_ptr(), 0) };
+        let st = enter_main(self.main, bytes);
         if st == 0 {
             ScanStatus::Ok
         } else {
@@ -150,6 +149,16 @@ impl JitProgram {
     pub fn main_pou(&self) -> PouId {
         PouId(0)
     }
+}
+
+/// Runs the compiled main program once. Never inlined, so that a profiler can count exactly
+/// the program's own work (`valgrind --tool=callgrind --toggle-collect=*enter_main*`, see
+/// `docs/performance.md`), without the scan's begin/end or the driver.
+#[inline(never)]
+fn enter_main(main: PouFn, bytes: &mut [u8]) -> i32 {
+    // SAFETY: as in `run_scans`; the caller passes the whole image of the program's layout
+    // (checked by `fits`).
+    unsafe { main(bytes.as_mut_ptr(), 0) }
 }
 
 impl Engine for JitProgram {

@@ -244,12 +244,28 @@ impl Lower<'_, '_> {
                 let phys = immediate && start.area == Area::Q;
                 let out = self.env.layout.phys_out;
                 let base_q = self.env.layout.base(Area::Q);
-                // Conditional write without branching: new = pf ? value : old.
+                // Conditional write without branching: new = pf ? value : old, one
+                // read-modify-write per byte (the bits of a range are consecutive).
+                let mut masks: Vec<(Addr, i64)> = Vec::new();
                 for (a, pos) in bits {
-                    self.cond_write_bit(a, pos, pf, value);
+                    match masks.last_mut() {
+                        Some((la, m)) if *la == a => *m |= 1 << pos,
+                        _ => masks.push((a, 1 << pos)),
+                    }
+                }
+                let spread = match pf {
+                    B::K(_) => None,
+                    B::Bit { .. } => {
+                        // All ones where PF holds, zero elsewhere.
+                        let p01 = pf.to01(&mut self.b);
+                        Some(self.b.ins().ineg(p01))
+                    }
+                };
+                for (a, m) in masks {
+                    self.cond_write_mask(a, m, spread, value);
                     if phys {
                         let pa = Addr::img(out + (a.off - base_q));
-                        self.cond_write_bit(pa, pos, pf, value);
+                        self.cond_write_mask(pa, m, spread, value);
                     }
                 }
                 return;
@@ -258,20 +274,15 @@ impl Lower<'_, '_> {
         self.set_range_helper(pf, start, count, value, immediate);
     }
 
-    /// Sets (or clears) a bit where `pf` holds, leaves it elsewhere.
-    fn cond_write_bit(&mut self, a: Addr, pos: u8, pf: B, value: bool) {
+    /// Sets (or clears) the bits of `mask` where `spread` (PF as all ones or zero; `None` for
+    /// PF = 1) holds, leaves them elsewhere.
+    fn cond_write_mask(&mut self, a: Addr, mask: i64, spread: Option<Value>, value: bool) {
         let old = self.byte(a);
-        let new = match pf {
-            B::K(true) => {
-                let m = 1i64 << pos;
-                if value {
-                    self.b.ins().bor_imm_s(old, m)
-                } else {
-                    self.b.ins().band_imm_s(old, !m & 0xFF)
-                }
-            }
-            _ => {
-                let m = pf.at_bit(&mut self.b, pos);
+        let new = match spread {
+            None if value => self.b.ins().bor_imm_s(old, mask),
+            None => self.b.ins().band_imm_s(old, !mask & 0xFF),
+            Some(sp) => {
+                let m = self.b.ins().band_imm_s(sp, mask);
                 if value {
                     self.b.ins().bor(old, m)
                 } else {

@@ -31,7 +31,7 @@ impl Lower<'_, '_> {
         let old = self.byte(a);
         let kept = self.b.ins().band_imm_s(old, !clear_mask & 0xFF);
         let new = self.b.ins().bor(kept, bits);
-        self.set_byte(a, new);
+        self.set_byte_pred(a, new);
     }
 
     /// SM1.0 and SM1.2 bits of a result (`r` sign-extended to i32 for the negative test).
@@ -48,7 +48,53 @@ impl Lower<'_, '_> {
             .unwrap_or(Place::Static(Addr::img(0)))
     }
 
+    /// Whether a box can be lowered branch-free: no pointer operand (so no run-time error),
+    /// no static error, and no shim that touches the image (the value shim is pure).
+    fn branch_free(&self, bx: &BoxOp) -> bool {
+        let direct = |o: &Operand| !Self::is_indirect(o);
+        match *bx {
+            BoxOp::Move {
+                ref src, ref dst, ..
+            }
+            | BoxOp::IntArith {
+                ref src, ref dst, ..
+            }
+            | BoxOp::MulWide { ref src, ref dst }
+            | BoxOp::DivWide { ref src, ref dst }
+            | BoxOp::RealArith {
+                ref src, ref dst, ..
+            }
+            | BoxOp::RealFunc {
+                ref src, ref dst, ..
+            }
+            | BoxOp::Logic {
+                ref src, ref dst, ..
+            }
+            | BoxOp::Convert {
+                ref src, ref dst, ..
+            } => direct(src) && direct(dst),
+            BoxOp::Shift {
+                ref dst, ref count, ..
+            }
+            | BoxOp::Rotate {
+                ref dst, ref count, ..
+            } => direct(dst) && direct(count),
+            BoxOp::Swap { ref dst }
+            | BoxOp::Step { ref dst, .. }
+            | BoxOp::Invert { ref dst, .. } => direct(dst),
+            BoxOp::ImmediateRead { input, ref dst } => input < self.io_limit(bx) && direct(dst),
+            BoxOp::ImmediateWrite { ref src, output } => output < self.io_limit(bx) && direct(src),
+            BoxOp::BlockMove { .. } | BoxOp::Fill { .. } | BoxOp::ShiftRegister { .. } => false,
+        }
+    }
+
     pub(crate) fn lower_box(&mut self, bx: &BoxOp) {
+        self.free_box = self.branch_free(bx);
+        self.lower_box_op(bx);
+        self.free_box = false;
+    }
+
+    fn lower_box_op(&mut self, bx: &BoxOp) {
         match *bx {
             BoxOp::Move {
                 width,
@@ -328,7 +374,7 @@ impl Lower<'_, '_> {
             let sm = s.byte(a);
             let kept = s.b.ins().band_not(sm, clr);
             let nsm = s.b.ins().bor(kept, setm);
-            s.set_byte(a, nsm);
+            s.set_byte_pred(a, nsm);
             let has = s.b.ins().ushr_imm_s(r, 32);
             let has = s.b.ins().ireduce(I32, has);
             let has = s.b.ins().band_imm_s(has, 1);

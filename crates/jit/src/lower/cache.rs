@@ -37,35 +37,53 @@ impl Addr {
     }
 }
 
-/// One cached byte: an `i32` whose upper 24 bits are zero.
+/// One cached byte: an `i32` whose upper 24 bits are zero, and the op that produced it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Entry {
     pub(crate) v: Value,
     pub(crate) dirty: bool,
+    pub(crate) at: usize,
 }
+
+/// How many ops a cached byte stays usable. Reusing a value much later keeps it live across
+/// everything in between, and the register allocator then spills it (a store and a reload),
+/// which costs more than loading the byte again.
+const WINDOW: usize = 12;
 
 /// The cache itself; a `BTreeMap` so that flushes store in address order (deterministic CLIF).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Cache {
     pub(crate) map: BTreeMap<Addr, Entry>,
+    /// The op being lowered (set by the lowering loop).
+    pub(crate) now: usize,
 }
 
 impl Cache {
-    /// The cached value of a byte.
+    /// The cached value of a byte, if recent enough (dirty entries never expire).
     pub(crate) fn get(&self, a: Addr) -> Option<Value> {
-        self.map.get(&a).map(|e| e.v)
+        self.map
+            .get(&a)
+            .filter(|e| e.dirty || self.now.saturating_sub(e.at) <= WINDOW)
+            .map(|e| e.v)
     }
 
-    /// Records a value just loaded from memory.
+    /// Records a value just loaded from memory (or just stored to it).
     pub(crate) fn put_clean(&mut self, a: Addr, v: Value) {
-        self.map.insert(a, Entry { v, dirty: false });
+        let at = self.now;
+        self.map.insert(
+            a,
+            Entry {
+                v,
+                dirty: false,
+                at,
+            },
+        );
     }
 
-    /// Records a value that memory does not hold yet.
-    pub(crate) fn put_dirty(&mut self, a: Addr, v: Value) {
-        self.map.insert(a, Entry { v, dirty: true });
+    /// Forgets everything (memory may have changed anywhere); keeps the op counter.
+    pub(crate) fn clear(&mut self) {
+        self.map.clear();
     }
-
     /// Forgets `len` bytes from `a` (they are about to be overwritten in memory).
     pub(crate) fn forget(&mut self, a: Addr, len: u32) {
         for i in 0..len {
@@ -110,6 +128,9 @@ impl Cache {
             .filter(|(a, e)| !e.dirty && rest.iter().all(|c| c.map.get(a) == Some(e)))
             .map(|(a, e)| (*a, *e))
             .collect();
-        Cache { map }
+        Cache {
+            map,
+            now: first.now,
+        }
     }
 }

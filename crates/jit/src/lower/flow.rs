@@ -60,6 +60,10 @@ impl Lower<'_, '_> {
             self.set_eno(B::K(false));
             return;
         }
+        if self.free_box {
+            self.boxed_free(pf, run);
+            return;
+        }
         self.flush();
         let start = self.cache.clone();
         let (r, err, j) = (
@@ -102,6 +106,25 @@ impl Lower<'_, '_> {
         self.b.seal_block(j);
         self.b.switch_to_block(j);
         self.cache = Cache::meet(&arms);
+    }
+
+    /// A box that cannot fail (no pointer operand, no static error) runs on every path; its
+    /// writes of OUT and SMB1 select the old value where PF is 0, and `ENO = PF AND ok`. This
+    /// leaves exactly the bytes of the branching form without splitting the block, so the byte
+    /// cache stays valid across the box.
+    fn boxed_free(&mut self, pf: B, run: impl FnOnce(&mut Self, OnFail) -> B) {
+        self.pred = match pf {
+            B::K(_) => None,
+            B::Bit { .. } => Some(pf.cond(&mut self.b)),
+        };
+        self.pred_reads.clear();
+        // No operand is a pointer, so nothing takes this failure path; a compare's fatal code
+        // is only a placeholder.
+        let ok = run(self, OnFail::Fatal(stljit_core::FatalCode::CompareIndirect));
+        self.pred = None;
+        self.pred_reads.clear();
+        let eno = pf.and(&mut self.b, ok);
+        self.set_eno(eno);
     }
 
     /// Branches to the failure block with a static error code when `cond` holds.

@@ -58,13 +58,22 @@ impl Lower<'_, '_> {
             }
             return acc;
         }
+        if self.pred.is_some()
+            && let Some(&(_, _, v)) = self.pred_reads.iter().find(|r| r.0 == a && r.1 == width)
+        {
+            return v;
+        }
         let d = self.cache.take_dirty_in(a, n);
         for (da, v) in d {
             let base = self.base(da);
             self.b.ins().istore8(mf(), v, base, da.off as i32);
         }
         let base = self.base(a);
-        self.load_be(base, a.off as i32, width)
+        let v = self.load_be(base, a.off as i32, width);
+        if self.pred.is_some() {
+            self.pred_reads.push((a, width, v));
+        }
+        v
     }
 
     fn load_be(&mut self, base: Value, off: i32, width: Width) -> Value {
@@ -100,7 +109,15 @@ impl Lower<'_, '_> {
     }
 
     /// Writes the low `width` bytes of `v` (an `i32`) big-endian at a static address.
+    /// Inside a branch-free box the write keeps the old value where PF is 0.
     pub(crate) fn write_static(&mut self, a: Addr, width: Width, v: Value) {
+        let v = match self.pred {
+            Some(p) => {
+                let old = self.read_static(a, width);
+                self.b.ins().select(p, v, old)
+            }
+            None => v,
+        };
         match width {
             Width::Byte => {
                 let m = self.b.ins().band_imm_s(v, 0xFF);
@@ -124,6 +141,8 @@ impl Lower<'_, '_> {
                 self.store_be(base, a.off as i32, width, v);
             }
         }
+        // A later read inside the same box must see this write, not a recorded old value.
+        self.pred_reads.clear();
     }
 
     /// Resolves a pointer held at `loc` for a `width` access; on failure takes `fail`.

@@ -80,6 +80,15 @@ pub(crate) struct Lower<'e, 'f> {
     pub(crate) live: bool,
     /// The first instruction this engine cannot compile, if any.
     pub(crate) unsupported: Option<String>,
+    /// While a box is lowered branch-free: its power flow (non-zero = run). Writes of OUT and
+    /// SMB1 then keep the old value where it is zero (see [`Lower::set_byte_pred`]).
+    pub(crate) pred: Option<Value>,
+    /// Multi-byte values read during the current branch-free box, reused as the "old" value of
+    /// a predicated write (every write of such a box is a no-op when PF is 0, so any value read
+    /// inside it is the value at its start).
+    pub(crate) pred_reads: Vec<(Addr, stljit_core::Width, Value)>,
+    /// The box being lowered has no pointer operand and no static error: lower it branch-free.
+    pub(crate) free_box: bool,
 }
 
 impl<'e, 'f> Lower<'e, 'f> {
@@ -117,9 +126,26 @@ impl<'e, 'f> Lower<'e, 'f> {
         v
     }
 
-    /// Writes a byte through the cache (`v` must have its upper 24 bits zero).
+    /// Writes a byte (`v` must have its upper 24 bits zero). The store is immediate and the
+    /// value stays cached: keeping writes in registers until the block ends made every value
+    /// of the block live to its end, which the register allocator paid for with spills.
     pub(crate) fn set_byte(&mut self, a: Addr, v: Value) {
-        self.cache.put_dirty(a, v);
+        let base = self.base(a);
+        self.b.ins().istore8(mf(), v, base, Self::off32(a));
+        self.cache.put_clean(a, v);
+    }
+
+    /// Writes a byte through the cache, keeping the old value where the current box predicate
+    /// is zero.
+    pub(crate) fn set_byte_pred(&mut self, a: Addr, v: Value) {
+        let v = match self.pred {
+            Some(p) => {
+                let old = self.byte(a);
+                self.b.ins().select(p, v, old)
+            }
+            None => v,
+        };
+        self.set_byte(a, v);
     }
 
     /// Stores the given dirty entries.
@@ -139,7 +165,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// Stores every dirty byte and forgets everything (before code that may write anywhere).
     pub(crate) fn flush_forget(&mut self) {
         self.flush();
-        self.cache = Cache::default();
+        self.cache.clear();
     }
 
     /// Loads `ty` in native byte order at a static address (scheduler fields).
@@ -183,6 +209,26 @@ impl<'e, 'f> Lower<'e, 'f> {
     pub(crate) fn call_helper(&mut self, h: Helper, args: &[Value]) -> Value {
         self.flush_forget();
         self.call_pure(h, args)
+    }
+
+    /// Calls a runtime shim that reads and writes only the image bytes in `ranges`: only dirty
+    /// bytes inside them are stored before the call and only they are forgotten after it, so
+    /// the rest of the cache (dirty bytes included) stays valid across the call.
+    pub(crate) fn call_touching(
+        &mut self,
+        h: Helper,
+        args: &[Value],
+        ranges: &[(Addr, u32)],
+    ) -> Value {
+        for &(a, n) in ranges {
+            let d = self.cache.take_dirty_in(a, n);
+            self.store_entries(d);
+        }
+        let r = self.call_pure(h, args);
+        for &(a, n) in ranges {
+            self.cache.forget(a, n);
+        }
+        r
     }
 
     /// Calls a runtime shim that never touches the image.
@@ -290,7 +336,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// Starts lowering in `block` with state reloaded from the image and the stack register.
     pub(crate) fn enter(&mut self, block: Block, at_op: usize) {
         self.b.switch_to_block(block);
-        self.cache = Cache::default();
+        self.cache.clear();
         let st = self.b.use_var(self.st);
         self.entry_st = Some(st);
         self.stack = Stack::from_reg(st, self.depth());
@@ -367,6 +413,7 @@ impl<'e, 'f> Lower<'e, 'f> {
                 self.enter(blk, i);
             }
             self.op = i;
+            self.cache.now = i;
             self.b.set_srcloc(SourceLoc::new(i as u32 + 1));
             if let Some(addr) = self.env.op_counter {
                 let a = self.iconst(I64, addr);

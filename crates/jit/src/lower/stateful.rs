@@ -2,11 +2,13 @@
 //! calls into the runtime, which owns these semantics (spec §5).
 
 use super::Lower;
+use super::cache::Addr;
 use super::mem::OnFail;
-use super::value::B;
+use super::value::{B, Stack};
 use crate::helpers::Helper;
 use cranelift_codegen::ir::{BlockArg, InstBuilder, Value, condcodes::IntCC, types::I32};
 use stljit_core::ir::{BitLoc, BoxOp, Op, Operand};
+use stljit_core::layout::{COUNTER_STATE_SIZE, Sched, TIMER_STATE_SIZE};
 use stljit_core::{Area, ErrorCode, Width};
 use stljit_runtime::ffi::FfiCode;
 
@@ -66,8 +68,17 @@ impl Lower<'_, '_> {
                     let gate = s.gate.to01(&mut s.b);
                     let nv = s.iconst(I32, i64::from(n));
                     let k = s.iconst(I32, i64::from(kind.code()));
-                    let st = s.call_helper(Helper::Timer, &[nv, k, input, gate, pv]);
-                    s.error_if_status(st);
+                    let args = [nv, k, input, gate, pv];
+                    match s.timer_ranges(n) {
+                        // In range, the shim only fails on a panic, which the runtime rules out.
+                        Some(r) => {
+                            s.call_touching(Helper::Timer, &args, &r);
+                        }
+                        None => {
+                            let st = s.call_helper(Helper::Timer, &args);
+                            s.error_if_status(st);
+                        }
+                    }
                 });
             }
             Op::Counter {
@@ -77,12 +88,24 @@ impl Lower<'_, '_> {
             } => {
                 let (kind, n) = (*kind, counter.0);
                 self.with_preset(preset, |s, pv| {
-                    let stack = s.stack.to_reg(&mut s.b);
+                    // `counter::execute` reads levels 0..=2 only; packing just those is cheaper.
+                    let levels = Stack {
+                        lv: (0..3).map(|i| s.stack.level(i)).collect(),
+                    };
+                    let stack = levels.to_reg(&mut s.b);
                     let gate = s.gate.to01(&mut s.b);
                     let nv = s.iconst(I32, i64::from(n));
                     let k = s.iconst(I32, i64::from(kind.code()));
-                    let st = s.call_helper(Helper::Counter, &[nv, k, stack, gate, pv]);
-                    s.error_if_status(st);
+                    let args = [nv, k, stack, gate, pv];
+                    match s.counter_ranges(n) {
+                        Some(r) => {
+                            s.call_touching(Helper::Counter, &args, &r);
+                        }
+                        None => {
+                            let st = s.call_helper(Helper::Counter, &args);
+                            s.error_if_status(st);
+                        }
+                    }
                 });
             }
             Op::ResetTimers { first, count } => {
@@ -93,6 +116,34 @@ impl Lower<'_, '_> {
             }
             _ => {}
         }
+    }
+
+    /// The bytes `timer::execute` reads or writes for an existing timer `n`: its value, bit and
+    /// private state, and the scan's 100-ms delta (`None`: no such timer, the shim fails).
+    fn timer_ranges(&self, n: u16) -> Option<[(Addr, u32); 4]> {
+        let l = self.env.layout;
+        (u32::from(n) < l.area_size(Area::TimerBit)).then(|| {
+            [
+                (self.area_addr(Area::TimerValue, 2 * u32::from(n)), 2),
+                (self.area_addr(Area::TimerBit, u32::from(n)), 1),
+                (Addr::img(l.timer_state(n)), TIMER_STATE_SIZE),
+                (self.sched(Sched::D100), 4),
+            ]
+        })
+    }
+
+    /// The bytes `counter::execute` reads or writes for an existing counter `n`: its value, bit
+    /// and private state, and the first-scan flag.
+    fn counter_ranges(&self, n: u16) -> Option<[(Addr, u32); 4]> {
+        let l = self.env.layout;
+        (u32::from(n) < l.area_size(Area::CounterBit)).then(|| {
+            [
+                (self.area_addr(Area::CounterValue, 2 * u32::from(n)), 2),
+                (self.area_addr(Area::CounterBit, u32::from(n)), 1),
+                (Addr::img(l.counter_state(n)), COUNTER_STATE_SIZE),
+                (self.sched(Sched::FIRST_SCAN), 1),
+            ]
+        })
     }
 
     fn reset_range(&mut self, h: Helper, first: u32, count: &Operand) {
