@@ -15,6 +15,7 @@ use cranelift_module::{FuncId, Linkage, Module};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use stljit_core::Width;
 use stljit_core::ir::{ArithOp, Conversion, RealFn};
+use stljit_runtime::ffi::FfiCode as _;
 use stljit_runtime::flags::Outcome;
 use stljit_runtime::{arith, bitops, convert};
 
@@ -204,47 +205,20 @@ pub(crate) fn sub_code(width: Width, sub: u32) -> u32 {
 }
 
 fn arith_op(n: u32) -> ArithOp {
-    [ArithOp::Add, ArithOp::Sub, ArithOp::Mul, ArithOp::Div][(n & 3) as usize]
+    ArithOp::ALL[(n & 3) as usize]
 }
 
+/// The codes are positions in core's `ALL` lists, as for the runtime's own shims.
 pub(crate) fn arith_code(op: ArithOp) -> u32 {
-    match op {
-        ArithOp::Add => 0,
-        ArithOp::Sub => 1,
-        ArithOp::Mul => 2,
-        ArithOp::Div => 3,
-    }
+    op.ffi_code()
 }
-
-const REAL_FNS: [RealFn; 6] = [
-    RealFn::Sqrt,
-    RealFn::Ln,
-    RealFn::Exp,
-    RealFn::Sin,
-    RealFn::Cos,
-    RealFn::Tan,
-];
-const CONVERSIONS: [Conversion; 12] = [
-    Conversion::ByteToInt,
-    Conversion::IntToByte,
-    Conversion::IntToDInt,
-    Conversion::DIntToInt,
-    Conversion::DIntToReal,
-    Conversion::Round,
-    Conversion::Trunc,
-    Conversion::BcdToInt,
-    Conversion::IntToBcd,
-    Conversion::Decode,
-    Conversion::Encode,
-    Conversion::Segment,
-];
 
 pub(crate) fn real_fn_code(f: RealFn) -> u32 {
-    REAL_FNS.iter().position(|x| *x == f).unwrap_or(0) as u32
+    f.ffi_code()
 }
 
 pub(crate) fn conv_code(c: Conversion) -> u32 {
-    CONVERSIONS.iter().position(|x| *x == c).unwrap_or(0) as u32
+    c.ffi_code()
 }
 
 fn value_outcome(op: u32, sub: u32, out: u32, in1: u32) -> Outcome {
@@ -256,10 +230,10 @@ fn value_outcome(op: u32, sub: u32, out: u32, in1: u32) -> Outcome {
         3 => arith::div_wide(out, in1),
         4 => arith::step(width, s != 0, out),
         5 => arith::real_arith(arith_op(s as u32), out, in1),
-        6 => arith::real_func(REAL_FNS[s % REAL_FNS.len()], in1),
+        6 => arith::real_func(RealFn::ALL[s % RealFn::ALL.len()], in1),
         9 | 10 => bitops::shift(op == 9, width, out, in1 as u8),
         11 | 12 => bitops::rotate(op == 11, width, out, in1 as u8),
-        _ => convert::convert(CONVERSIONS[s % CONVERSIONS.len()], in1),
+        _ => convert::convert(Conversion::ALL[s % Conversion::ALL.len()], in1),
     }
 }
 

@@ -417,7 +417,7 @@ impl Gen<'_, '_> {
         let kind = match self.counters.get(&n) {
             Some(&k) => k,
             None => {
-                let k = self.c.pick(&CounterKind::ALL);
+                let k = self.c.pick(CounterKind::ALL);
                 self.counters.insert(n, k);
                 k
             }
