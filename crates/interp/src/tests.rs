@@ -2,6 +2,5 @@
 //! from the spec (each test names its section).
 
 mod build;
-mod conformance;
 mod control;
 mod ops;
