@@ -2,9 +2,7 @@
 
 use crate::Interpreter;
 use stljit_core::ir::*;
-use stljit_core::{
-    Area, CounterId, EdgeSlot, LabelId, OpIdx, PouId, ProfileId, ScanStatus, TimerId, Width,
-};
+use stljit_core::{Area, LabelId, OpIdx, PouId, ProfileId, ScanStatus, Width};
 use stljit_runtime::{Engine, Image};
 
 pub(crate) fn bit(area: Area, byte: u32, bit: u8) -> BitLoc {
@@ -27,9 +25,6 @@ pub(crate) fn s(byte: u32, b: u8) -> BitLoc {
 }
 pub(crate) fn tbit(n: u32) -> BitLoc {
     bit(Area::TimerBit, n, 0)
-}
-pub(crate) fn cbit(n: u32) -> BitLoc {
-    bit(Area::CounterBit, n, 0)
 }
 pub(crate) fn mem(area: Area, offset: u32) -> Operand {
     Operand::Mem(Loc { area, offset })
@@ -60,18 +55,6 @@ pub(crate) fn ld(b: BitLoc) -> Op {
 pub(crate) fn ldn(b: BitLoc) -> Op {
     Op::Load(c(b, true))
 }
-pub(crate) fn a(b: BitLoc) -> Op {
-    Op::And(c(b, false))
-}
-pub(crate) fn an(b: BitLoc) -> Op {
-    Op::And(c(b, true))
-}
-pub(crate) fn o(b: BitLoc) -> Op {
-    Op::Or(c(b, false))
-}
-pub(crate) fn on(b: BitLoc) -> Op {
-    Op::Or(c(b, true))
-}
 pub(crate) fn out(b: BitLoc) -> Op {
     Op::Assign {
         bit: b,
@@ -85,17 +68,6 @@ pub(crate) fn set(b: BitLoc, n: i64) -> Op {
         value: true,
         immediate: false,
     }
-}
-pub(crate) fn reset(b: BitLoc, n: i64) -> Op {
-    Op::SetRange {
-        start: b,
-        count: k(n),
-        value: false,
-        immediate: false,
-    }
-}
-pub(crate) fn cmp(ty: CmpType, op: CmpOp, lhs: Operand, rhs: Operand) -> Contact {
-    Contact::Compare { ty, op, lhs, rhs }
 }
 pub(crate) fn movw(src: Operand, dst: Operand) -> Op {
     Op::Box(BoxOp::Move {
@@ -117,26 +89,6 @@ pub(crate) fn movd(src: Operand, dst: Operand) -> Op {
         src,
         dst,
     })
-}
-pub(crate) fn ton(kind: TimerKind, n: u16, pt: i64) -> Op {
-    Op::Timer {
-        kind,
-        timer: TimerId(n),
-        preset: k(pt),
-    }
-}
-pub(crate) fn ctr(kind: CounterKind, n: u16, pv: i64) -> Op {
-    Op::Counter {
-        kind,
-        counter: CounterId(n),
-        preset: k(pv),
-    }
-}
-pub(crate) fn edge(slot: u16, falling: bool) -> Op {
-    Op::Edge {
-        slot: EdgeSlot(slot),
-        falling,
-    }
 }
 pub(crate) fn jmp(l: u32) -> Op {
     Op::Jump(LabelId(l))
