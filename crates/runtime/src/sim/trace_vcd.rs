@@ -97,13 +97,12 @@ impl<W: Write> VcdTrace<W> {
 }
 
 impl<W: Write> Observer for VcdTrace<W> {
+    /// A timestamp is written only for scans in which a watched value changed: a day of 10 ms
+    /// scans with a few changes stays a small file.
     fn observe(&mut self, e: &ScanEvent<'_>) -> io::Result<()> {
         let first = !self.started;
         self.started = true;
-        writeln!(self.out, "#{}", e.t_ms)?;
-        if first {
-            writeln!(self.out, "$dumpvars")?;
-        }
+        let mut stamped = false;
         for i in 0..self.watches.len() {
             let raw = self.watches[i].read(e.image).ok_or_else(|| {
                 io::Error::new(
@@ -115,11 +114,18 @@ impl<W: Write> Observer for VcdTrace<W> {
                 )
             })?;
             if self.last[i] != Some(raw) {
+                if !stamped {
+                    writeln!(self.out, "#{}", e.t_ms)?;
+                    if first {
+                        writeln!(self.out, "$dumpvars")?;
+                    }
+                    stamped = true;
+                }
                 self.value(i, raw)?;
                 self.last[i] = Some(raw);
             }
         }
-        if first {
+        if first && stamped {
             writeln!(self.out, "$end")?;
         }
         Ok(())
