@@ -24,7 +24,8 @@ pub(crate) type EngineCtor = fn(&Program) -> Result<Box<dyn Engine>, String>;
 pub(crate) type EngineEntry = (&'static str, EngineCtor);
 
 /// Every engine a case runs on. All of them run every case; none is ever skipped.
-pub(crate) const ENGINES: &[EngineEntry] = &[("interp", interp), ("jit", jit)];
+pub(crate) const ENGINES: &[EngineEntry] =
+    &[("interp", interp), ("jit", jit), ("jit-split", jit_split)];
 
 fn interp(p: &Program) -> Result<Box<dyn Engine>, String> {
     match stljit_interp::Interpreter::new(p) {
@@ -35,6 +36,19 @@ fn interp(p: &Program) -> Result<Box<dyn Engine>, String> {
 
 fn jit(p: &Program) -> Result<Box<dyn Engine>, String> {
     match stljit_jit::JitProgram::compile(p, &stljit_jit::JitOptions::default()) {
+        Ok(e) => Ok(Box::new(e)),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+/// The JIT with every basic block in a chunk function of its own: the cases are far shorter than
+/// the default chunk size, so this runs them through the chunk dispatcher as well.
+fn jit_split(p: &Program) -> Result<Box<dyn Engine>, String> {
+    let opts = stljit_jit::JitOptions {
+        chunk_ops: 1,
+        ..Default::default()
+    };
+    match stljit_jit::JitProgram::compile(p, &opts) {
         Ok(e) => Ok(Box::new(e)),
         Err(e) => Err(e.to_string()),
     }

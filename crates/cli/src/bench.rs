@@ -88,18 +88,11 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
         let t = Instant::now();
         drop(JitProgram::compile(
             program,
-            &JitOptions {
-                opt: OptLevel::None,
-            },
+            &JitOptions::at(OptLevel::None),
         )?);
         let c_none = t.elapsed();
         let t = Instant::now();
-        let mut jit = JitProgram::compile(
-            program,
-            &JitOptions {
-                opt: OptLevel::Speed,
-            },
-        )?;
+        let mut jit = JitProgram::compile(program, &JitOptions::at(OptLevel::Speed))?;
         let c_speed = t.elapsed();
         let mut counting = JitProgram::compile_counting(program, &JitOptions::default())?;
         let (_, counted_scans) = drive(&mut counting, program, args.scans, args.scan_ms);

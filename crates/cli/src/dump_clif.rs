@@ -21,9 +21,7 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     let Some(program) = crate::project::checked_program(&c) else {
         return Ok(ExitCode::from(1));
     };
-    let opts = stljit_jit::JitOptions {
-        opt: args.opt.into(),
-    };
+    let opts = stljit_jit::JitOptions::at(args.opt.into());
     let text = if args.asm {
         stljit_jit::asm_text(program, &opts)?
     } else {

@@ -49,9 +49,6 @@ pub(crate) fn build_engine(
 ) -> anyhow::Result<Box<dyn Engine>> {
     Ok(match kind {
         EngineKind::Interp => Box::new(Interpreter::new(program)?),
-        EngineKind::Jit => Box::new(JitProgram::compile(
-            program,
-            &JitOptions { opt: opt.into() },
-        )?),
+        EngineKind::Jit => Box::new(JitProgram::compile(program, &JitOptions::at(opt.into()))?),
     })
 }

@@ -97,7 +97,8 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
         roundtrip: true,
     };
     eprintln!(
-        "fuzz: seed {}, shard {}/{}, {} job(s), {} vs {}, {} scans per program{}",
+        "fuzz: seed {}, shard {}/{}, {} job(s), {} vs {} (split into basic blocks for odd \
+         programs), {} scans per program{}",
         cfg.seed,
         cfg.shard.0,
         cfg.shard.1,
@@ -156,7 +157,7 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     let meta = Meta::new(
         failure.case.program.profile,
         Some(failure.seed),
-        &format!("{} {}", engines[0], engines[1]),
+        &format!("{} {}", failure.engines[0], failure.engines[1]),
     );
     write_repro(
         &dir.join("original"),
@@ -172,7 +173,7 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
             failure.case.program.op_count(),
             failure.case.stimulus.len()
         );
-        shrink_quietly(&failure.case, &failure.finding, engines, &cfg.run)
+        shrink_quietly(&failure.case, &failure.finding, failure.engines, &cfg.run)
     };
     write_repro(&dir, &case, &meta, Some(&finding))?;
     eprintln!(

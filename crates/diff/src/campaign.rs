@@ -64,6 +64,8 @@ pub struct Failure {
     pub seed: u64,
     /// The program and stimulus.
     pub case: Case,
+    /// The engines it was run on ([`campaign_engines`]).
+    pub engines: [EngineKind; 2],
     /// What went wrong.
     pub finding: Finding,
 }
@@ -113,6 +115,16 @@ pub fn check_case(
     run_pair(&case.program, &case.stimulus, &mut *a, &mut *b, run)
 }
 
+/// The engines program `index` of a campaign runs on: `cfg.engines`, with the JIT split into
+/// one function per basic block ([`EngineKind::split`]) for every odd index.
+pub fn campaign_engines(cfg: &CampaignConfig, index: u64) -> [EngineKind; 2] {
+    if index % 2 == 1 {
+        cfg.engines.map(EngineKind::split)
+    } else {
+        cfg.engines
+    }
+}
+
 /// The case of program `index` of a campaign.
 pub fn campaign_case(cfg: &CampaignConfig, index: u64) -> (u64, Case) {
     let seed = program_seed(cfg.seed, index);
@@ -145,7 +157,8 @@ pub fn run(
             let index = k + j * n;
             let (seed, case) = campaign_case(cfg, index);
             cov.add_program(&case.program);
-            let result = check_case(&case, cfg.engines, &cfg.run, cfg.roundtrip);
+            let engines = campaign_engines(cfg, index);
+            let result = check_case(&case, engines, &cfg.run, cfg.roundtrip);
             let snapshot = {
                 let mut t = totals.lock().unwrap_or_else(|e| e.into_inner());
                 t.programs += 1;
@@ -172,6 +185,7 @@ pub fn run(
                         index,
                         seed,
                         case,
+                        engines,
                         finding,
                     });
                 }

@@ -1,5 +1,5 @@
 //! The engines under test, built fresh for every program: the reference interpreter and the
-//! Cranelift JIT at either optimisation level.
+//! Cranelift JIT at either optimisation level, whole or split into one function per basic block.
 
 use std::fmt;
 use stljit_core::ir::Program;
@@ -14,6 +14,10 @@ pub enum EngineKind {
     Interp,
     /// `stljit_jit::JitProgram` at an optimisation level.
     Jit(OptLevel),
+    /// The JIT with every basic block of every POU in a chunk function of its own
+    /// ([`JitOptions::chunk_ops`] = 1): generated programs are far shorter than the default
+    /// chunk size, so this is what puts the chunk dispatcher under test.
+    JitSplit(OptLevel),
 }
 
 impl EngineKind {
@@ -23,6 +27,16 @@ impl EngineKind {
             EngineKind::Interp => "interp",
             EngineKind::Jit(OptLevel::None) => "jit(none)",
             EngineKind::Jit(OptLevel::Speed) => "jit(speed)",
+            EngineKind::JitSplit(OptLevel::None) => "jit-split(none)",
+            EngineKind::JitSplit(OptLevel::Speed) => "jit-split(speed)",
+        }
+    }
+
+    /// The same engine with split compilation (the interpreter is unchanged).
+    pub fn split(self) -> Self {
+        match self {
+            EngineKind::Jit(opt) => EngineKind::JitSplit(opt),
+            other => other,
         }
     }
 
@@ -35,12 +49,18 @@ impl EngineKind {
                     engine: self.name(),
                     message: e.to_string(),
                 }),
-            EngineKind::Jit(opt) => JitProgram::compile(program, &JitOptions { opt })
-                .map(|j| Box::new(j) as Box<dyn Engine>)
-                .map_err(|e| BuildError {
-                    engine: self.name(),
-                    message: e.to_string(),
-                }),
+            EngineKind::Jit(opt) | EngineKind::JitSplit(opt) => {
+                let chunk_ops = match self {
+                    EngineKind::JitSplit(_) => 1,
+                    _ => JitOptions::default().chunk_ops,
+                };
+                JitProgram::compile(program, &JitOptions { opt, chunk_ops })
+                    .map(|j| Box::new(j) as Box<dyn Engine>)
+                    .map_err(|e| BuildError {
+                        engine: self.name(),
+                        message: e.to_string(),
+                    })
+            }
         }
     }
 }

@@ -119,6 +119,67 @@ fn leaders(pou: &Pou) -> Vec<bool> {
 /// Longest run of ops lowered as one basic block.
 pub(crate) const MAX_BLOCK: usize = 128;
 
+/// How a long POU is split into chunk functions (see [`crate::lower`], "Chunks").
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct ChunkPlan {
+    /// First op of each chunk: chunk `k` covers `starts[k]..starts[k + 1]`, the last chunk runs
+    /// to the end of the POU and also owns the end position (`ops.len()`).
+    pub(crate) starts: Vec<usize>,
+    /// Per chunk, the ops where control may enter it (sorted, the chunk's start first): its
+    /// start, and every target of a jump, loop or skip from another chunk.
+    pub(crate) entries: Vec<Vec<usize>>,
+}
+
+impl ChunkPlan {
+    /// The chunk that contains op `i` (the end position belongs to the last chunk).
+    pub(crate) fn chunk_of(&self, i: usize) -> usize {
+        self.starts.partition_point(|&s| s <= i).saturating_sub(1)
+    }
+
+    /// The op range of chunk `k` (the last one excludes the end position).
+    pub(crate) fn range(&self, k: usize, n: usize) -> std::ops::Range<usize> {
+        self.starts[k]..self.starts.get(k + 1).copied().unwrap_or(n)
+    }
+}
+
+/// Splits a POU longer than `chunk_ops` at block leaders into chunks of at least `chunk_ops`
+/// ops; `None` keeps it one function. Compilation time of one Cranelift function grows faster
+/// than its length, so a 100k-op main program compiles much faster as many mid-sized functions.
+pub(crate) fn plan_chunks(pou: &Pou, leader: &[bool], chunk_ops: usize) -> Option<ChunkPlan> {
+    let n = pou.ops.len();
+    if chunk_ops == 0 || n <= chunk_ops {
+        return None;
+    }
+    let mut starts = vec![0];
+    for (i, &lead) in leader.iter().enumerate().take(n).skip(1) {
+        if lead && i >= starts[starts.len() - 1] + chunk_ops {
+            starts.push(i);
+        }
+    }
+    if starts.len() < 2 {
+        return None;
+    }
+    let mut plan = ChunkPlan {
+        entries: starts.iter().map(|&s| vec![s]).collect(),
+        starts,
+    };
+    let mut succ = Vec::new();
+    for i in 0..n {
+        successors(pou, i, &mut succ);
+        let from = plan.chunk_of(i);
+        for &t in &succ {
+            let to = plan.chunk_of(t);
+            if to != from && !plan.entries[to].contains(&t) {
+                plan.entries[to].push(t);
+            }
+        }
+    }
+    for e in &mut plan.entries {
+        e.sort_unstable();
+    }
+    Some(plan)
+}
+
 /// Forward dataflow of "gate is 1"; returns per-op facts and whether all exits have gate 1.
 fn gate_flow(pou: &Pou, exits_one: &[bool]) -> (Vec<bool>, bool) {
     let n = pou.ops.len();
@@ -184,4 +245,54 @@ pub(crate) fn analyse(prog: &Program) -> Vec<PouInfo> {
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pou(text: &str) -> Pou {
+        let c = stljit_syntax::compile_str("t.stl", text, stljit_core::ProfileId::A5);
+        let prog = c.program.expect("compiles");
+        prog.pous[0].clone()
+    }
+
+    #[test]
+    fn short_pou_is_not_split() {
+        let p = pou("LD I0.0\n= Q0.0\n");
+        assert_eq!(plan_chunks(&p, &leaders(&p), 2), None);
+        assert_eq!(plan_chunks(&p, &leaders(&p), 0), None);
+    }
+
+    #[test]
+    fn chunks_start_at_leaders_and_list_cross_chunk_targets() {
+        // ops: 0 LD, 1 JMP 1, 2 LD, 3 =, 4 LBL 1, 5 LD, 6 = ; leaders 0, 2 (after JMP), 4 (LBL)
+        let p = pou("LD I0.0\nJMP 1\nLD I0.1\n= Q0.0\nLBL 1\nLD I0.2\n= Q0.1\n");
+        let lead = leaders(&p);
+        let plan = plan_chunks(&p, &lead, 1).expect("split");
+        assert_eq!(plan.starts, vec![0, 2, 4]);
+        // The jump from chunk 0 lands on chunk 2's start; nothing enters mid-chunk.
+        assert_eq!(plan.entries, vec![vec![0], vec![2], vec![4]]);
+        assert_eq!(plan.chunk_of(3), 1);
+        assert_eq!(
+            plan.chunk_of(7),
+            2,
+            "the end position belongs to the last chunk"
+        );
+        assert_eq!(plan.range(2, 7), 4..7);
+    }
+
+    #[test]
+    fn a_jump_into_the_middle_of_a_chunk_is_an_entry() {
+        // Leaders 0, 2, 3 (LBL 2), 6 (LBL 1). JMP 1 at op 1 targets op 6 and the backward
+        // JMP 2 at op 8 targets op 3: a chunk start with chunks of >= 3 ops, but the middle of
+        // chunk 0 with chunks of >= 4 ops.
+        let p = pou("LD I0.0\nJMP 1\nLD I0.1\nLBL 2\nLD I0.2\n= Q0.0\nLBL 1\nLD I0.3\nJMP 2\n");
+        let plan = plan_chunks(&p, &leaders(&p), 3).expect("split");
+        assert_eq!(plan.starts, vec![0, 3, 6]);
+        assert_eq!(plan.entries, vec![vec![0], vec![3], vec![6]]);
+        let plan = plan_chunks(&p, &leaders(&p), 4).expect("split");
+        assert_eq!(plan.starts, vec![0, 6]);
+        assert_eq!(plan.entries, vec![vec![0, 3], vec![6]]);
+    }
 }

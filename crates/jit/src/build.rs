@@ -3,13 +3,13 @@
 //! This file is safe code: it produces a [`JITModule`] with everything defined and the ids of
 //! the two entry points; [`crate::engine`] finalizes it and calls into it.
 
-use crate::analysis;
+use crate::analysis::{self, ChunkPlan};
 use crate::helpers::{Helper, HelperIds};
 use crate::lower::value::Stack;
 use crate::lower::{Env, Lower};
 use crate::{JitError, JitOptions, OptLevel};
 use cranelift_codegen::ir::{
-    AbiParam, Function, InstBuilder, MemFlagsData, Signature, UserFuncName,
+    AbiParam, Function, InstBuilder, MemFlagsData, Signature, UserFuncName, Value,
     condcodes::IntCC,
     types::{I32, I64},
 };
@@ -70,6 +70,16 @@ pub(crate) fn pou_signature(cc: CallConv) -> Signature {
     s
 }
 
+/// The signature of a chunk function: `(image: i64, depth: i32, stack: i32, at: i32) -> i64`
+/// (see [`crate::lower::Lower::lower_chunk`]).
+pub(crate) fn chunk_signature(cc: CallConv) -> Signature {
+    let mut s = pou_signature(cc);
+    s.params.push(AbiParam::new(I32));
+    s.params.push(AbiParam::new(I32));
+    s.returns[0] = AbiParam::new(I64);
+    s
+}
+
 /// The signature of the many-scans entry: `(image, t0, dt, n, done_out) -> status`.
 pub(crate) fn run_signature(cc: CallConv) -> Signature {
     let mut s = Signature::new(cc);
@@ -105,6 +115,17 @@ pub(crate) struct Built {
     pub(crate) run_id: FuncId,
 }
 
+/// Which function of a POU [`build`] hands to its `dump` callback.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Part {
+    /// The POU's only function.
+    Whole,
+    /// The dispatcher of a split POU (the function its callers call).
+    Dispatch,
+    /// Chunk `k` of a split POU.
+    Chunk(usize),
+}
+
 /// Declares and defines every function. `dump` receives each function's CLIF before it is
 /// compiled; with `define = false` nothing is compiled (for `dump-clif`).
 pub(crate) fn build(
@@ -114,18 +135,39 @@ pub(crate) fn build(
     layout_ptr: i64,
     op_counter: Option<i64>,
     define: bool,
-    dump: &mut dyn FnMut(&Function, usize),
+    dump: &mut dyn FnMut(&Function, usize, Part),
 ) -> Result<Built, JitError> {
     validate(prog)?;
     let mut module = new_module(opts)?;
     let cc = module.isa().default_call_conv();
     let helpers = HelperIds::declare(&mut module).map_err(cg)?;
+    let info = analysis::analyse(prog);
+    let plans: Vec<_> = prog
+        .pous
+        .iter()
+        .zip(&info)
+        .map(|(p, i)| analysis::plan_chunks(p, &i.leader, opts.chunk_ops))
+        .collect();
     let mut pou_funcs = Vec::with_capacity(prog.pous.len());
-    for i in 0..prog.pous.len() {
+    let mut chunk_funcs = Vec::with_capacity(prog.pous.len());
+    for (i, plan) in plans.iter().enumerate() {
         let id = module
             .declare_function(&format!("pou{i}"), Linkage::Local, &pou_signature(cc))
             .map_err(cg)?;
         pou_funcs.push(id);
+        let chunks = plan.as_ref().map_or(0, |p| p.starts.len());
+        let ids = (0..chunks)
+            .map(|k| {
+                module
+                    .declare_function(
+                        &format!("pou{i}_chunk{k}"),
+                        Linkage::Local,
+                        &chunk_signature(cc),
+                    )
+                    .map_err(cg)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        chunk_funcs.push(ids);
     }
     let run_id = module
         .declare_function("run_scans", Linkage::Local, &run_signature(cc))
@@ -136,70 +178,77 @@ pub(crate) fn build(
         layout_ptr,
         pou_funcs: pou_funcs.clone(),
         helpers: &helpers,
-        info: analysis::analyse(prog),
+        info,
         op_counter,
+        plans,
     };
     let mut ctx = module.make_context();
     let mut fbc = FunctionBuilderContext::new();
-    for (i, &id) in pou_funcs.iter().enumerate() {
-        ctx.func =
-            Function::with_name_signature(UserFuncName::user(0, i as u32), pou_signature(cc));
-        lower_one(&env, &mut module, &mut ctx, &mut fbc, i)?;
-        dump(&ctx.func, i);
+    let define_fn = |module: &mut JITModule, ctx: &mut Context, id| -> Result<(), JitError> {
         if define {
             module
-                .define_function(id, &mut ctx)
+                .define_function(id, ctx)
                 .map_err(|e| cg(format!("{e:?}")))?;
         }
-        module.clear_context(&mut ctx);
+        module.clear_context(ctx);
+        Ok(())
+    };
+    for (i, &id) in pou_funcs.iter().enumerate() {
+        let name = UserFuncName::user(0, i as u32);
+        match &env.plans[i] {
+            None => {
+                ctx.func = Function::with_name_signature(name, pou_signature(cc));
+                lower_fn(&env, &mut module, &mut ctx, &mut fbc, i, None)?;
+                dump(&ctx.func, i, Part::Whole);
+                define_fn(&mut module, &mut ctx, id)?;
+            }
+            Some(plan) => {
+                for (k, &cid) in chunk_funcs[i].iter().enumerate() {
+                    let name = UserFuncName::user(1 + k as u32, i as u32);
+                    ctx.func = Function::with_name_signature(name, chunk_signature(cc));
+                    lower_fn(&env, &mut module, &mut ctx, &mut fbc, i, Some(k))?;
+                    dump(&ctx.func, i, Part::Chunk(k));
+                    define_fn(&mut module, &mut ctx, cid)?;
+                }
+                ctx.func = Function::with_name_signature(name, pou_signature(cc));
+                build_dispatch(
+                    &env,
+                    &mut module,
+                    &mut ctx,
+                    &mut fbc,
+                    i,
+                    plan,
+                    &chunk_funcs[i],
+                );
+                dump(&ctx.func, i, Part::Dispatch);
+                define_fn(&mut module, &mut ctx, id)?;
+            }
+        }
     }
     ctx.func = Function::with_name_signature(UserFuncName::user(0, u32::MAX), run_signature(cc));
     build_run(&env, &mut module, &mut ctx, &mut fbc, pou_funcs[0]);
-    if define {
-        module
-            .define_function(run_id, &mut ctx)
-            .map_err(|e| cg(format!("{e:?}")))?;
-    }
-    module.clear_context(&mut ctx);
+    define_fn(&mut module, &mut ctx, run_id)?;
     Ok(Built { module, run_id })
 }
 
-fn lower_one(
+/// Lowers POU `pou` (or its chunk `chunk`) into `ctx.func`.
+fn lower_fn(
     env: &Env<'_>,
     module: &mut JITModule,
     ctx: &mut Context,
     fbc: &mut FunctionBuilderContext,
     pou: usize,
+    chunk: Option<usize>,
 ) -> Result<(), JitError> {
     let mut b = FunctionBuilder::new(&mut ctx.func, fbc);
     let entry = b.create_block();
     b.append_block_params_for_function_params(entry);
     b.switch_to_block(entry);
     b.seal_block(entry);
-    let image = b.block_params(entry)[0];
-    let depth = b.block_params(entry)[1];
+    let params = b.block_params(entry).to_vec();
+    let (image, depth) = (params[0], params[1]);
     let st = b.declare_var(I32);
-    let lsize = i64::from(env.layout.area_size(stljit_core::Area::L));
-    let lbase = if pou == 0 {
-        b.ins()
-            .iadd_imm_s(image, i64::from(env.layout.base(stljit_core::Area::L)))
-    } else {
-        let d64 = b.ins().uextend(I64, depth);
-        let off = b.ins().imul_imm_s(d64, lsize);
-        let off = b
-            .ins()
-            .iadd_imm_s(off, i64::from(env.layout.base(stljit_core::Area::L)));
-        b.ins().iadd(image, off)
-    };
-    // Main starts each scan with an all-zero stack; a subroutine with S0 = 1 (spec §3.2 CALL).
-    let depth_n = env.prog.logic_stack_depth;
-    let stack = if pou == 0 {
-        Stack {
-            lv: vec![crate::lower::value::B::K(false); usize::from(depth_n)],
-        }
-    } else {
-        Stack::fresh(depth_n)
-    };
+    let lbase = frame_base(env, &mut b, pou, image, depth);
     let mut l = Lower {
         env,
         module,
@@ -209,7 +258,7 @@ fn lower_one(
         lbase,
         depth,
         st,
-        stack,
+        stack: initial_stack(env, pou),
         entry_st: None,
         gate: crate::lower::value::B::K(true),
         cache: Default::default(),
@@ -222,8 +271,12 @@ fn lower_one(
         pred: None,
         pred_reads: Vec::new(),
         free_box: false,
+        chunk,
     };
-    l.lower_pou();
+    match chunk {
+        None => l.lower_pou(),
+        Some(k) => l.lower_chunk(k, params[2], params[3]),
+    }
     let unsupported = l.unsupported.take();
     l.b.seal_all_blocks();
     let fc = l.module.isa().frontend_config();
@@ -232,6 +285,118 @@ fn lower_one(
         Some(what) => Err(JitError::Unsupported(what)),
         None => Ok(()),
     }
+}
+
+/// The first byte of the POU's L frame: main's is fixed, a subroutine's follows from `depth`.
+fn frame_base(
+    env: &Env<'_>,
+    b: &mut FunctionBuilder<'_>,
+    pou: usize,
+    image: Value,
+    depth: Value,
+) -> Value {
+    let lsize = i64::from(env.layout.area_size(stljit_core::Area::L));
+    let lbase = i64::from(env.layout.base(stljit_core::Area::L));
+    if pou == 0 {
+        b.ins().iadd_imm_s(image, lbase)
+    } else {
+        let d64 = b.ins().uextend(I64, depth);
+        let off = b.ins().imul_imm_s(d64, lsize);
+        let off = b.ins().iadd_imm_s(off, lbase);
+        b.ins().iadd(image, off)
+    }
+}
+
+/// The logic stack a POU starts with: all zero for the main program, `S0 = 1` for a
+/// subroutine (spec §3.2 CALL).
+fn initial_stack(env: &Env<'_>, pou: usize) -> Stack {
+    let depth_n = env.prog.logic_stack_depth;
+    if pou == 0 {
+        Stack {
+            lv: vec![crate::lower::value::B::K(false); usize::from(depth_n)],
+        }
+    } else {
+        Stack::fresh(depth_n)
+    }
+}
+
+/// The function callers of a split POU call: runs its chunks, starting with the first, until
+/// one returns "POU done" (upper half 0), and passes the stack register between them.
+/// Falling into the next chunk is a direct call; any other transfer goes through a chain of
+/// range compares over the chunk starts.
+fn build_dispatch(
+    env: &Env<'_>,
+    module: &mut JITModule,
+    ctx: &mut Context,
+    fbc: &mut FunctionBuilderContext,
+    pou: usize,
+    plan: &ChunkPlan,
+    chunks: &[FuncId],
+) {
+    let mut b = FunctionBuilder::new(&mut ctx.func, fbc);
+    let entry = b.create_block();
+    b.append_block_params_for_function_params(entry);
+    b.switch_to_block(entry);
+    let (image, depth) = (b.block_params(entry)[0], b.block_params(entry)[1]);
+    let with_params = |b: &mut FunctionBuilder<'_>| {
+        let blk = b.create_block();
+        let st = b.append_block_param(blk, I32);
+        let at = b.append_block_param(blk, I32);
+        (blk, st, at)
+    };
+    let calls: Vec<_> = chunks.iter().map(|_| with_params(&mut b)).collect();
+    let routes: Vec<_> = chunks.iter().map(|_| with_params(&mut b)).collect();
+    let st0 = initial_stack(env, pou).to_reg(&mut b);
+    let at0 = b.ins().iconst(I32, 0);
+    b.ins().jump(calls[0].0, &[st0.into(), at0.into()]);
+
+    // routes[k]: the op is in chunk k or later.
+    for k in 0..chunks.len() {
+        let (blk, st, at) = routes[k];
+        b.switch_to_block(blk);
+        match (plan.starts.get(k + 1), routes.get(k + 1)) {
+            (Some(&next_start), Some(&(next, ..))) => {
+                let here = b
+                    .ins()
+                    .icmp_imm_s(IntCC::UnsignedLessThan, at, next_start as i64);
+                let args = [st.into(), at.into()];
+                b.ins().brif(here, calls[k].0, &args, next, &args);
+            }
+            _ => {
+                b.ins().jump(calls[k].0, &[st.into(), at.into()]);
+            }
+        }
+    }
+    for (k, &id) in chunks.iter().enumerate() {
+        let (blk, st, at) = calls[k];
+        b.switch_to_block(blk);
+        let f = module.declare_func_in_func(id, b.func);
+        let c = b.ins().call(f, &[image, depth, st, at]);
+        let r = b.inst_results(c)[0];
+        let hi = b.ins().ushr_imm_u(r, 32);
+        let hi = b.ins().ireduce(I32, hi);
+        let lo = b.ins().ireduce(I32, r);
+        let done = b.create_block();
+        let transfer = b.create_block();
+        b.ins().brif(hi, transfer, &[], done, &[]);
+        b.switch_to_block(done);
+        b.ins().return_(&[lo]);
+        b.switch_to_block(transfer);
+        let target = b.ins().iadd_imm_s(hi, -1);
+        let args = [lo.into(), target.into()];
+        match (plan.starts.get(k + 1), calls.get(k + 1)) {
+            (Some(&next_start), Some(&(next, ..))) => {
+                let fall = b.ins().icmp_imm_s(IntCC::Equal, target, next_start as i64);
+                b.ins().brif(fall, next, &args, routes[0].0, &args);
+            }
+            _ => {
+                b.ins().jump(routes[0].0, &args);
+            }
+        }
+    }
+    b.seal_all_blocks();
+    let fc = module.isa().frontend_config();
+    b.finalize(fc);
 }
 
 /// The many-scans loop: `for i in 0..n { begin; main; end }`, stopping at the first scan whose

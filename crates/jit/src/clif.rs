@@ -3,7 +3,7 @@
 //! Lowering sets each instruction's source location to `op index + 1`; this writer prints a
 //! comment naming the file, line and op wherever that location changes.
 
-use crate::build;
+use crate::build::{self, Part};
 use crate::{JitError, JitOptions};
 use cranelift_codegen::entity::SecondaryMap;
 use cranelift_codegen::ir::{Block, Function, Inst, Value};
@@ -62,11 +62,16 @@ pub fn clif_text(program: &Program, opts: &JitOptions) -> Result<String, JitErro
     let layout = Layout::of(program.profile);
     let mut out = String::new();
     let mut failure = None;
-    let mut sink = |func: &Function, pou: usize| {
+    let mut sink = |func: &Function, pou: usize, part: Part| {
         let Some(p) = program.pous.get(pou) else {
             return;
         };
-        let _ = writeln!(out, "; POU {pou}: {} ({:?})", p.name, p.kind);
+        let part = match part {
+            Part::Whole => String::new(),
+            Part::Dispatch => " dispatcher".to_string(),
+            Part::Chunk(k) => format!(" chunk {k}"),
+        };
+        let _ = writeln!(out, "; POU {pou}: {} ({:?}){part}", p.name, p.kind);
         let mut wr = Annotated {
             prog: program,
             pou: p,
@@ -95,13 +100,13 @@ pub fn asm_text(program: &Program, opts: &JitOptions) -> Result<String, JitError
     let isa = cranelift_module::Module::isa(&module);
     let mut out = String::new();
     let mut failure = None;
-    let mut sink = |func: &Function, pou: usize| {
+    let mut sink = |func: &Function, pou: usize, part: Part| {
         let mut ctx = cranelift_codegen::Context::for_function(func.clone());
         ctx.set_disasm(true);
         let mut cp = cranelift_codegen::control::ControlPlane::default();
         match ctx.compile(isa, &mut cp) {
             Ok(code) => {
-                let _ = writeln!(out, "; function {pou}");
+                let _ = writeln!(out, "; function {pou} {part:?}");
                 out.push_str(code.vcode.as_deref().unwrap_or(""));
             }
             Err(e) => failure = Some(format!("{:?}", e.inner)),

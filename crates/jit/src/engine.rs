@@ -64,7 +64,7 @@ impl JitProgram {
             layout_ptr,
             counter_ptr,
             true,
-            &mut |_, _| {},
+            &mut |_, _, _| {},
         )?;
         module
             .finalize_definitions()

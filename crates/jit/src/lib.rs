@@ -53,10 +53,36 @@ impl OptLevel {
 }
 
 /// Options of [`JitProgram::compile`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct JitOptions {
     /// Cranelift optimisation level.
     pub opt: OptLevel,
+    /// A POU longer than this many ops is compiled as several chunk functions (0: never split).
+    /// The result is the same either way; the split only bounds the size of each Cranelift
+    /// function, whose compile time grows faster than linearly.
+    pub chunk_ops: usize,
+}
+
+/// The default [`JitOptions::chunk_ops`].
+pub const DEFAULT_CHUNK_OPS: usize = 2048;
+
+impl Default for JitOptions {
+    fn default() -> Self {
+        JitOptions {
+            opt: OptLevel::None,
+            chunk_ops: DEFAULT_CHUNK_OPS,
+        }
+    }
+}
+
+impl JitOptions {
+    /// The default options at optimisation level `opt`.
+    pub fn at(opt: OptLevel) -> Self {
+        JitOptions {
+            opt,
+            ..Self::default()
+        }
+    }
 }
 
 /// Why a program could not be compiled.

@@ -129,3 +129,31 @@ fn call_nesting_limit() {
     );
     check(&p, &stimulus(1, 3));
 }
+
+/// A program longer than the default chunk size, with forward jumps between chunks, compiled
+/// with the default options (several chunk functions and a dispatcher) and split at every block.
+#[test]
+fn long_program_split_into_chunks() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../benches/programs/mixed_10k.stl"
+    );
+    let text = std::fs::read_to_string(path).expect("benchmark corpus is checked in");
+    let p = stl(&text);
+    assert!(p.pous[0].ops.len() > 2 * stljit_jit::DEFAULT_CHUNK_OPS);
+    check(&p, &stimulus(5, 12));
+}
+
+/// Loops whose body and exit lie in different chunks: FOR/NEXT, a backward JMP counted by the
+/// loop budget, and CSCRE jumping to the SCRE of its segment (run with every block split).
+#[test]
+fn loops_across_chunks() {
+    let p = stl(
+        "LD SM0.0\nMOVW 0, VW0\nLBL 1\nLD SM0.0\nINCW VW0\nLDW< VW0, 5\nJMP 1\n\
+         LD SM0.0\nFOR VW2, 1, 3\nLD SM0.0\nINCW VW4\nLD I0.0\nJMP 2\nNEXT\nLBL 2\n\
+         LD SM0.1\nS S0.0, 1\nLSCR S0.0\nLD I0.1\nCSCRE\nLD SM0.0\n= Q0.0\nSCRE\n",
+    );
+    for seed in 0..4 {
+        check(&p, &stimulus(seed, 20));
+    }
+}

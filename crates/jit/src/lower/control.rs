@@ -276,7 +276,7 @@ impl Lower<'_, '_> {
                     s.b.seal_block(exit);
                     s.b.seal_block(cont);
                     s.b.switch_to_block(exit);
-                    s.b.ins().return_(&[status]);
+                    s.return_status(status);
                     s.b.switch_to_block(cont);
                 },
             );

@@ -21,7 +21,7 @@ pub(crate) mod mem;
 pub(crate) mod stateful;
 pub(crate) mod value;
 
-use crate::analysis::PouInfo;
+use crate::analysis::{ChunkPlan, PouInfo};
 use crate::helpers::{Helper, HelperIds};
 use cache::{Addr, Cache};
 use cranelift_codegen::ir::{
@@ -48,6 +48,8 @@ pub(crate) struct Env<'a> {
     pub(crate) info: Vec<PouInfo>,
     /// Address of a `u64` that counts executed ops (the instrumented build for `bench`).
     pub(crate) op_counter: Option<i64>,
+    /// Per POU, how it is split into chunk functions (`None`: one function).
+    pub(crate) plans: Vec<Option<ChunkPlan>>,
 }
 
 /// Memory flags for every image access: the image is never null and every direct offset is in
@@ -89,6 +91,8 @@ pub(crate) struct Lower<'e, 'f> {
     pub(crate) pred_reads: Vec<(Addr, stljit_core::Width, Value)>,
     /// The box being lowered has no pointer operand and no static error: lower it branch-free.
     pub(crate) free_box: bool,
+    /// Lowering one chunk of a split POU: its index in the POU's [`ChunkPlan`].
+    pub(crate) chunk: Option<usize>,
 }
 
 impl<'e, 'f> Lower<'e, 'f> {
@@ -295,7 +299,18 @@ impl<'e, 'f> Lower<'e, 'f> {
         self.store_ne(a, c);
         self.record_site();
         let st = self.iconst(I32, ScanStatus::Fatal as i64);
-        self.b.ins().return_(&[st]);
+        self.return_status(st);
+    }
+
+    /// Leaves the POU with `status` (an `i32`: 0 = continue, else the scan's status). A chunk
+    /// function returns it as an `i64` whose upper half 0 means "the POU returns".
+    pub(crate) fn return_status(&mut self, status: Value) {
+        if self.chunk.is_some() {
+            let r = self.b.ins().uextend(I64, status);
+            self.b.ins().return_(&[r]);
+        } else {
+            self.b.ins().return_(&[status]);
+        }
     }
 
     /// Branches to a fatal exit when `cond` (non-zero) holds; code continues in a fresh block
@@ -365,20 +380,38 @@ impl<'e, 'f> Lower<'e, 'f> {
         if let Some(&blk) = self.leaders.get(&target) {
             self.spill_state();
             self.b.ins().jump(blk, &[]);
+        } else if let Some(k) = self.chunk {
+            self.exit_chunk_to(k, target);
         } else {
             // The analysis makes every target a leader; returning keeps codegen total anyway.
             self.ret_ok();
         }
     }
 
+    /// Leaves chunk `k` to continue at op `target` of another chunk: returns
+    /// `(target + 1) << 32 | stack register` to the POU's dispatcher.
+    fn exit_chunk_to(&mut self, k: usize, target: usize) {
+        let plan = self.env.plans[self.pou.index()].as_ref();
+        let planned = plan.is_some_and(|p| p.entries[p.chunk_of(target)].contains(&target));
+        if !planned && self.unsupported.is_none() {
+            // The plan lists every cross-chunk target; anything else is a bug in this crate.
+            self.unsupported = Some(format!("chunk {k}: unplanned exit to op {target}"));
+        }
+        self.spill_state();
+        let st = self.b.use_var(self.st);
+        let st = self.b.ins().uextend(I64, st);
+        let r = self.b.ins().bor_imm_s(st, ((target as i64) + 1) << 32);
+        self.b.ins().return_(&[r]);
+    }
+
     /// Returns 0 (continue) after writing the state back.
     pub(crate) fn ret_ok(&mut self) {
         self.flush();
         let z = self.iconst(I32, 0);
-        self.b.ins().return_(&[z]);
+        self.return_status(z);
     }
 
-    /// Lowers the whole POU.
+    /// Lowers the whole POU as one function.
     pub(crate) fn lower_pou(&mut self) {
         let pou = self.env.prog.pou(self.pou);
         let info = &self.env.info[self.pou.index()];
@@ -396,8 +429,77 @@ impl<'e, 'f> Lower<'e, 'f> {
         let end = pou.ops.len();
         let end_blk = self.b.create_block();
         self.leaders.insert(end, end_blk);
+        self.lower_ops(0..end);
+        self.lower_end(end);
+    }
 
-        for (i, op) in pou.ops.iter().enumerate() {
+    /// Lowers chunk `k` of a split POU. The function's parameters `st_in` (the stack register)
+    /// and `at` (the op to start at, one of the chunk's planned entries) come from the
+    /// dispatcher; leaving the chunk's range returns to it (see [`Lower::exit_chunk_to`]).
+    pub(crate) fn lower_chunk(&mut self, k: usize, st_in: Value, at: Value) {
+        let pou = self.env.prog.pou(self.pou);
+        let n = pou.ops.len();
+        let Some(plan) = self.env.plans[self.pou.index()].as_ref() else {
+            self.unsupported = Some("chunk of an unsplit POU".into());
+            return;
+        };
+        let range = plan.range(k, n);
+        let last = k + 1 == plan.starts.len();
+        let info = &self.env.info[self.pou.index()];
+        for i in range.clone() {
+            if info.leader[i] || i == range.start {
+                let blk = self.b.create_block();
+                self.leaders.insert(i, blk);
+            }
+        }
+        if last {
+            let end_blk = self.b.create_block();
+            self.leaders.insert(n, end_blk);
+        }
+        self.b.def_var(self.st, st_in);
+        let start = self.leaders[&range.start];
+        match plan.entries[k].as_slice() {
+            [_] => {
+                self.b.ins().jump(start, &[]);
+            }
+            entries => {
+                let mut sw = cranelift_frontend::Switch::new();
+                for e in entries {
+                    sw.set_entry(*e as u128, self.leaders[e]);
+                }
+                sw.emit(&mut self.b, at, start);
+            }
+        }
+        self.live = false;
+        self.lower_ops(range.clone());
+        if last {
+            self.lower_end(n);
+        } else if self.live {
+            self.exit_chunk_to(k, range.end);
+            self.live = false;
+        }
+    }
+
+    /// The end of the POU: falls into (or is jumped to as) the final leader and returns 0.
+    fn lower_end(&mut self, end: usize) {
+        let Some(&end_blk) = self.leaders.get(&end) else {
+            return;
+        };
+        if self.live {
+            self.spill_state();
+            self.b.ins().jump(end_blk, &[]);
+        }
+        self.enter(end_blk, end);
+        self.b.set_srcloc(SourceLoc::default());
+        self.ret_ok();
+        self.live = false;
+    }
+
+    /// Lowers the ops in `range`, starting a new block at every leader.
+    fn lower_ops(&mut self, range: std::ops::Range<usize>) {
+        let pou = self.env.prog.pou(self.pou);
+        for i in range {
+            let op = &pou.ops[i];
             if let Some(&blk) = self.leaders.get(&i) {
                 if self.live {
                     // (At op 0 this writes the initial stack into the register.)
@@ -423,14 +525,6 @@ impl<'e, 'f> Lower<'e, 'f> {
             }
             self.lower_op(op);
         }
-        if self.live {
-            self.spill_state();
-            self.b.ins().jump(end_blk, &[]);
-        }
-        self.enter(end_blk, end);
-        self.b.set_srcloc(SourceLoc::default());
-        self.ret_ok();
-        self.live = false;
     }
 
     fn lower_op(&mut self, op: &Op) {

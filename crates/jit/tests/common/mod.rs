@@ -39,35 +39,45 @@ pub(crate) fn check(program: &Program, stim: &Stimulus) {
 
 /// [`check`] with explicit run options (loop limit).
 pub(crate) fn check_with(program: &Program, stim: &Stimulus, opts: RunOptions) {
-    for opt in [OptLevel::None, OptLevel::Speed] {
+    for jo in jit_options() {
         let mut interp = Interpreter::new(program).expect("interpreter accepts the program");
-        let mut jit = JitProgram::compile(program, &JitOptions { opt }).expect("JIT compiles");
+        let mut jit = JitProgram::compile(program, &jo).expect("JIT compiles");
         if let Err(f) = run_pair(program, stim, &mut interp, &mut jit, &opts) {
-            report(program, f, opt);
+            report(program, f, jo);
         }
     }
 }
 
-fn report(program: &Program, f: Finding, opt: OptLevel) -> ! {
+/// Every JIT configuration checked: both optimisation levels, and each basic block in a chunk
+/// function of its own (the test programs are shorter than the default chunk size).
+fn jit_options() -> [JitOptions; 3] {
+    [
+        JitOptions::at(OptLevel::None),
+        JitOptions::at(OptLevel::Speed),
+        JitOptions {
+            opt: OptLevel::None,
+            chunk_ops: 1,
+        },
+    ]
+}
+
+fn report(program: &Program, f: Finding, jo: JitOptions) -> ! {
     let text = stljit_syntax::print_program(program);
-    panic!(
-        "JIT ({}) differs from the interpreter: {f:#?}\nprogram:\n{text}",
-        opt.name()
-    );
+    panic!("JIT ({jo:?}) differs from the interpreter: {f:#?}\nprogram:\n{text}");
 }
 
 /// Runs a generated case; `false` when the JIT does not support the program.
 pub(crate) fn check_case(case: &Case) -> bool {
     let opts = RunOptions::default();
-    for opt in [OptLevel::None, OptLevel::Speed] {
+    for jo in jit_options() {
         let mut interp = Interpreter::new(&case.program).expect("interpreter accepts the program");
-        let mut jit = match JitProgram::compile(&case.program, &JitOptions { opt }) {
+        let mut jit = match JitProgram::compile(&case.program, &jo) {
             Ok(j) => j,
             Err(stljit_jit::JitError::Unsupported(_)) => return false,
             Err(e) => panic!("JIT failed: {e}"),
         };
         if let Err(f) = run_pair(&case.program, &case.stimulus, &mut interp, &mut jit, &opts) {
-            report(&case.program, f, opt);
+            report(&case.program, f, jo);
         }
     }
     true
