@@ -23,8 +23,12 @@ use stljit_runtime::{arith, bitops, convert};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub(crate) enum Helper {
     Timer,
+    /// `stljit_rt_timer_fast(value, bit, state, d100, ctl, preset)`: pointers, no layout.
+    TimerFast,
     TimerReset,
     Counter,
+    /// `stljit_rt_counter_fast(value, bit, state, first_scan, ctl, preset)`.
+    CounterFast,
     CounterReset,
     Pointer,
     ScanBegin,
@@ -39,15 +43,17 @@ pub(crate) enum Helper {
 }
 
 impl Helper {
-    pub(crate) const ALL: [Helper; 13] = [
+    pub(crate) const ALL: [Helper; 15] = [
         Helper::SetRange,
         Helper::BlockMove,
         Helper::Fill,
         Helper::ShiftRegister,
         Helper::PointerEnd,
         Helper::Timer,
+        Helper::TimerFast,
         Helper::TimerReset,
         Helper::Counter,
+        Helper::CounterFast,
         Helper::CounterReset,
         Helper::Pointer,
         Helper::ScanBegin,
@@ -59,6 +65,8 @@ impl Helper {
     pub(crate) fn name(self) -> &'static str {
         match self {
             Helper::Timer => "stljit_rt_timer",
+            Helper::TimerFast => "stljit_rt_timer_fast",
+            Helper::CounterFast => "stljit_rt_counter_fast",
             Helper::TimerReset => "stljit_rt_timer_reset",
             Helper::Counter => "stljit_rt_counter",
             Helper::CounterReset => "stljit_rt_counter_reset",
@@ -74,14 +82,15 @@ impl Helper {
         }
     }
 
-    /// Whether the first argument is the image pointer (all runtime shims; not value shims).
+    /// Whether the first argument is the image pointer (runtime shims except the fast ones,
+    /// which take pointers to their bytes; not value shims).
     pub(crate) fn takes_image(self) -> bool {
-        !matches!(self, Helper::Value)
+        !matches!(self, Helper::Value | Helper::TimerFast | Helper::CounterFast)
     }
 
-    /// Whether the layout pointer is passed (runtime shims only).
+    /// Whether the layout pointer is passed (the same shims as the image).
     pub(crate) fn takes_layout(self) -> bool {
-        !matches!(self, Helper::Value)
+        self.takes_image()
     }
 
     /// Argument types after `image, layout`, and the return type.
@@ -93,6 +102,7 @@ impl Helper {
     ) {
         match self {
             Helper::Timer | Helper::Counter => (&[I32, I32, I32, I32, I32], I32),
+            Helper::TimerFast | Helper::CounterFast => (&[I64, I64, I64, I64, I32, I32], I32),
             Helper::TimerReset | Helper::CounterReset => (&[I32, I32], I32),
             Helper::Pointer => (&[I32, I32, I32], I64),
             Helper::ScanBegin => (&[I64], I32),
