@@ -139,14 +139,24 @@ pub fn execute(
     if u32::from(n) >= layout.area_size(Area::CounterBit) {
         return Err(ErrorCode::OperandRange);
     }
-    let (v, b, st) = (value_at(layout, n), bit_at(layout, n), layout.counter_state(n));
+    let (v, b, st) = (
+        value_at(layout, n),
+        bit_at(layout, n),
+        layout.counter_state(n),
+    );
     let mut value = [mem::get_u8(img, v), mem::get_u8(img, v + 1)];
     let mut state = [0; COUNTER_STATE_SIZE as usize];
     for (i, x) in (st..).zip(state.iter_mut()) {
         *x = mem::get_u8(img, i);
     }
     let mut c = Counter::decode(value, &state);
-    let bit = c.step(kind, stack, gate, preset, edge::edges_suppressed(img, layout));
+    let bit = c.step(
+        kind,
+        stack,
+        gate,
+        preset,
+        edge::edges_suppressed(img, layout),
+    );
     c.encode(&mut value, &mut state);
     for f in [UP, DOWN] {
         mem::set_u8(img, st + f as u32, state[f]);

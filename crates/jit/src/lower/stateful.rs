@@ -10,7 +10,7 @@ use cranelift_codegen::ir::{BlockArg, InstBuilder, Value, condcodes::IntCC, type
 use stljit_core::ir::{BitLoc, BoxOp, Op, Operand};
 use stljit_core::layout::{COUNTER_STATE_SIZE, Sched, TIMER_STATE_SIZE};
 use stljit_core::{Area, ErrorCode, Width};
-use stljit_runtime::ffi::{CTL_GATE, CTL_KIND_SHIFT, FfiCode};
+use stljit_runtime::ffi::{CTL_GATE, FfiCode};
 
 impl Lower<'_, '_> {
     /// Records a non-zero runtime status as a non-fatal error (a diamond, rarely taken).
@@ -69,9 +69,9 @@ impl Lower<'_, '_> {
                         // In range: the fast shim on the timer's own bytes; it cannot fail
                         // (the kind is valid) and cannot panic.
                         Some(r) => {
-                            let ctl = s.fast_ctl(input, kind.code());
+                            let ctl = s.fast_ctl(input);
                             let args = s.fast_args(&r, ctl, pv);
-                            s.call_touching(Helper::TimerFast, &args, &r);
+                            s.call_touching(Helper::timer_fast(kind), &args, &r);
                         }
                         None => {
                             let gate = s.gate.to01(&mut s.b);
@@ -98,9 +98,9 @@ impl Lower<'_, '_> {
                     let stack = levels.to_reg(&mut s.b);
                     match s.counter_ranges(n) {
                         Some(r) => {
-                            let ctl = s.fast_ctl(stack, kind.code());
+                            let ctl = s.fast_ctl(stack);
                             let args = s.fast_args(&r, ctl, pv);
-                            s.call_touching(Helper::CounterFast, &args, &r);
+                            s.call_touching(Helper::counter_fast(kind), &args, &r);
                         }
                         None => {
                             let gate = s.gate.to01(&mut s.b);
@@ -123,24 +123,17 @@ impl Lower<'_, '_> {
         }
     }
 
-    /// The `ctl` argument of the fast shims: `low` (bits 0–7: the inputs, clean) | the SCR gate
-    /// at bit 8 | the kind's code from bit 16 (`stljit_runtime::ffi::CTL_*`). A constant gate
-    /// (outside SCR segments) folds into the kind constant.
-    fn fast_ctl(&mut self, low: Value, code: u8) -> Value {
-        let mut k = i64::from(code) << CTL_KIND_SHIFT;
-        let v = match self.gate {
-            B::K(g) => {
-                if g {
-                    k |= i64::from(CTL_GATE);
-                }
-                low
-            }
+    /// The `ctl` argument of the fast shims: `low` (bits 0–7: the inputs) | the SCR gate at
+    /// [`CTL_GATE`]. Outside SCR segments the gate is a constant: one `or` or nothing.
+    fn fast_ctl(&mut self, low: Value) -> Value {
+        match self.gate {
+            B::K(false) => low,
+            B::K(true) => self.b.ins().bor_imm_s(low, i64::from(CTL_GATE)),
             g => {
                 let at = g.at_bit(&mut self.b, CTL_GATE.trailing_zeros() as u8);
                 self.b.ins().bor(low, at)
             }
-        };
-        self.b.ins().bor_imm_s(v, k)
+        }
     }
 
     /// Arguments of a fast shim: pointers to the four ranges of [`Lower::timer_ranges`] /

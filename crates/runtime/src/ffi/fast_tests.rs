@@ -5,10 +5,10 @@ use super::*;
 use crate::image::Image;
 use crate::timer::TofPhase::{self, Done, Idle, On as TofOn, Timing};
 use crate::{counter, mem, timer};
+use stljit_core::Area;
 use stljit_core::ProfileId;
 use stljit_core::ir::{CounterKind, TimerKind};
 use stljit_core::layout::{CounterState, Layout, Sched, TimerState};
-use stljit_core::Area;
 
 /// A timer before or after one execution: (cv, bit, run, tof, pt_cache).
 type T = (i16, bool, bool, TofPhase, i16);
@@ -16,6 +16,7 @@ type T = (i16, bool, bool, TofPhase, i16);
 /// (kind, res, before, input, gate, PT, d100, after).
 type TimerRow = (TimerKind, u8, T, bool, bool, i16, u32, T);
 
+#[rustfmt::skip]
 const TIMER_ROWS: &[TimerRow] = {
     use TimerKind::{Off, On, Retentive};
     &[
@@ -58,15 +59,26 @@ fn timer_bytes(kind: TimerKind, res: u8, t: T) -> TimerBytes {
     let mut state = [0xA5; 8]; // bytes 6–7 unused: must survive
     state[TimerState::KIND as usize] = kind.code();
     state[TimerState::RES as usize] = res;
-    let mut b = TimerBytes { value: [0; 2], bit: 0, state };
+    let mut b = TimerBytes {
+        value: [0; 2],
+        bit: 0,
+        state,
+    };
     let (cv, bit, run, tof, pt_cache) = t;
-    let t = Timer { cv, bit, run, tof, pt_cache, res };
+    let t = Timer {
+        cv,
+        bit,
+        run,
+        tof,
+        pt_cache,
+        res,
+    };
     t.encode(&mut b.value, &mut b.bit, &mut b.state);
     b
 }
 
-fn ctl(low: u32, gate: bool, code: u8) -> u32 {
-    low | if gate { CTL_GATE } else { 0 } | u32::from(code) << CTL_KIND_SHIFT
+fn ctl(low: u32, gate: bool) -> u32 {
+    low | if gate { CTL_GATE } else { 0 }
 }
 
 #[test]
@@ -74,10 +86,10 @@ fn timer_fast_follows_spec_5_2() {
     for (i, &(kind, res, before, input, gate, pt, d100, after)) in TIMER_ROWS.iter().enumerate() {
         let mut b = timer_bytes(kind, res, before);
         let d = d100.to_ne_bytes();
-        let c = ctl(u32::from(input), gate, kind.code());
+        let c = ctl(u32::from(input), gate);
         // SAFETY: four distinct live locals of the documented sizes.
         let st = unsafe {
-            stljit_rt_timer_fast(
+            timer_fast_fn(kind)(
                 b.value.as_mut_ptr(),
                 &mut b.bit,
                 b.state.as_mut_ptr(),
@@ -119,12 +131,12 @@ fn timer_fast_matches_execute_on_the_image() {
         let p = fb.as_mut_ptr();
         // SAFETY: disjoint in-range blocks of a live image (layout offsets of an existing timer).
         let st = unsafe {
-            stljit_rt_timer_fast(
+            timer_fast_fn(kind)(
                 p.add(v),
                 p.add(bt),
                 p.add(s),
                 p.add(l.sched(Sched::D100) as usize),
-                ctl(u32::from(input), gate, kind.code()),
+                ctl(u32::from(input), gate),
                 i32::from(pt),
             )
         };
@@ -139,6 +151,7 @@ type C = (i16, bool, u8, u8);
 /// (kind, before, stack levels S0..S2, gate, first scan, PV, after).
 type CounterRow = (CounterKind, C, [u8; 3], bool, bool, i16, C);
 
+#[rustfmt::skip]
 const COUNTER_ROWS: &[CounterRow] = {
     use CounterKind::{Down, Up, UpDown};
     &[
@@ -183,18 +196,22 @@ fn counter_fast_follows_spec_5_3() {
         let fs = u8::from(first);
         // SAFETY: four distinct live locals of the documented sizes.
         let st = unsafe {
-            stljit_rt_counter_fast(
+            counter_fast_fn(kind)(
                 value.as_mut_ptr(),
                 &mut bitb,
                 state.as_mut_ptr(),
                 &fs,
-                ctl(stack_of(levels), gate, kind.code()),
+                ctl(stack_of(levels), gate),
                 i32::from(pv),
             )
         };
         assert_eq!(st, RT_OK, "row {i}");
         let (cv, bit, up, down) = after;
-        let want = (cv.to_be_bytes(), u8::from(bit), [up, down, kind.code(), 0x5A]);
+        let want = (
+            cv.to_be_bytes(),
+            u8::from(bit),
+            [up, down, kind.code(), 0x5A],
+        );
         assert_eq!((value, bitb, state), want, "row {i}");
     }
 }
@@ -222,12 +239,12 @@ fn counter_fast_matches_execute_on_the_image() {
         let p = fb.as_mut_ptr();
         // SAFETY: disjoint in-range blocks of a live image (layout offsets of an existing counter).
         let st = unsafe {
-            stljit_rt_counter_fast(
+            counter_fast_fn(kind)(
                 p.add(v),
                 p.add(bt),
                 p.add(s),
                 p.add(l.sched(Sched::FIRST_SCAN) as usize),
-                ctl(u32::from(stack), gate, kind.code()),
+                ctl(u32::from(stack), gate),
                 i32::from(pv),
             )
         };
@@ -237,33 +254,27 @@ fn counter_fast_matches_execute_on_the_image() {
 }
 
 #[test]
-fn fast_shims_reject_unknown_kinds_untouched() {
-    for code in [0u8, 4, 0xFF] {
-        let (mut value, mut bit, mut state, d) = ([1u8, 2], 3u8, [4u8; 8], [5u8; 4]);
-        // SAFETY: distinct live locals of the documented sizes.
-        let st = unsafe {
-            stljit_rt_timer_fast(
-                value.as_mut_ptr(),
-                &mut bit,
-                state.as_mut_ptr(),
+fn ctl_bits_above_the_gate_are_ignored() {
+    // A TON on, gate open, with garbage in the unused ctl bits behaves like the clean call.
+    let run = |c: u32| {
+        let mut b = timer_bytes(TimerKind::On, 100, (4, false, true, Idle, 5));
+        let d = 3u32.to_ne_bytes();
+        // SAFETY: four distinct live locals of the documented sizes.
+        unsafe {
+            stljit_rt_ton_fast(
+                b.value.as_mut_ptr(),
+                &mut b.bit,
+                b.state.as_mut_ptr(),
                 d.as_ptr(),
-                ctl(1, true, code),
+                c,
                 5,
             )
         };
-        assert_eq!((st, value, bit, state), (RT_BAD_ARGUMENT, [1, 2], 3, [4; 8]));
-        let mut cstate = [4u8; 4];
-        // SAFETY: as above.
-        let st = unsafe {
-            stljit_rt_counter_fast(
-                value.as_mut_ptr(),
-                &mut bit,
-                cstate.as_mut_ptr(),
-                d.as_ptr(),
-                ctl(2, true, code),
-                5,
-            )
-        };
-        assert_eq!((st, value, bit, cstate), (RT_BAD_ARGUMENT, [1, 2], 3, [4; 4]));
-    }
+        b
+    };
+    assert_eq!(run(ctl(1, true) | 0xFFFF_0000), run(ctl(1, true)));
+    assert_eq!(
+        run(ctl(1, true)),
+        timer_bytes(TimerKind::On, 100, (7, true, true, Idle, 5))
+    );
 }
