@@ -144,11 +144,7 @@ pub fn execute(
         bit_at(layout, n),
         layout.counter_state(n),
     );
-    let mut value = [mem::get_u8(img, v), mem::get_u8(img, v + 1)];
-    let mut state = [0; COUNTER_STATE_SIZE as usize];
-    for (i, x) in (st..).zip(state.iter_mut()) {
-        *x = mem::get_u8(img, i);
-    }
+    let (mut value, mut state) = (mem::get_array(img, v), mem::get_array(img, st));
     let mut c = Counter::decode(value, &state);
     let bit = c.step(
         kind,
@@ -158,11 +154,8 @@ pub fn execute(
         edge::edges_suppressed(img, layout),
     );
     c.encode(&mut value, &mut state);
-    for f in [UP, DOWN] {
-        mem::set_u8(img, st + f as u32, state[f]);
-    }
-    mem::set_u8(img, v, value[0]);
-    mem::set_u8(img, v + 1, value[1]);
+    mem::set_array(img, st, state);
+    mem::set_array(img, v, value);
     mem::set_u8(img, b, u8::from(bit));
     Ok(())
 }

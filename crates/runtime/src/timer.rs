@@ -113,24 +113,18 @@ impl Timer {
 
     fn load(img: &[u8], layout: &Layout, n: u16) -> Timer {
         let (v, b, s) = Timer::offsets(layout, n);
-        let mut state = [0; STATE_BYTES];
-        for (i, x) in (s..).zip(state.iter_mut()) {
-            *x = mem::get_u8(img, i);
-        }
-        let value = [mem::get_u8(img, v), mem::get_u8(img, v + 1)];
-        Timer::decode(&value, mem::get_u8(img, b), &state)
+        let state = mem::get_array(img, s);
+        Timer::decode(&mem::get_array(img, v), mem::get_u8(img, b), &state)
     }
 
     fn store(&self, img: &mut [u8], layout: &Layout, n: u16) {
         let (v, b, s) = Timer::offsets(layout, n);
-        let (mut value, mut bit, mut state) = ([0; 2], 0, [0; STATE_BYTES]);
+        // Start from the current block: `encode` leaves the read-only bytes as they are.
+        let (mut value, mut bit, mut state) = ([0; 2], 0, mem::get_array(img, s));
         self.encode(&mut value, &mut bit, &mut state);
-        mem::set_u8(img, v, value[0]);
-        mem::set_u8(img, v + 1, value[1]);
+        mem::set_array(img, v, value);
         mem::set_u8(img, b, bit);
-        for f in [RUN, TOF, PT, PT + 1] {
-            mem::set_u8(img, s + f as u32, state[f]);
-        }
+        mem::set_array(img, s, state);
     }
 
     /// Executes `TON`/`TONR`/`TOF` on this timer (spec §5.2): `IN = input AND gate`, and a TOF
