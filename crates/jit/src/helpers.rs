@@ -14,7 +14,7 @@ use cranelift_codegen::isa::CallConv;
 use cranelift_module::{FuncId, Linkage, Module};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use stljit_core::Width;
-use stljit_core::ir::{ArithOp, Conversion, RealFn};
+use stljit_core::ir::{ArithOp, Conversion, CounterKind, RealFn, TimerKind};
 use stljit_runtime::ffi::FfiCode as _;
 use stljit_runtime::flags::Outcome;
 use stljit_runtime::{arith, bitops, convert};
@@ -23,8 +23,17 @@ use stljit_runtime::{arith, bitops, convert};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub(crate) enum Helper {
     Timer,
+    /// `stljit_rt_{ton,tonr,tof}_fast(value, bit, state, d100, ctl, preset)`: pointers, no
+    /// layout; one shim per kind.
+    TonFast,
+    TonrFast,
+    TofFast,
     TimerReset,
     Counter,
+    /// `stljit_rt_{ctu,ctd,ctud}_fast(value, bit, state, first_scan, ctl, preset)`.
+    CtuFast,
+    CtdFast,
+    CtudFast,
     CounterReset,
     Pointer,
     ScanBegin,
@@ -39,15 +48,21 @@ pub(crate) enum Helper {
 }
 
 impl Helper {
-    pub(crate) const ALL: [Helper; 13] = [
+    pub(crate) const ALL: [Helper; 19] = [
         Helper::SetRange,
         Helper::BlockMove,
         Helper::Fill,
         Helper::ShiftRegister,
         Helper::PointerEnd,
         Helper::Timer,
+        Helper::TonFast,
+        Helper::TonrFast,
+        Helper::TofFast,
         Helper::TimerReset,
         Helper::Counter,
+        Helper::CtuFast,
+        Helper::CtdFast,
+        Helper::CtudFast,
         Helper::CounterReset,
         Helper::Pointer,
         Helper::ScanBegin,
@@ -59,6 +74,12 @@ impl Helper {
     pub(crate) fn name(self) -> &'static str {
         match self {
             Helper::Timer => "stljit_rt_timer",
+            Helper::TonFast => "stljit_rt_ton_fast",
+            Helper::TonrFast => "stljit_rt_tonr_fast",
+            Helper::TofFast => "stljit_rt_tof_fast",
+            Helper::CtuFast => "stljit_rt_ctu_fast",
+            Helper::CtdFast => "stljit_rt_ctd_fast",
+            Helper::CtudFast => "stljit_rt_ctud_fast",
             Helper::TimerReset => "stljit_rt_timer_reset",
             Helper::Counter => "stljit_rt_counter",
             Helper::CounterReset => "stljit_rt_counter_reset",
@@ -74,14 +95,42 @@ impl Helper {
         }
     }
 
-    /// Whether the first argument is the image pointer (all runtime shims; not value shims).
+    /// Whether the first argument is the image pointer (runtime shims except the fast ones,
+    /// which take pointers to their bytes; not value shims).
     pub(crate) fn takes_image(self) -> bool {
-        !matches!(self, Helper::Value)
+        !(self == Helper::Value || self.is_fast())
     }
 
-    /// Whether the layout pointer is passed (runtime shims only).
+    /// The per-kind fast timer and counter shims.
+    fn is_fast(self) -> bool {
+        use Helper::*;
+        matches!(
+            self,
+            TonFast | TonrFast | TofFast | CtuFast | CtdFast | CtudFast
+        )
+    }
+
+    /// The fast shim of a timer kind.
+    pub(crate) fn timer_fast(kind: TimerKind) -> Helper {
+        match kind {
+            TimerKind::On => Helper::TonFast,
+            TimerKind::Retentive => Helper::TonrFast,
+            TimerKind::Off => Helper::TofFast,
+        }
+    }
+
+    /// The fast shim of a counter kind.
+    pub(crate) fn counter_fast(kind: CounterKind) -> Helper {
+        match kind {
+            CounterKind::Up => Helper::CtuFast,
+            CounterKind::Down => Helper::CtdFast,
+            CounterKind::UpDown => Helper::CtudFast,
+        }
+    }
+
+    /// Whether the layout pointer is passed (the same shims as the image).
     pub(crate) fn takes_layout(self) -> bool {
-        !matches!(self, Helper::Value)
+        self.takes_image()
     }
 
     /// Argument types after `image, layout`, and the return type.
@@ -93,6 +142,12 @@ impl Helper {
     ) {
         match self {
             Helper::Timer | Helper::Counter => (&[I32, I32, I32, I32, I32], I32),
+            Helper::TonFast
+            | Helper::TonrFast
+            | Helper::TofFast
+            | Helper::CtuFast
+            | Helper::CtdFast
+            | Helper::CtudFast => (&[I64, I64, I64, I64, I32, I32], I32),
             Helper::TimerReset | Helper::CounterReset => (&[I32, I32], I32),
             Helper::Pointer => (&[I32, I32, I32], I64),
             Helper::ScanBegin => (&[I64], I32),

@@ -2,10 +2,14 @@
 //!
 //! Inputs come from logic-stack levels (spec §4.5); the caller passes the whole stack as a bit
 //! vector (`bit i = S_i`) so that the level assignment lives here and nowhere else.
+//!
+//! The rules of an execution live in [`Counter::step`], over a decoded [`Counter`]. The
+//! interpreter reaches them through [`execute`] (layout lookups, range check), the JIT through
+//! [`crate::ffi::stljit_rt_counter_fast`] (offsets fixed at compile time).
 
 use crate::{edge, mem};
 use stljit_core::ir::CounterKind;
-use stljit_core::layout::{CounterState, Layout};
+use stljit_core::layout::{COUNTER_STATE_SIZE, CounterState, Layout};
 use stljit_core::{Area, ErrorCode};
 
 fn value_at(layout: &Layout, n: u16) -> u32 {
@@ -16,9 +20,113 @@ fn bit_at(layout: &Layout, n: u16) -> u32 {
     layout.base(Area::CounterBit) + u32::from(n)
 }
 
-/// Executes a counter instruction on counter `n` (spec §5.3). `stack` holds the logic stack
-/// (`bit i = S_i`); each input is `S_k AND gate`. Edges are suppressed in the first scan
-/// ([`edge::edges_suppressed`]); the edge memories are updated even while R/LD is on (TC10).
+/// The fields of one counter an execution reads: its current value and the edge memories of
+/// its count inputs (the raw [`CounterState`] bytes, so a memory the kind does not use is
+/// written back untouched).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Counter {
+    /// Current value.
+    pub cv: i16,
+    /// [`CounterState::PREV_UP`] byte.
+    pub prev_up: u8,
+    /// [`CounterState::PREV_DOWN`] byte.
+    pub prev_down: u8,
+}
+
+/// Rising edge of `input` against the memory `prev`, which takes the new input; no edge while
+/// `quiet` (first scan, [`edge::suppressed`]).
+#[inline]
+fn edge_of(prev: &mut u8, input: bool, quiet: bool) -> bool {
+    let was = *prev != 0;
+    *prev = u8::from(input);
+    input && !was && !quiet
+}
+
+const UP: usize = CounterState::PREV_UP as usize;
+const DOWN: usize = CounterState::PREV_DOWN as usize;
+
+impl Counter {
+    /// Decodes the fields from the value bytes (big-endian) and the private state block.
+    #[inline]
+    pub fn decode(value: [u8; 2], state: &[u8; COUNTER_STATE_SIZE as usize]) -> Counter {
+        Counter {
+            cv: i16::from_be_bytes(value),
+            prev_up: state[UP],
+            prev_down: state[DOWN],
+        }
+    }
+
+    /// Writes the fields back; the kind byte is left as it is.
+    #[inline]
+    pub fn encode(&self, value: &mut [u8; 2], state: &mut [u8; COUNTER_STATE_SIZE as usize]) {
+        *value = self.cv.to_be_bytes();
+        state[UP] = self.prev_up;
+        state[DOWN] = self.prev_down;
+    }
+
+    /// Executes a counter instruction (spec §5.3) and returns the new counter bit. `stack` holds
+    /// the logic stack (`bit i = S_i`); each input is `S_k AND gate`. `quiet` suppresses edges
+    /// (the first-scan rule); the edge memories are updated even while R/LD is on (TC10).
+    /// Cannot panic: no indexing or division, increments are guarded or wrapping.
+    #[inline]
+    pub fn step(
+        &mut self,
+        kind: CounterKind,
+        stack: u16,
+        gate: bool,
+        preset: i16,
+        quiet: bool,
+    ) -> bool {
+        let s = |k: u16| gate && (stack >> k) & 1 != 0;
+        let c = self;
+        match kind {
+            CounterKind::Up => {
+                let up = edge_of(&mut c.prev_up, s(1), quiet);
+                if s(0) {
+                    c.cv = 0;
+                    false
+                } else {
+                    if up && c.cv < i16::MAX {
+                        c.cv += 1;
+                    }
+                    c.cv >= preset
+                }
+            }
+            CounterKind::Down => {
+                let down = edge_of(&mut c.prev_down, s(1), quiet);
+                if s(0) {
+                    c.cv = preset;
+                    false
+                } else {
+                    if down && c.cv > 0 {
+                        c.cv -= 1;
+                    }
+                    c.cv == 0
+                }
+            }
+            CounterKind::UpDown => {
+                let up = edge_of(&mut c.prev_up, s(2), quiet);
+                let down = edge_of(&mut c.prev_down, s(1), quiet);
+                if s(0) {
+                    c.cv = 0;
+                    false
+                } else {
+                    if up {
+                        c.cv = c.cv.wrapping_add(1);
+                    }
+                    if down {
+                        c.cv = c.cv.wrapping_sub(1);
+                    }
+                    c.cv >= preset
+                }
+            }
+        }
+    }
+}
+
+/// Executes a counter instruction on counter `n` (spec §5.3): [`Counter::step`] on the image,
+/// with edges suppressed in the first scan ([`edge::edges_suppressed`]). Errors only for a
+/// counter the profile lacks.
 pub fn execute(
     img: &mut [u8],
     layout: &Layout,
@@ -31,59 +139,24 @@ pub fn execute(
     if u32::from(n) >= layout.area_size(Area::CounterBit) {
         return Err(ErrorCode::OperandRange);
     }
-    let s = |k: u16| gate && (stack >> k) & 1 != 0;
-    let st = layout.counter_state(n);
-    let quiet = edge::edges_suppressed(img, layout);
-    let edge_of = |img: &mut [u8], field: u32, input: bool| {
-        let prev = mem::get_u8(img, st + field) != 0;
-        mem::set_u8(img, st + field, u8::from(input));
-        input && !prev && !quiet
-    };
-    let mut cv = mem::get_i16_be(img, value_at(layout, n));
-    let bit = match kind {
-        CounterKind::Up => {
-            let up = edge_of(img, CounterState::PREV_UP, s(1));
-            if s(0) {
-                cv = 0;
-                false
-            } else {
-                if up && cv < i16::MAX {
-                    cv += 1;
-                }
-                cv >= preset
-            }
-        }
-        CounterKind::Down => {
-            let down = edge_of(img, CounterState::PREV_DOWN, s(1));
-            if s(0) {
-                cv = preset;
-                false
-            } else {
-                if down && cv > 0 {
-                    cv -= 1;
-                }
-                cv == 0
-            }
-        }
-        CounterKind::UpDown => {
-            let up = edge_of(img, CounterState::PREV_UP, s(2));
-            let down = edge_of(img, CounterState::PREV_DOWN, s(1));
-            if s(0) {
-                cv = 0;
-                false
-            } else {
-                if up {
-                    cv = cv.wrapping_add(1);
-                }
-                if down {
-                    cv = cv.wrapping_sub(1);
-                }
-                cv >= preset
-            }
-        }
-    };
-    mem::set_i16_be(img, value_at(layout, n), cv);
-    mem::set_u8(img, bit_at(layout, n), u8::from(bit));
+    let (v, b, st) = (
+        value_at(layout, n),
+        bit_at(layout, n),
+        layout.counter_state(n),
+    );
+    let (mut value, mut state) = (mem::get_array(img, v), mem::get_array(img, st));
+    let mut c = Counter::decode(value, &state);
+    let bit = c.step(
+        kind,
+        stack,
+        gate,
+        preset,
+        edge::edges_suppressed(img, layout),
+    );
+    c.encode(&mut value, &mut state);
+    mem::set_array(img, st, state);
+    mem::set_array(img, v, value);
+    mem::set_u8(img, b, u8::from(bit));
     Ok(())
 }
 

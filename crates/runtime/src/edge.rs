@@ -1,7 +1,7 @@
 //! Edge detectors `EU`/`ED` (spec §5.1) and the first-scan edge rule shared with counters.
 //!
 //! Spec TC7 suppresses every edge in the first scan (EU, ED and counter inputs) and names a
-//! config switch for it; [`FIRST_SCAN_EDGES`] is that switch, and [`edges_suppressed`] is the one
+//! config switch for it; [`FIRST_SCAN_EDGES`] is that switch, and [`suppressed`] is the one
 //! place that reads it.
 
 use crate::mem;
@@ -22,8 +22,13 @@ pub const FIRST_SCAN_EDGES: FirstScanEdges = FirstScanEdges::Suppress;
 /// Whether edges must be suppressed right now (first scan under [`FirstScanEdges::Suppress`]).
 #[inline]
 pub fn edges_suppressed(img: &[u8], layout: &Layout) -> bool {
-    FIRST_SCAN_EDGES == FirstScanEdges::Suppress
-        && mem::sched_u8(img, layout, Sched::FIRST_SCAN) != 0
+    suppressed(mem::sched_u8(img, layout, Sched::FIRST_SCAN))
+}
+
+/// [`edges_suppressed`] given the scan's first-scan flag byte ([`Sched::FIRST_SCAN`]).
+#[inline]
+pub fn suppressed(first_scan: u8) -> bool {
+    FIRST_SCAN_EDGES == FirstScanEdges::Suppress && first_scan != 0
 }
 
 /// Executes `EU` (`falling = false`) or `ED` on edge slot `slot` with `v = input AND gate`;

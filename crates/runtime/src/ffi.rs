@@ -19,6 +19,12 @@
 //! | `stljit_rt_timer_reset(img, l, first, count)` | [`timer::reset_range`] | status |
 //! | `stljit_rt_counter(img, l, n, kind, stack, gate, preset: i32)` | [`counter::execute`] | status |
 //! | `stljit_rt_counter_reset(img, l, first, count)` | [`counter::reset_range`] | status |
+//! | `stljit_rt_ton_fast(value, bit, state, d100, ctl, preset: i32)` | [`crate::timer::Timer::step`] | [`RT_OK`] |
+//! | `stljit_rt_tonr_fast(value, bit, state, d100, ctl, preset: i32)` | [`crate::timer::Timer::step`] | [`RT_OK`] |
+//! | `stljit_rt_tof_fast(value, bit, state, d100, ctl, preset: i32)` | [`crate::timer::Timer::step`] | [`RT_OK`] |
+//! | `stljit_rt_ctu_fast(value, bit, state, first_scan, ctl, preset: i32)` | [`crate::counter::Counter::step`] | [`RT_OK`] |
+//! | `stljit_rt_ctd_fast(value, bit, state, first_scan, ctl, preset: i32)` | [`crate::counter::Counter::step`] | [`RT_OK`] |
+//! | `stljit_rt_ctud_fast(value, bit, state, first_scan, ctl, preset: i32)` | [`crate::counter::Counter::step`] | [`RT_OK`] |
 //! | `stljit_rt_edge(img, l, slot, input, gate, falling)` | [`edge::execute`] | new S0 (0/1) |
 //! | `stljit_rt_pointer(img, l, ptr, width, write)` | [`pointer::resolve`] | u64: image offset |
 //! | `stljit_rt_error(img, l, code, pou, op)` | [`scan::record_error`] | `code` |
@@ -49,10 +55,16 @@
 //! (`op`, `func`, `conv`, `ty`, `area`) are [`FfiCode`]s: the position in the enum's declaration
 //! order (`ArithOp`: Add 0, Sub 1, Mul 2, Div 3; `Area`: its position in `Area::ALL`).
 //!
+//! The six `_fast` shims (`ffi/fast.rs`) break the first convention on purpose: they take pointers to
+//! the few bytes one timer or counter execution touches, computed by the JIT from the layout at
+//! compile time, and they cannot panic, so they skip the layout, the slice and `catch_unwind`.
+//!
 //! [`symbols`] lists every shim for `cranelift_jit::JITBuilder::symbol`.
 #![allow(unsafe_code)]
 
+mod fast;
 mod ops;
+pub use fast::*;
 pub use ops::*;
 
 use crate::{counter, edge, pointer, scan, timer};
@@ -439,6 +451,12 @@ pub fn symbols() -> Vec<(&'static str, *const u8)> {
             "stljit_rt_counter_reset",
             stljit_rt_counter_reset as *const u8,
         ),
+        ("stljit_rt_ton_fast", stljit_rt_ton_fast as *const u8),
+        ("stljit_rt_tonr_fast", stljit_rt_tonr_fast as *const u8),
+        ("stljit_rt_tof_fast", stljit_rt_tof_fast as *const u8),
+        ("stljit_rt_ctu_fast", stljit_rt_ctu_fast as *const u8),
+        ("stljit_rt_ctd_fast", stljit_rt_ctd_fast as *const u8),
+        ("stljit_rt_ctud_fast", stljit_rt_ctud_fast as *const u8),
         ("stljit_rt_edge", stljit_rt_edge as *const u8),
         ("stljit_rt_pointer", stljit_rt_pointer as *const u8),
         ("stljit_rt_error", stljit_rt_error as *const u8),

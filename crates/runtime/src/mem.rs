@@ -23,14 +23,18 @@ pub fn set_u8(img: &mut [u8], off: u32, v: u8) {
     }
 }
 
-fn get_array<const N: usize>(img: &[u8], off: u32) -> [u8; N] {
+/// Reads `N` bytes at `off` with one range check (all 0 when out of range).
+#[inline]
+pub fn get_array<const N: usize>(img: &[u8], off: u32) -> [u8; N] {
     let start = off as usize;
     img.get(start..start.saturating_add(N))
         .and_then(|s| <[u8; N]>::try_from(s).ok())
         .unwrap_or([0; N])
 }
 
-fn set_array<const N: usize>(img: &mut [u8], off: u32, v: [u8; N]) {
+/// Writes `N` bytes at `off` with one range check (dropped when out of range).
+#[inline]
+pub fn set_array<const N: usize>(img: &mut [u8], off: u32, v: [u8; N]) {
     let start = off as usize;
     if let Some(s) = img.get_mut(start..start.saturating_add(N)) {
         s.copy_from_slice(&v);

@@ -4,10 +4,17 @@
 //! its bit (area `TimerBit`, byte `n`); the private state ([`TimerState`]) holds `run`, the TOF
 //! phase, the kind and resolution written at cold start, and the preset seen at the last
 //! execution (used by the clock refresh of 1-ms and 10-ms timers at scan start).
+//!
+//! The rules of an execution live in [`Timer::step`], over a decoded [`Timer`];
+//! [`Timer::decode`]/[`Timer::encode`] are the only code that knows how those fields sit in the
+//! timer's bytes. The interpreter reaches them
+//! through [`execute`] (layout lookups, range check), the JIT through
+//! [`crate::ffi::stljit_rt_timer_fast`] (offsets fixed at compile time), so both engines run the
+//! same rules on the same bytes.
 
 use crate::mem;
 use stljit_core::ir::TimerKind;
-use stljit_core::layout::{Layout, Sched, TimerState};
+use stljit_core::layout::{Layout, Sched, TIMER_STATE_SIZE, TimerState};
 use stljit_core::{Area, ErrorCode};
 
 /// Phase of an off-delay timer (the `TOF` byte of [`TimerState`]).
@@ -25,6 +32,7 @@ pub enum TofPhase {
 }
 
 impl TofPhase {
+    #[inline]
     fn from_u8(v: u8) -> TofPhase {
         match v {
             1 => TofPhase::On,
@@ -36,49 +44,145 @@ impl TofPhase {
 }
 
 /// `min(cv + d, 32767)` (spec §5 `sat`). A negative CV written by a program counts up from there.
+/// Computed in `i64`, so it cannot overflow.
 #[inline]
 fn sat_add(cv: i16, d: u32) -> i16 {
     (i64::from(cv) + i64::from(d)).min(i64::from(i16::MAX)) as i16
 }
 
-/// The mutable fields of one timer, loaded from and stored to the image.
-struct Timer {
-    cv: i16,
-    bit: bool,
-    run: bool,
-    tof: TofPhase,
-    pt_cache: i16,
-    res: u8,
+/// Bytes of a timer's private state block.
+pub const STATE_BYTES: usize = TIMER_STATE_SIZE as usize;
+
+const RUN: usize = TimerState::RUN as usize;
+const TOF: usize = TimerState::TOF as usize;
+const RES: usize = TimerState::RES as usize;
+const PT: usize = TimerState::PT_CACHE as usize;
+
+/// The fields of one timer the rules read and write, decoded from its value, bit and private
+/// state bytes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Timer {
+    /// Current value.
+    pub cv: i16,
+    /// Timer bit.
+    pub bit: bool,
+    /// TON/TONR: timing active.
+    pub run: bool,
+    /// TOF phase.
+    pub tof: TofPhase,
+    /// Preset seen at the last execution (for the clock refresh).
+    pub pt_cache: i16,
+    /// Resolution in ms (1, 10, 100; 0 for an unused timer). Read only.
+    pub res: u8,
 }
 
 impl Timer {
-    fn load(img: &[u8], layout: &Layout, n: u16) -> Timer {
-        let st = layout.timer_state(n);
+    /// Decodes the fields from the timer's value bytes (big-endian), bit byte and private state
+    /// block (no indexing that can fail: the arrays have fixed sizes).
+    #[inline]
+    pub fn decode(value: &[u8; 2], bit: u8, state: &[u8; STATE_BYTES]) -> Timer {
         Timer {
-            cv: mem::get_i16_be(img, layout.base(Area::TimerValue) + 2 * u32::from(n)),
-            bit: mem::get_u8(img, layout.base(Area::TimerBit) + u32::from(n)) & 1 != 0,
-            run: mem::get_u8(img, st + TimerState::RUN) != 0,
-            tof: TofPhase::from_u8(mem::get_u8(img, st + TimerState::TOF)),
-            pt_cache: mem::get_i16_ne(img, st + TimerState::PT_CACHE),
-            res: mem::get_u8(img, st + TimerState::RES),
+            cv: i16::from_be_bytes(*value),
+            bit: bit & 1 != 0,
+            run: state[RUN] != 0,
+            tof: TofPhase::from_u8(state[TOF]),
+            pt_cache: i16::from_ne_bytes([state[PT], state[PT + 1]]),
+            res: state[RES],
         }
     }
 
-    fn store(&self, img: &mut [u8], layout: &Layout, n: u16) {
-        let st = layout.timer_state(n);
-        mem::set_i16_be(
-            img,
+    /// Writes the fields back; only the run, TOF and PT-cache bytes of the state block are
+    /// written (kind and resolution are read only).
+    #[inline]
+    pub fn encode(&self, value: &mut [u8; 2], bit: &mut u8, state: &mut [u8; STATE_BYTES]) {
+        *value = self.cv.to_be_bytes();
+        *bit = u8::from(self.bit);
+        state[RUN] = u8::from(self.run);
+        state[TOF] = self.tof as u8;
+        [state[PT], state[PT + 1]] = self.pt_cache.to_ne_bytes();
+    }
+
+    /// Offsets of timer `n`'s value, bit and private state.
+    fn offsets(layout: &Layout, n: u16) -> (u32, u32, u32) {
+        (
             layout.base(Area::TimerValue) + 2 * u32::from(n),
-            self.cv,
-        );
-        mem::set_u8(
-            img,
             layout.base(Area::TimerBit) + u32::from(n),
-            u8::from(self.bit),
-        );
-        mem::set_u8(img, st + TimerState::RUN, u8::from(self.run));
-        mem::set_u8(img, st + TimerState::TOF, self.tof as u8);
-        mem::set_i16_ne(img, st + TimerState::PT_CACHE, self.pt_cache);
+            layout.timer_state(n),
+        )
+    }
+
+    fn load(img: &[u8], layout: &Layout, n: u16) -> Timer {
+        let (v, b, s) = Timer::offsets(layout, n);
+        let state = mem::get_array(img, s);
+        Timer::decode(&mem::get_array(img, v), mem::get_u8(img, b), &state)
+    }
+
+    fn store(&self, img: &mut [u8], layout: &Layout, n: u16) {
+        let (v, b, s) = Timer::offsets(layout, n);
+        // Start from the current block: `encode` leaves the read-only bytes as they are.
+        let (mut value, mut bit, mut state) = ([0; 2], 0, mem::get_array(img, s));
+        self.encode(&mut value, &mut bit, &mut state);
+        mem::set_array(img, v, value);
+        mem::set_u8(img, b, bit);
+        mem::set_array(img, s, state);
+    }
+
+    /// Executes `TON`/`TONR`/`TOF` on this timer (spec §5.2): `IN = input AND gate`, and a TOF
+    /// with a closed gate is forced idle (inactive SCR rule). `d100` is the scan's 100-ms delta,
+    /// credited only by a 100-ms timer. Cannot panic: no indexing, no division, and the only
+    /// arithmetic is [`sat_add`].
+    #[inline]
+    pub fn step(&mut self, kind: TimerKind, input: bool, gate: bool, preset: i16, d100: u32) {
+        let t = self;
+        let d100 = if t.res == 100 { d100 } else { 0 };
+        let on = input && gate;
+        match kind {
+            TimerKind::On | TimerKind::Retentive => {
+                if on {
+                    if !t.run {
+                        t.run = true;
+                        if kind == TimerKind::On {
+                            t.cv = 0; // TON starts from 0; TONR resumes from the held value
+                        }
+                    } else {
+                        t.cv = sat_add(t.cv, d100);
+                    }
+                    t.pt_cache = preset;
+                    t.bit = t.cv >= preset;
+                } else {
+                    t.run = false;
+                    if kind == TimerKind::On {
+                        t.cv = 0;
+                        t.bit = false;
+                    }
+                }
+            }
+            TimerKind::Off => {
+                if !gate {
+                    t.tof = TofPhase::Idle;
+                    t.bit = false;
+                    t.cv = 0;
+                } else if on {
+                    t.tof = TofPhase::On;
+                    t.bit = true;
+                    t.cv = 0;
+                } else {
+                    match t.tof {
+                        TofPhase::On => t.tof = TofPhase::Timing,
+                        TofPhase::Timing => t.cv = sat_add(t.cv, d100),
+                        TofPhase::Idle | TofPhase::Done => {}
+                    }
+                    if t.tof == TofPhase::Timing {
+                        t.pt_cache = preset;
+                        if t.cv >= preset {
+                            t.cv = preset;
+                            t.bit = false;
+                            t.tof = TofPhase::Done;
+                        }
+                    }
+                }
+            }
+        }
     }
 }
 
@@ -90,9 +194,8 @@ fn check(layout: &Layout, n: u16) -> Result<(), ErrorCode> {
     }
 }
 
-/// Executes `TON`/`TONR`/`TOF Tn, PT` (spec §5.2). `input` is `S0`; `gate` is the SCR enable, so
-/// `IN = input AND gate`, and a TOF with a closed gate is forced idle (inactive SCR rule).
-/// 100-ms timers credit the scan's `d100` here. Errors only for a timer the profile lacks.
+/// Executes `TON`/`TONR`/`TOF Tn, PT` (spec §5.2) on the image: [`Timer::step`] with the scan's
+/// `d100`. `input` is `S0`; `gate` is the SCR enable. Errors only for a timer the profile lacks.
 pub fn execute(
     img: &mut [u8],
     layout: &Layout,
@@ -104,59 +207,8 @@ pub fn execute(
 ) -> Result<(), ErrorCode> {
     check(layout, n)?;
     let mut t = Timer::load(img, layout, n);
-    let d100 = if t.res == 100 {
-        mem::sched_u32(img, layout, Sched::D100)
-    } else {
-        0
-    };
-    let on = input && gate;
-    match kind {
-        TimerKind::On | TimerKind::Retentive => {
-            if on {
-                if !t.run {
-                    t.run = true;
-                    if kind == TimerKind::On {
-                        t.cv = 0; // TON starts from 0; TONR resumes from the held value
-                    }
-                } else {
-                    t.cv = sat_add(t.cv, d100);
-                }
-                t.pt_cache = preset;
-                t.bit = t.cv >= preset;
-            } else {
-                t.run = false;
-                if kind == TimerKind::On {
-                    t.cv = 0;
-                    t.bit = false;
-                }
-            }
-        }
-        TimerKind::Off => {
-            if !gate {
-                t.tof = TofPhase::Idle;
-                t.bit = false;
-                t.cv = 0;
-            } else if on {
-                t.tof = TofPhase::On;
-                t.bit = true;
-                t.cv = 0;
-            } else {
-                match t.tof {
-                    TofPhase::On => t.tof = TofPhase::Timing,
-                    TofPhase::Timing => t.cv = sat_add(t.cv, d100),
-                    TofPhase::Idle | TofPhase::Done => {}
-                }
-                if t.tof == TofPhase::Timing {
-                    t.pt_cache = preset;
-                    if t.cv >= preset {
-                        t.cv = preset;
-                        t.bit = false;
-                        t.tof = TofPhase::Done;
-                    }
-                }
-            }
-        }
-    }
+    let d100 = mem::sched_u32(img, layout, Sched::D100);
+    t.step(kind, input, gate, preset, d100);
     t.store(img, layout, n);
     Ok(())
 }

@@ -10,7 +10,7 @@ use cranelift_codegen::ir::{BlockArg, InstBuilder, Value, condcodes::IntCC, type
 use stljit_core::ir::{BitLoc, BoxOp, Op, Operand};
 use stljit_core::layout::{COUNTER_STATE_SIZE, Sched, TIMER_STATE_SIZE};
 use stljit_core::{Area, ErrorCode, Width};
-use stljit_runtime::ffi::FfiCode;
+use stljit_runtime::ffi::{CTL_GATE, FfiCode};
 
 impl Lower<'_, '_> {
     /// Records a non-zero runtime status as a non-fatal error (a diamond, rarely taken).
@@ -65,16 +65,19 @@ impl Lower<'_, '_> {
                 let (kind, n) = (*kind, timer.0);
                 self.with_preset(preset, |s, pv| {
                     let input = s.stack.top().to01(&mut s.b);
-                    let gate = s.gate.to01(&mut s.b);
-                    let nv = s.iconst(I32, i64::from(n));
-                    let k = s.iconst(I32, i64::from(kind.code()));
-                    let args = [nv, k, input, gate, pv];
                     match s.timer_ranges(n) {
-                        // In range, the shim only fails on a panic, which the runtime rules out.
+                        // In range: the fast shim on the timer's own bytes; it cannot fail
+                        // (the kind is valid) and cannot panic.
                         Some(r) => {
-                            s.call_touching(Helper::Timer, &args, &r);
+                            let ctl = s.fast_ctl(input);
+                            let args = s.fast_args(&r, ctl, pv);
+                            s.call_touching(Helper::timer_fast(kind), &args, &r);
                         }
                         None => {
+                            let gate = s.gate.to01(&mut s.b);
+                            let nv = s.iconst(I32, i64::from(n));
+                            let k = s.iconst(I32, i64::from(kind.code()));
+                            let args = [nv, k, input, gate, pv];
                             let st = s.call_helper(Helper::Timer, &args);
                             s.error_if_status(st);
                         }
@@ -93,15 +96,17 @@ impl Lower<'_, '_> {
                         lv: (0..3).map(|i| s.stack.level(i)).collect(),
                     };
                     let stack = levels.to_reg(&mut s.b);
-                    let gate = s.gate.to01(&mut s.b);
-                    let nv = s.iconst(I32, i64::from(n));
-                    let k = s.iconst(I32, i64::from(kind.code()));
-                    let args = [nv, k, stack, gate, pv];
                     match s.counter_ranges(n) {
                         Some(r) => {
-                            s.call_touching(Helper::Counter, &args, &r);
+                            let ctl = s.fast_ctl(stack);
+                            let args = s.fast_args(&r, ctl, pv);
+                            s.call_touching(Helper::counter_fast(kind), &args, &r);
                         }
                         None => {
+                            let gate = s.gate.to01(&mut s.b);
+                            let nv = s.iconst(I32, i64::from(n));
+                            let k = s.iconst(I32, i64::from(kind.code()));
+                            let args = [nv, k, stack, gate, pv];
                             let st = s.call_helper(Helper::Counter, &args);
                             s.error_if_status(st);
                         }
@@ -116,6 +121,31 @@ impl Lower<'_, '_> {
             }
             _ => {}
         }
+    }
+
+    /// The `ctl` argument of the fast shims: `low` (bits 0–7: the inputs) | the SCR gate at
+    /// [`CTL_GATE`]. Outside SCR segments the gate is a constant: one `or` or nothing.
+    fn fast_ctl(&mut self, low: Value) -> Value {
+        match self.gate {
+            B::K(false) => low,
+            B::K(true) => self.b.ins().bor_imm_s(low, i64::from(CTL_GATE)),
+            g => {
+                let at = g.at_bit(&mut self.b, CTL_GATE.trailing_zeros() as u8);
+                self.b.ins().bor(low, at)
+            }
+        }
+    }
+
+    /// Arguments of a fast shim: pointers to the four ranges of [`Lower::timer_ranges`] /
+    /// [`Lower::counter_ranges`] (image-relative, checked in range at compile time), `ctl`,
+    /// the preset.
+    fn fast_args(&mut self, r: &[(Addr, u32); 4], ctl: Value, preset: Value) -> [Value; 6] {
+        let image = self.image;
+        let p = r.map(|(a, _)| {
+            debug_assert!(!a.local, "timer and counter bytes are never in L");
+            self.b.ins().iadd_imm_s(image, i64::from(a.off))
+        });
+        [p[0], p[1], p[2], p[3], ctl, preset]
     }
 
     /// The bytes `timer::execute` reads or writes for an existing timer `n`: its value, bit and
