@@ -36,13 +36,8 @@ fn scan(c: &mut Criterion) {
         let p = program(name);
         let mut interp = Interpreter::new(&p).expect("interpreter accepts the corpus");
         bench_engine(c, name, "interp", &p, &mut interp);
-        let mut jit = JitProgram::compile(
-            &p,
-            &JitOptions {
-                opt: OptLevel::Speed,
-            },
-        )
-        .expect("JIT compiles");
+        let mut jit =
+            JitProgram::compile(&p, &JitOptions::at(OptLevel::Speed)).expect("JIT compiles");
         bench_engine(c, name, "jit", &p, &mut jit);
     }
 }
