@@ -36,10 +36,18 @@ impl Lower<'_, '_> {
         let new = match val {
             B::K(true) => self.b.ins().bor_imm_s(old, mask),
             B::K(false) => self.b.ins().band_imm_s(old, !mask & 0xFF),
-            B::Bit { .. } => {
-                let bitv = val.at_bit(&mut self.b, pos);
+            B::Bit { v, pos: from } => {
+                let s = super::value::align(&mut self.b, v, from, pos);
+                let bitv = self.b.ins().band_imm_s(s, mask);
                 let cleared = self.b.ins().band_imm_s(old, !mask & 0xFF);
                 self.b.ins().bor(cleared, bitv)
+            }
+            B::Not { v, pos: from } => {
+                // (old AND NOT m) OR (NOT v AND m) = (old OR m) XOR (v AND m): no `not`.
+                let s = super::value::align(&mut self.b, v, from, pos);
+                let bitv = self.b.ins().band_imm_s(s, mask);
+                let set = self.b.ins().bor_imm_s(old, mask);
+                self.b.ins().bxor(set, bitv)
             }
         };
         self.set_byte(a, new);
@@ -255,7 +263,7 @@ impl Lower<'_, '_> {
                 }
                 let spread = match pf {
                     B::K(_) => None,
-                    B::Bit { .. } => {
+                    B::Bit { .. } | B::Not { .. } => {
                         // All ones where PF holds, zero elsewhere.
                         let p01 = pf.to01(&mut self.b);
                         Some(self.b.ins().ineg(p01))
