@@ -261,10 +261,16 @@ impl Lower<'_, '_> {
                         _ => masks.push((a, 1 << pos)),
                     }
                 }
+                // All ones where PF holds, zero elsewhere.
                 let spread = match pf {
                     B::K(_) => None,
-                    B::Bit { .. } | B::Not { .. } => {
-                        // All ones where PF holds, zero elsewhere.
+                    B::Bit { v, pos } => {
+                        // PF's bit to the sign, then spread by an arithmetic shift: two
+                        // instructions where isolating the bit and negating takes three.
+                        let top = self.b.ins().ishl_imm_s(v, 31 - i64::from(pos));
+                        Some(self.b.ins().sshr_imm_s(top, 31))
+                    }
+                    B::Not { .. } => {
                         let p01 = pf.to01(&mut self.b);
                         Some(self.b.ins().ineg(p01))
                     }
