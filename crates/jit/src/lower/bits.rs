@@ -25,7 +25,7 @@ impl Lower<'_, '_> {
     /// Reads a bit as a lazy boolean.
     pub(crate) fn read_bit(&mut self, bit: BitLoc) -> B {
         let a = self.bit_byte(bit);
-        let v = self.test_byte(a);
+        let v = self.byte(a);
         B::Bit { v, pos: bit.bit }
     }
 
@@ -64,7 +64,7 @@ impl Lower<'_, '_> {
             }
             Contact::ImmediateInput { bit, negated } => {
                 let a = Addr::img(self.env.layout.phys_in + bit.byte);
-                let v = self.test_byte(a);
+                let v = self.byte(a);
                 (B::Bit { v, pos: bit.bit }, negated)
             }
             Contact::Compare {

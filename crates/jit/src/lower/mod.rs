@@ -126,27 +126,6 @@ impl<'e, 'f> Lower<'e, 'f> {
         v
     }
 
-    /// A byte for bit tests only: the cached value, or else a 32-bit load whose upper 24 bits
-    /// are the following bytes (garbage, which a [`B`] allows). x86 lowering folds a plain
-    /// `load` into the `and`/`or`/`andn` that consumes it (an `and m32` instead of a `movzx`
-    /// and an `and`); `uload8` can never be folded. The value is not cached: the cache holds
-    /// clean bytes. Falls back to a byte load where four bytes would leave the image or frame.
-    pub(crate) fn test_byte(&mut self, a: Addr) -> Value {
-        if let Some(v) = self.cache.get(a) {
-            return v;
-        }
-        let room = if a.local {
-            self.env.layout.area_size(Area::L)
-        } else {
-            self.env.layout.size
-        };
-        if a.off + 4 > room {
-            return self.byte(a);
-        }
-        let base = self.base(a);
-        self.b.ins().load(I32, mf(), base, Self::off32(a))
-    }
-
     /// Writes a byte (`v` must have its upper 24 bits zero). The store is immediate and the
     /// value stays cached: keeping writes in registers until the block ends made every value
     /// of the block live to its end, which the register allocator paid for with spills.

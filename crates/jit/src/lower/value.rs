@@ -170,10 +170,7 @@ fn and_parts(b: &mut FunctionBuilder<'_>, x: Parts, y: Parts) -> B {
             B::K(false)
         };
     }
-    // `y` is usually a contact just loaded: shifting `x` to its bit instead leaves the load
-    // to be folded into the operation as a memory operand.
-    let v = align(b, v, pos, q);
-    let pos = q;
+    let w = align(b, w, q, pos);
     match (nx, ny) {
         (false, false) => mk(b.ins().band(v, w), pos, false),
         // v AND NOT w = NOT (NOT v OR w): see `is_andn`.
