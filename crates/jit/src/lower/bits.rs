@@ -36,10 +36,18 @@ impl Lower<'_, '_> {
         let new = match val {
             B::K(true) => self.b.ins().bor_imm_s(old, mask),
             B::K(false) => self.b.ins().band_imm_s(old, !mask & 0xFF),
-            B::Bit { .. } => {
-                let bitv = val.at_bit(&mut self.b, pos);
+            B::Bit { v, pos: from } => {
+                let s = super::value::align(&mut self.b, v, from, pos);
+                let bitv = self.b.ins().band_imm_s(s, mask);
                 let cleared = self.b.ins().band_imm_s(old, !mask & 0xFF);
                 self.b.ins().bor(cleared, bitv)
+            }
+            B::Not { v, pos: from } => {
+                // (old AND NOT m) OR (NOT v AND m) = (old OR m) XOR (v AND m): no `not`.
+                let s = super::value::align(&mut self.b, v, from, pos);
+                let bitv = self.b.ins().band_imm_s(s, mask);
+                let set = self.b.ins().bor_imm_s(old, mask);
+                self.b.ins().bxor(set, bitv)
             }
         };
         self.set_byte(a, new);
@@ -114,6 +122,7 @@ impl Lower<'_, '_> {
                 } else {
                     top.and(&mut self.b, v)
                 };
+                let r = self.anchor(r);
                 self.stack.set_top(r);
             }
             Op::Or(c) => {
@@ -124,6 +133,7 @@ impl Lower<'_, '_> {
                 } else {
                     top.or(&mut self.b, v)
                 };
+                let r = self.anchor(r);
                 self.stack.set_top(r);
             }
             Op::Not => {
@@ -138,6 +148,7 @@ impl Lower<'_, '_> {
                 } else {
                     s0.or(&mut self.b, s1)
                 };
+                let r = self.anchor(r);
                 self.stack.set_top(r);
             }
             Op::Dup => {
@@ -181,6 +192,51 @@ impl Lower<'_, '_> {
                 immediate,
             } => self.set_range(*start, count, *value, *immediate),
             _ => {}
+        }
+    }
+
+    /// Pins a computed boolean to the op that computed it (at `--opt speed` only).
+    ///
+    /// With the e-graph on, every pure instruction is placed just before its first use by a
+    /// side-effecting one (a coil's store), so a whole rung's ALU code landed after all of its
+    /// loads and every loaded byte stayed live across the rung: the allocator spilled ~560
+    /// values per 10k ops. Passing the value through `isplit(iconcat(v, image))`, a two-result
+    /// instruction that the e-graph keeps in place, keeps the ALU code at its op (spills drop
+    /// to ~10). It costs no machine instruction: the 32-bit ALU result is already
+    /// zero-extended and the halves are just registers. It also hides the value from the
+    /// e-graph's `NOT (a AND NOT b)` rewrite (see `value::is_andn`) and, being a lowering
+    /// root, stops a later double use from marking the whole rung as used twice.
+    fn anchor(&mut self, x: B) -> B {
+        use cranelift_codegen::ir::{Opcode, types::I64};
+        use cranelift_codegen::settings::OptLevel;
+        use cranelift_module::Module;
+        let (v, pos, neg) = match x {
+            B::Bit { v, pos } => (v, pos, false),
+            B::Not { v, pos } => (v, pos, true),
+            B::K(_) => return x,
+        };
+        if self.module.isa().flags().opt_level() == OptLevel::None {
+            return x;
+        }
+        let dfg = &self.b.func.dfg;
+        // Only 32-bit ALU results zero their upper half for free (a load would need a mov).
+        let alu = dfg.value_def(v).inst().is_some_and(|i| {
+            matches!(
+                dfg.insts[i].opcode(),
+                Opcode::Band | Opcode::Bor | Opcode::Bxor | Opcode::Ishl | Opcode::Ushr
+            )
+        });
+        if !alu {
+            return x;
+        }
+        let wide = self.b.ins().uextend(I64, v);
+        let pair = self.b.ins().iconcat(wide, self.image);
+        let (lo, _) = self.b.ins().isplit(pair);
+        let v = self.b.ins().ireduce(I32, lo);
+        if neg {
+            B::Not { v, pos }
+        } else {
+            B::Bit { v, pos }
         }
     }
 
@@ -253,10 +309,16 @@ impl Lower<'_, '_> {
                         _ => masks.push((a, 1 << pos)),
                     }
                 }
+                // All ones where PF holds, zero elsewhere.
                 let spread = match pf {
                     B::K(_) => None,
-                    B::Bit { .. } => {
-                        // All ones where PF holds, zero elsewhere.
+                    B::Bit { v, pos } => {
+                        // PF's bit to the sign, then spread by an arithmetic shift: two
+                        // instructions where isolating the bit and negating takes three.
+                        let top = self.b.ins().ishl_imm_s(v, 31 - i64::from(pos));
+                        Some(self.b.ins().sshr_imm_s(top, 31))
+                    }
+                    B::Not { .. } => {
                         let p01 = pf.to01(&mut self.b);
                         Some(self.b.ins().ineg(p01))
                     }

@@ -115,7 +115,7 @@ impl Lower<'_, '_> {
     fn boxed_free(&mut self, pf: B, run: impl FnOnce(&mut Self, OnFail) -> B) {
         self.pred = match pf {
             B::K(_) => None,
-            B::Bit { .. } => Some(pf.cond(&mut self.b)),
+            B::Bit { .. } | B::Not { .. } => Some(pf.cond(&mut self.b)),
         };
         self.pred_reads.clear();
         // No operand is a pointer, so nothing takes this failure path; a compare's fatal code

@@ -1,18 +1,22 @@
 //! Compile-time booleans and the symbolic logic stack.
 //!
-//! A boolean is kept lazily as "bit `pos` of an `i32` SSA value, other bits unspecified" so that a
-//! contact on bit 3 of a cached byte costs no instruction at all and an `A` of two bits at the
-//! same position costs one `band`. Only a consumer that needs a clean 0/1 (a coil, a helper
+//! A boolean is kept lazily as "bit `pos` of an `i32` SSA value (or its complement), other bits
+//! unspecified" so that a contact on bit 3 of a cached byte costs no instruction at all and an
+//! `A` of two bits at the same position costs one `band`. Only a consumer that needs a clean 0/1 (a coil, a helper
 //! argument, the stack register) pays for the shift and mask.
 //!
 //! The logic stack is exactly `depth` levels at every point, so a compile-time array of
 //! booleans models push-loses-bottom and pop-fills-zero precisely; no depth analysis is needed.
 //! At a basic-block boundary the array is packed into the `st` register (bit i = level i).
 
-use cranelift_codegen::ir::{InstBuilder, Value, types::I32};
+use cranelift_codegen::ir::{InstBuilder, Opcode, Value, types::I32};
 use cranelift_frontend::FunctionBuilder;
 
-/// A boolean known at compile time or held in one bit of an SSA value.
+/// A boolean known at compile time or held in one bit of an SSA value, possibly negated.
+///
+/// The negated form makes `LDN`, `ON`, `AN` and `NOT` free: x86 has `andn` but no `orn`, and
+/// by De Morgan every AND/OR of two bits of either polarity is one `and`, `or` or `andn` whose
+/// result has some polarity; only a consumer that needs the plain bit pays for the `not`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum B {
     /// A constant.
@@ -20,6 +24,13 @@ pub(crate) enum B {
     /// Bit `pos` of `v` (an `i32`); the other bits are garbage.
     Bit {
         /// The value holding the bit.
+        v: Value,
+        /// Which bit, 0..=31.
+        pos: u8,
+    },
+    /// The complement of bit `pos` of `v` (other bits garbage).
+    Not {
+        /// The value holding the complemented bit.
         v: Value,
         /// Which bit, 0..=31.
         pos: u8,
@@ -36,34 +47,54 @@ pub(crate) fn align(b: &mut FunctionBuilder<'_>, v: Value, from: u8, to: u8) -> 
     }
 }
 
+/// A non-constant boolean as (value, bit, negated).
+type Parts = (Value, u8, bool);
+
+fn mk(v: Value, pos: u8, neg: bool) -> B {
+    if neg {
+        B::Not { v, pos }
+    } else {
+        B::Bit { v, pos }
+    }
+}
+
 impl B {
+    fn parts(self) -> Option<Parts> {
+        match self {
+            B::K(_) => None,
+            B::Bit { v, pos } => Some((v, pos, false)),
+            B::Not { v, pos } => Some((v, pos, true)),
+        }
+    }
+
     /// A clean 0/1 `i32`.
     pub(crate) fn to01(self, b: &mut FunctionBuilder<'_>) -> Value {
-        match self {
-            B::K(k) => b.ins().iconst(I32, i64::from(k)),
-            B::Bit { v, pos } => {
-                let s = align(b, v, pos, 0);
-                b.ins().band_imm_s(s, 1)
-            }
-        }
+        self.at_bit(b, 0)
     }
 
     /// The boolean at bit `to` of an `i32` whose other bits are zero.
     pub(crate) fn at_bit(self, b: &mut FunctionBuilder<'_>, to: u8) -> Value {
+        let m = 1i64 << to;
         match self {
-            B::K(k) => b.ins().iconst(I32, if k { 1i64 << to } else { 0 }),
+            B::K(k) => b.ins().iconst(I32, if k { m } else { 0 }),
             B::Bit { v, pos } => {
                 let s = align(b, v, pos, to);
-                b.ins().band_imm_s(s, 1i64 << to)
+                b.ins().band_imm_s(s, m)
+            }
+            B::Not { v, pos } => {
+                let s = align(b, v, pos, to);
+                let s = b.ins().band_imm_s(s, m);
+                b.ins().bxor_imm_s(s, m)
             }
         }
     }
 
-    /// An `i8` truth value for `brif` (non-zero = true).
+    /// An `i32` truth value for `brif`/`select` (non-zero = true).
     pub(crate) fn cond(self, b: &mut FunctionBuilder<'_>) -> Value {
         match self {
             B::K(k) => b.ins().iconst(I32, i64::from(k)),
             B::Bit { v, pos } => b.ins().band_imm_s(v, 1i64 << pos),
+            B::Not { .. } => self.at_bit(b, 0),
         }
     }
 
@@ -72,78 +103,89 @@ impl B {
         match (self, o) {
             (B::K(false), _) | (_, B::K(false)) => B::K(false),
             (B::K(true), x) | (x, B::K(true)) => x,
-            (B::Bit { v, pos }, B::Bit { v: w, pos: q }) => {
-                if v == w && pos == q {
-                    return self;
-                }
-                let w = align(b, w, q, pos);
-                B::Bit {
-                    v: b.ins().band(v, w),
-                    pos,
-                }
+            _ => {
+                let (Some(x), Some(y)) = (self.parts(), o.parts()) else {
+                    unreachable!("constants handled above")
+                };
+                and_parts(b, x, y)
             }
         }
     }
 
     /// `self OR other`.
     pub(crate) fn or(self, b: &mut FunctionBuilder<'_>, o: B) -> B {
-        match (self, o) {
-            (B::K(true), _) | (_, B::K(true)) => B::K(true),
-            (B::K(false), x) | (x, B::K(false)) => x,
-            (B::Bit { v, pos }, B::Bit { v: w, pos: q }) => {
-                if v == w && pos == q {
-                    return self;
-                }
-                let w = align(b, w, q, pos);
-                B::Bit {
-                    v: b.ins().bor(v, w),
-                    pos,
-                }
-            }
-        }
+        // De Morgan: a OR b = NOT (NOT a AND NOT b).
+        self.neg().and(b, o.neg()).neg()
     }
 
-    /// `self AND NOT other` (one `band_not`).
+    /// `self AND NOT other`.
     pub(crate) fn and_not(self, b: &mut FunctionBuilder<'_>, o: B) -> B {
-        match (self, o) {
-            (B::K(false), _) | (_, B::K(true)) => B::K(false),
-            (x, B::K(false)) => x,
-            (B::K(true), x) => x.not(b),
-            (B::Bit { v, pos }, B::Bit { v: w, pos: q }) => {
-                let w = align(b, w, q, pos);
-                B::Bit {
-                    v: b.ins().band_not(v, w),
-                    pos,
-                }
-            }
-        }
+        self.and(b, o.neg())
     }
 
     /// `self OR NOT other`.
     pub(crate) fn or_not(self, b: &mut FunctionBuilder<'_>, o: B) -> B {
-        match (self, o) {
-            (B::K(true), _) | (_, B::K(false)) => B::K(true),
-            (x, B::K(true)) => x,
-            (B::K(false), x) => x.not(b),
-            (B::Bit { v, pos }, B::Bit { v: w, pos: q }) => {
-                let w = align(b, w, q, pos);
-                B::Bit {
-                    v: b.ins().bor_not(v, w),
-                    pos,
-                }
-            }
-        }
+        self.or(b, o.neg())
     }
 
-    /// `NOT self`.
-    pub(crate) fn not(self, b: &mut FunctionBuilder<'_>) -> B {
+    /// `NOT self` (free: only the polarity changes).
+    pub(crate) fn not(self, _b: &mut FunctionBuilder<'_>) -> B {
+        self.neg()
+    }
+
+    fn neg(self) -> B {
         match self {
             B::K(k) => B::K(!k),
-            B::Bit { v, pos } => B::Bit {
-                v: b.ins().bnot(v),
-                pos,
-            },
+            B::Bit { v, pos } => B::Not { v, pos },
+            B::Not { v, pos } => B::Bit { v, pos },
         }
+    }
+}
+
+/// Whether `v` is `a AND NOT b` (one `andn`). The e-graph rewrites `NOT (a AND NOT b)` to
+/// `NOT a OR b`, which it counts as cheaper but which costs x86 a `not` and an `or` where
+/// `andn` of the original would have cost nothing extra, so such a value is not negated when
+/// the other operand can be instead.
+fn is_andn(b: &FunctionBuilder<'_>, v: Value) -> bool {
+    let dfg = &b.func.dfg;
+    let Some(inst) = dfg.value_def(v).inst() else {
+        return false;
+    };
+    dfg.insts[inst].opcode() == Opcode::Band
+        && dfg.inst_args(inst).iter().any(|&a| {
+            dfg.value_def(a)
+                .inst()
+                .is_some_and(|i| dfg.insts[i].opcode() == Opcode::Bnot)
+        })
+}
+
+/// `x AND y` for two non-constant booleans: one instruction (plus an alignment shift of `y`).
+fn and_parts(b: &mut FunctionBuilder<'_>, x: Parts, y: Parts) -> B {
+    let ((v, pos, nx), (w, q, ny)) = (x, y);
+    if v == w && pos == q {
+        // The same bit: x AND x = x, x AND NOT x = 0.
+        return if nx == ny {
+            mk(v, pos, nx)
+        } else {
+            B::K(false)
+        };
+    }
+    let w = align(b, w, q, pos);
+    match (nx, ny) {
+        (false, false) => mk(b.ins().band(v, w), pos, false),
+        // v AND NOT w = NOT (NOT v OR w): see `is_andn`.
+        (false, true) if is_andn(b, w) && !is_andn(b, v) => {
+            let nv = b.ins().bnot(v);
+            mk(b.ins().bor(nv, w), pos, true)
+        }
+        (false, true) => mk(b.ins().band_not(v, w), pos, false),
+        (true, false) if is_andn(b, v) && !is_andn(b, w) => {
+            let nw = b.ins().bnot(w);
+            mk(b.ins().bor(v, nw), pos, true)
+        }
+        (true, false) => mk(b.ins().band_not(w, v), pos, false),
+        // NOT v AND NOT w = NOT (v OR w)
+        (true, true) => mk(b.ins().bor(v, w), pos, true),
     }
 }
 
@@ -211,19 +253,28 @@ impl Stack {
     /// unchanged or uniformly pushed stack costs two or three instructions.
     pub(crate) fn to_reg(&self, b: &mut FunctionBuilder<'_>) -> Value {
         let mut konst: i64 = 0;
+        // Target bits of negated levels: packed as their plain bit, then flipped with one
+        // `xor` for all of them.
+        let mut negs: i64 = 0;
         // (source value, shift = target - pos) -> mask of target bits
         let mut groups: Vec<(Value, i32, i64)> = Vec::new();
         for (i, l) in self.lv.iter().enumerate() {
-            match *l {
-                B::K(true) => konst |= 1 << i,
-                B::K(false) => {}
-                B::Bit { v, pos } => {
-                    let sh = i as i32 - i32::from(pos);
-                    match groups.iter_mut().find(|g| g.0 == v && g.1 == sh) {
-                        Some(g) => g.2 |= 1 << i,
-                        None => groups.push((v, sh, 1 << i)),
-                    }
+            let (v, pos) = match *l {
+                B::K(true) => {
+                    konst |= 1 << i;
+                    continue;
                 }
+                B::K(false) => continue,
+                B::Bit { v, pos } => (v, pos),
+                B::Not { v, pos } => {
+                    negs |= 1 << i;
+                    (v, pos)
+                }
+            };
+            let sh = i as i32 - i32::from(pos);
+            match groups.iter_mut().find(|g| g.0 == v && g.1 == sh) {
+                Some(g) => g.2 |= 1 << i,
+                None => groups.push((v, sh, 1 << i)),
             }
         }
         let mut acc: Option<Value> = None;
@@ -239,9 +290,11 @@ impl Stack {
                 Some(a) => b.ins().bor(a, m),
             });
         }
+        // Constant bits and negated bits are disjoint, so one `xor` sets both.
+        let flip = konst | negs;
         match acc {
             None => b.ins().iconst(I32, konst),
-            Some(a) if konst != 0 => b.ins().bor_imm_s(a, konst),
+            Some(a) if flip != 0 => b.ins().bxor_imm_s(a, flip),
             Some(a) => a,
         }
     }
