@@ -15,7 +15,7 @@ use crate::helpers::{self, Helper, ValueOp};
 use cranelift_codegen::ir::{
     InstBuilder, Value,
     condcodes::IntCC,
-    types::{I32, I64},
+    types::{I16, I32},
 };
 use stljit_core::ir::{ArithOp, BoxOp, LogicOp, Operand};
 use stljit_core::{Area, Width};
@@ -304,20 +304,28 @@ impl Lower<'_, '_> {
     /// Inline `+`/`-` (and INC/DEC of words and dwords) with the OK/OVF rules of
     /// `arith::int_arith`: on overflow OUT keeps its value, SM1.1 = 1, SM1.0 = SM1.2 = 0.
     fn add_sub(&mut self, add: bool, width: Width, p: Place, d: Value, a: Value) -> B {
+        // `r` is the wrapped result sign-extended to i32, `ovf` the signed-overflow flag. Words
+        // and dwords use the native overflow flag (`add` + `seto`) instead of recomputing the
+        // sum one size wider and comparing.
         let (r, ovf) = match width {
             Width::DWord => {
-                let d64 = self.b.ins().sextend(I64, d);
-                let a64 = self.b.ins().sextend(I64, a);
-                let r64 = if add {
-                    self.b.ins().iadd(d64, a64)
+                if add {
+                    self.b.ins().sadd_overflow(d, a)
                 } else {
-                    self.b.ins().isub(d64, a64)
-                };
-                let r = self.b.ins().ireduce(I32, r64);
-                let back = self.b.ins().sextend(I64, r);
-                (r, self.b.ins().icmp(IntCC::NotEqual, back, r64))
+                    self.b.ins().ssub_overflow(d, a)
+                }
             }
-            _ => {
+            Width::Word => {
+                let d16 = self.b.ins().ireduce(I16, d);
+                let a16 = self.b.ins().ireduce(I16, a);
+                let (r16, ovf) = if add {
+                    self.b.ins().sadd_overflow(d16, a16)
+                } else {
+                    self.b.ins().ssub_overflow(d16, a16)
+                };
+                (self.b.ins().sextend(I32, r16), ovf)
+            }
+            Width::Byte => {
                 let ds = self.sext(d, width);
                 let as_ = self.sext(a, width);
                 let r = if add {
