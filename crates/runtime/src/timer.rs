@@ -219,12 +219,14 @@ pub fn refresh(img: &mut [u8], layout: &Layout, n: u16) {
     if check(layout, n).is_err() {
         return;
     }
-    let mut t = Timer::load(img, layout, n);
-    let d = match t.res {
+    // Every scan visits every timer in use, and most are 100-ms ones: decide on the resolution
+    // byte alone before decoding the whole timer.
+    let d = match mem::get_u8(img, layout.timer_state(n) + TimerState::RES) {
         1 => mem::sched_u32(img, layout, Sched::D1),
         10 => mem::sched_u32(img, layout, Sched::D10),
         _ => return,
     };
+    let mut t = Timer::load(img, layout, n);
     let kind = mem::get_u8(img, layout.timer_state(n) + TimerState::KIND);
     if kind == TimerKind::Off.code() {
         if t.tof == TofPhase::Timing {
