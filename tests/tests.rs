@@ -5,5 +5,6 @@ mod conformance;
 mod diagnostics;
 mod examples;
 mod fuzz_smoke;
+mod inputs;
 mod regressions;
 mod tidy;
