@@ -33,6 +33,9 @@ pub(crate) struct Args {
     /// CPU profile.
     #[arg(long, default_value = "a5")]
     cpu: String,
+    /// MicroWIN symbol table used by every program (name<TAB>address, or CSV).
+    #[arg(long)]
+    symbols: Option<std::path::PathBuf>,
     /// Interleaved rounds the scans are split into (the fastest round per engine is reported).
     #[arg(long, default_value_t = 10)]
     rounds: u64,
@@ -118,8 +121,6 @@ fn ns(d: Duration, n: u64) -> f64 {
 }
 
 pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
-    let profile = stljit_core::ProfileId::from_name(&args.cpu)
-        .ok_or_else(|| anyhow::anyhow!("unknown --cpu `{}`", args.cpu))?;
     println!(
         "{:<34} {:>7} {:>10} {:>10} {:>11} {:>11} {:>9} {:>9} {:>8}",
         "program",
@@ -133,12 +134,12 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
         "speedup"
     );
     for path in &args.files {
-        let bytes = std::fs::read(path)?;
-        let file = stljit_syntax::SourceFile {
-            name: path.display().to_string(),
-            bytes,
+        let input = crate::check::Input {
+            files: vec![path.clone()],
+            cpu: args.cpu.clone(),
+            symbols: args.symbols.clone(),
         };
-        let c = stljit_syntax::compile(&[file], None, profile);
+        let c = input.compile()?;
         let Some(program) = crate::project::checked_program(&c) else {
             return Ok(ExitCode::from(1));
         };
