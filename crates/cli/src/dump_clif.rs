@@ -12,8 +12,12 @@ pub(crate) struct Args {
     #[arg(long, value_enum, default_value = "none")]
     opt: crate::engines::OptArg,
     /// Print the generated machine code (Cranelift's disassembly) instead of the IR.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "optimized")]
     asm: bool,
+    /// Print the IR after Cranelift's optimiser (what `--opt speed` lowers to machine code)
+    /// instead of the IR the JIT generates.
+    #[arg(long)]
+    optimized: bool,
 }
 
 pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
@@ -24,6 +28,8 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     let opts = stljit_jit::JitOptions::at(args.opt.into());
     let text = if args.asm {
         stljit_jit::asm_text(program, &opts)?
+    } else if args.optimized {
+        stljit_jit::optimized_clif_text(program, &opts)?
     } else {
         stljit_jit::clif_text(program, &opts)?
     };

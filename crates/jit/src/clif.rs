@@ -57,9 +57,26 @@ impl FuncWriter for Annotated<'_> {
     }
 }
 
-/// The annotated CLIF of every function of `program` (before Cranelift's own optimisations).
+/// The annotated CLIF of every function of `program` as the JIT generates it, before
+/// Cranelift's own optimisations.
 pub fn clif_text(program: &Program, opts: &JitOptions) -> Result<String, JitError> {
+    annotated_clif(program, opts, false)
+}
+
+/// The annotated CLIF after Cranelift's mid-end (`Context::optimize`: unreachable-code removal
+/// and, at `--opt speed`, the e-graph pass), i.e. what is lowered to machine code.
+pub fn optimized_clif_text(program: &Program, opts: &JitOptions) -> Result<String, JitError> {
+    annotated_clif(program, opts, true)
+}
+
+fn annotated_clif(
+    program: &Program,
+    opts: &JitOptions,
+    optimized: bool,
+) -> Result<String, JitError> {
     let layout = Layout::of(program.profile);
+    let module = build::new_module(opts)?;
+    let isa = cranelift_module::Module::isa(&module);
     let mut out = String::new();
     let mut failure = None;
     let mut sink = |func: &Function, pou: usize, part: Part| {
@@ -72,13 +89,21 @@ pub fn clif_text(program: &Program, opts: &JitOptions) -> Result<String, JitErro
             Part::Chunk(k) => format!(" chunk {k}"),
         };
         let _ = writeln!(out, "; POU {pou}: {} ({:?}){part}", p.name, p.kind);
+        let mut ctx = cranelift_codegen::Context::for_function(func.clone());
+        if optimized {
+            let mut cp = cranelift_codegen::control::ControlPlane::default();
+            if let Err(e) = ctx.optimize(isa, &mut cp) {
+                failure = Some(format!("{e:?}"));
+                return;
+            }
+        }
         let mut wr = Annotated {
             prog: program,
             pou: p,
             last: 0,
             plain: PlainWriter,
         };
-        if let Err(e) = decorate_function(&mut wr, &mut out, func) {
+        if let Err(e) = decorate_function(&mut wr, &mut out, &ctx.func) {
             failure = Some(e.to_string());
         }
         out.push('\n');

@@ -18,7 +18,7 @@ mod engine;
 mod helpers;
 mod lower;
 
-pub use clif::{asm_text, clif_text};
+pub use clif::{asm_text, clif_text, optimized_clif_text};
 pub use engine::JitProgram;
 
 use std::fmt;
