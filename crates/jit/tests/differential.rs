@@ -157,3 +157,56 @@ fn loops_across_chunks() {
         check(&p, &stimulus(seed, 20));
     }
 }
+
+/// `JitProgram::run_scans`, the native N-scan loop for long simulations, equals the interpreter
+/// run scan by scan: same number of scans, same last status (STOP and fatal errors end both at
+/// the same scan) and the same image, for generated programs with their first scan's stimulus
+/// held for the whole run.
+#[test]
+fn run_scans_equals_the_interpreter_scan_by_scan() {
+    use stljit_core::ScanStatus;
+    use stljit_diff::oracle::{apply_stimulus, start_image};
+    use stljit_runtime::Engine;
+    const N: u64 = 40;
+    let cfg = GenConfig {
+        scans: 1,
+        ..GenConfig::default()
+    };
+    let run = RunOptions::default();
+    let mut ended_early = 0;
+    for seed in 0..SEEDS / 2 {
+        let case = case_from_seed(seed, &cfg);
+        let prepare = || {
+            let mut img = start_image(&case.program, &run);
+            apply_stimulus(&mut img, &case.stimulus.scans[0]);
+            img
+        };
+        let mut interp =
+            stljit_interp::Interpreter::new(&case.program).expect("interpreter accepts it");
+        let mut want = prepare();
+        let (mut done, mut status) = (0, ScanStatus::Ok);
+        while done < N && status == ScanStatus::Ok {
+            status = interp.scan(&mut want, done * 10);
+            done += 1;
+        }
+        if status != ScanStatus::Ok {
+            ended_early += 1;
+        }
+        for opt in [stljit_jit::OptLevel::None, stljit_jit::OptLevel::Speed] {
+            let mut jit =
+                stljit_jit::JitProgram::compile(&case.program, &stljit_jit::JitOptions::at(opt))
+                    .expect("JIT compiles");
+            let mut got = prepare();
+            let (jdone, jstatus) = jit.run_scans(&mut got, 0, 10, N);
+            assert_eq!((jdone, jstatus), (done, status), "seed {seed} at {opt:?}");
+            assert!(
+                got.bytes() == want.bytes(),
+                "seed {seed} at {opt:?}: images differ after {done} scans"
+            );
+        }
+    }
+    assert!(
+        ended_early > 0,
+        "no program stopped early: the early exit is untested"
+    );
+}
