@@ -215,13 +215,7 @@ fn no_input_makes_the_front_end_panic() {
     );
     // Mutations of a valid program: cut, byte flips and splices, from a fixed-seed generator.
     let base = std::fs::read(root().join("ok/all_instructions.stl")).expect("fixture");
-    let mut seed = 0x9E37_79B9_7F4A_7C15_u64;
-    let mut next = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        seed
-    };
+    let mut next = crate::mutate::xorshift(0x9E37_79B9_7F4A_7C15_u64);
     for _ in 0..300 {
         let mut bytes = base.clone();
         for _ in 0..(next() % 16) {

@@ -93,13 +93,7 @@ fn no_stimulus_text_makes_the_tools_panic() {
         exercise(text, &program, symbols.as_ref());
     }
     let bytes = base.as_bytes();
-    let mut seed = 0x2545_F491_4F6C_DD1D_u64;
-    let mut next = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        seed
-    };
+    let mut next = crate::mutate::xorshift(0x2545_F491_4F6C_DD1D_u64);
     let (mut accepted, mut rejected) = (0, 0);
     for _ in 0..1000 {
         let mut m = bytes.to_vec();

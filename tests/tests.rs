@@ -6,5 +6,6 @@ mod diagnostics;
 mod examples;
 mod fuzz_smoke;
 mod inputs;
+mod mutate;
 mod regressions;
 mod tidy;
