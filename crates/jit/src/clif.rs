@@ -7,6 +7,7 @@ use crate::build::{self, Part};
 use crate::{JitError, JitOptions};
 use cranelift_codegen::entity::SecondaryMap;
 use cranelift_codegen::ir::{Block, Function, Inst, Value};
+use cranelift_codegen::isa::TargetIsa;
 use cranelift_codegen::write::{FuncWriter, PlainWriter, decorate_function};
 use std::fmt::{self, Write};
 use stljit_core::ir::{Pou, Program};
@@ -74,14 +75,9 @@ fn annotated_clif(
     opts: &JitOptions,
     optimized: bool,
 ) -> Result<String, JitError> {
-    let layout = Layout::of(program.profile);
-    let module = build::new_module(opts)?;
-    let isa = cranelift_module::Module::isa(&module);
-    let mut out = String::new();
-    let mut failure = None;
-    let mut sink = |func: &Function, pou: usize, part: Part| {
+    render(program, opts, |isa, func, pou, part, out| {
         let Some(p) = program.pous.get(pou) else {
-            return;
+            return Ok(());
         };
         let part = match part {
             Part::Whole => String::new(),
@@ -92,10 +88,7 @@ fn annotated_clif(
         let mut ctx = cranelift_codegen::Context::for_function(func.clone());
         if optimized {
             let mut cp = cranelift_codegen::control::ControlPlane::default();
-            if let Err(e) = ctx.optimize(isa, &mut cp) {
-                failure = Some(format!("{e:?}"));
-                return;
-            }
+            ctx.optimize(isa, &mut cp).map_err(|e| format!("{e:?}"))?;
         }
         let mut wr = Annotated {
             prog: program,
@@ -103,40 +96,48 @@ fn annotated_clif(
             last: 0,
             plain: PlainWriter,
         };
-        if let Err(e) = decorate_function(&mut wr, &mut out, &ctx.func) {
-            failure = Some(e.to_string());
-        }
+        decorate_function(&mut wr, out, &ctx.func).map_err(|e| e.to_string())?;
         out.push('\n');
-    };
-    // The layout address is only baked into shim calls; a dump never runs, so 0 is fine.
-    let built = build::build(program, opts, &layout, 0, None, false, &mut sink)?;
-    drop(built);
-    match failure {
-        Some(e) => Err(JitError::Codegen(e)),
-        None => Ok(out),
-    }
+        Ok(())
+    })
 }
 
 /// The machine code Cranelift generates for every function of `program` at `opts`, as its
 /// VCode disassembly (for `stljit dump-clif --asm`: counting host instructions per op).
 pub fn asm_text(program: &Program, opts: &JitOptions) -> Result<String, JitError> {
+    render(program, opts, |isa, func, pou, part, out| {
+        let mut ctx = cranelift_codegen::Context::for_function(func.clone());
+        ctx.set_disasm(true);
+        let mut cp = cranelift_codegen::control::ControlPlane::default();
+        let code = ctx
+            .compile(isa, &mut cp)
+            .map_err(|e| format!("{:?}", e.inner))?;
+        let _ = writeln!(out, "; function {pou} {part:?}");
+        out.push_str(code.vcode.as_deref().unwrap_or(""));
+        Ok(())
+    })
+}
+
+/// Lowers every function of `program` without compiling it and lets `write` append its text;
+/// the first error `write` returns fails the whole dump.
+fn render(
+    program: &Program,
+    opts: &JitOptions,
+    mut write: impl FnMut(&dyn TargetIsa, &Function, usize, Part, &mut String) -> Result<(), String>,
+) -> Result<String, JitError> {
     let layout = Layout::of(program.profile);
     let module = build::new_module(opts)?;
     let isa = cranelift_module::Module::isa(&module);
     let mut out = String::new();
     let mut failure = None;
     let mut sink = |func: &Function, pou: usize, part: Part| {
-        let mut ctx = cranelift_codegen::Context::for_function(func.clone());
-        ctx.set_disasm(true);
-        let mut cp = cranelift_codegen::control::ControlPlane::default();
-        match ctx.compile(isa, &mut cp) {
-            Ok(code) => {
-                let _ = writeln!(out, "; function {pou} {part:?}");
-                out.push_str(code.vcode.as_deref().unwrap_or(""));
-            }
-            Err(e) => failure = Some(format!("{:?}", e.inner)),
+        if failure.is_none()
+            && let Err(e) = write(isa, func, pou, part, &mut out)
+        {
+            failure = Some(e);
         }
     };
+    // The layout address is only baked into shim calls; a dump never runs, so 0 is fine.
     let built = build::build(program, opts, &layout, 0, None, false, &mut sink)?;
     drop(built);
     match failure {

@@ -19,6 +19,33 @@ impl Lower<'_, '_> {
         self.diamond(bad, |s| s.record_error(status), |_| {});
     }
 
+    /// Executes timer or counter `n` (of kind `code`) with `inputs` (the `ctl` bits) and preset
+    /// `pv`. In range (`ranges` = its bytes): the kind's fast shim on those bytes only, which
+    /// cannot fail. Otherwise the general shim, whose error (no such object) is recorded.
+    fn call_stateful(
+        &mut self,
+        ranges: Option<[(Addr, u32); 4]>,
+        (fast, general): (Helper, Helper),
+        (n, code): (u16, u8),
+        inputs: Value,
+        pv: Value,
+    ) {
+        match ranges {
+            Some(r) => {
+                let ctl = self.fast_ctl(inputs);
+                let args = self.fast_args(&r, ctl, pv);
+                self.call_touching(fast, &args, &r);
+            }
+            None => {
+                let gate = self.gate.to01(&mut self.b);
+                let nv = self.iconst(I32, i64::from(n));
+                let k = self.iconst(I32, i64::from(code));
+                let st = self.call_helper(general, &[nv, k, inputs, gate, pv]);
+                self.error_if_status(st);
+            }
+        }
+    }
+
     /// Reads a word preset; a failing pointer records 0x0006 and skips the instruction.
     fn with_preset(&mut self, preset: &Operand, f: impl FnOnce(&mut Self, Value)) {
         if !Self::is_indirect(preset) {
@@ -65,23 +92,9 @@ impl Lower<'_, '_> {
                 let (kind, n) = (*kind, timer.0);
                 self.with_preset(preset, |s, pv| {
                     let input = s.stack.top().to01(&mut s.b);
-                    match s.timer_ranges(n) {
-                        // In range: the fast shim on the timer's own bytes; it cannot fail
-                        // (the kind is valid) and cannot panic.
-                        Some(r) => {
-                            let ctl = s.fast_ctl(input);
-                            let args = s.fast_args(&r, ctl, pv);
-                            s.call_touching(Helper::timer_fast(kind), &args, &r);
-                        }
-                        None => {
-                            let gate = s.gate.to01(&mut s.b);
-                            let nv = s.iconst(I32, i64::from(n));
-                            let k = s.iconst(I32, i64::from(kind.code()));
-                            let args = [nv, k, input, gate, pv];
-                            let st = s.call_helper(Helper::Timer, &args);
-                            s.error_if_status(st);
-                        }
-                    }
+                    let ranges = s.timer_ranges(n);
+                    let calls = (Helper::timer_fast(kind), Helper::Timer);
+                    s.call_stateful(ranges, calls, (n, kind.code()), input, pv);
                 });
             }
             Op::Counter {
@@ -96,21 +109,9 @@ impl Lower<'_, '_> {
                         lv: (0..3).map(|i| s.stack.level(i)).collect(),
                     };
                     let stack = levels.to_reg(&mut s.b);
-                    match s.counter_ranges(n) {
-                        Some(r) => {
-                            let ctl = s.fast_ctl(stack);
-                            let args = s.fast_args(&r, ctl, pv);
-                            s.call_touching(Helper::counter_fast(kind), &args, &r);
-                        }
-                        None => {
-                            let gate = s.gate.to01(&mut s.b);
-                            let nv = s.iconst(I32, i64::from(n));
-                            let k = s.iconst(I32, i64::from(kind.code()));
-                            let args = [nv, k, stack, gate, pv];
-                            let st = s.call_helper(Helper::Counter, &args);
-                            s.error_if_status(st);
-                        }
-                    }
+                    let ranges = s.counter_ranges(n);
+                    let calls = (Helper::counter_fast(kind), Helper::Counter);
+                    s.call_stateful(ranges, calls, (n, kind.code()), stack, pv);
                 });
             }
             Op::ResetTimers { first, count } => {
