@@ -11,6 +11,8 @@ use std::path::{Path, PathBuf};
 use stljit_core::ir::{Address, Program};
 use stljit_core::layout::Layout;
 use stljit_core::{Area, CpuProfile, FatalCode, ProfileId, ScanStatus};
+use stljit_diff::engines::EngineKind;
+use stljit_jit::OptLevel;
 use stljit_runtime::sim::{
     FnObserver, Format, Outcome, ScanEvent, Simulation, Stimulus, TimeBase, Until, ValueKind,
     WatchSpec, parse_value,
@@ -27,31 +29,22 @@ pub(crate) type EngineEntry = (&'static str, EngineCtor);
 pub(crate) const ENGINES: &[EngineEntry] =
     &[("interp", interp), ("jit", jit), ("jit-split", jit_split)];
 
+fn build(kind: EngineKind, p: &Program) -> Result<Box<dyn Engine>, String> {
+    kind.build(p).map_err(|e| e.to_string())
+}
+
 fn interp(p: &Program) -> Result<Box<dyn Engine>, String> {
-    match stljit_interp::Interpreter::new(p) {
-        Ok(e) => Ok(Box::new(e)),
-        Err(e) => Err(e.to_string()),
-    }
+    build(EngineKind::Interp, p)
 }
 
 fn jit(p: &Program) -> Result<Box<dyn Engine>, String> {
-    match stljit_jit::JitProgram::compile(p, &stljit_jit::JitOptions::default()) {
-        Ok(e) => Ok(Box::new(e)),
-        Err(e) => Err(e.to_string()),
-    }
+    build(EngineKind::Jit(OptLevel::None), p)
 }
 
 /// The JIT with every basic block in a chunk function of its own: the cases are far shorter than
 /// the default chunk size, so this runs them through the chunk dispatcher as well.
 fn jit_split(p: &Program) -> Result<Box<dyn Engine>, String> {
-    let opts = stljit_jit::JitOptions {
-        chunk_ops: 1,
-        ..Default::default()
-    };
-    match stljit_jit::JitProgram::compile(p, &opts) {
-        Ok(e) => Ok(Box::new(e)),
-        Err(e) => Err(e.to_string()),
-    }
+    build(EngineKind::JitSplit(OptLevel::None), p)
 }
 
 /// One mismatch or error.
