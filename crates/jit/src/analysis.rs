@@ -18,6 +18,9 @@ use stljit_core::ir::{Op, Pou, Program};
 pub(crate) struct PouInfo {
     /// `leader[i]`: a basic block starts at op `i`.
     pub(crate) leader: Vec<bool>,
+    /// `cut[i]`: op `i` starts a block only because a long straight run was cut there
+    /// ([`MAX_BLOCK`]), so it is entered only by falling through from op `i - 1`.
+    pub(crate) cut: Vec<bool>,
     /// `gate_one[i]`: the gate is 1 whenever op `i` starts (true for unreachable ops).
     pub(crate) gate_one: Vec<bool>,
     /// Every return of the POU happens with gate 1.
@@ -77,7 +80,13 @@ pub(crate) fn check_targets(prog: &Program) -> Result<(), String> {
     Ok(())
 }
 
+#[cfg(test)]
 fn leaders(pou: &Pou) -> Vec<bool> {
+    leaders_and_cuts(pou).0
+}
+
+/// The block leaders, and which of them are only cuts of a long straight run.
+fn leaders_and_cuts(pou: &Pou) -> (Vec<bool>, Vec<bool>) {
     let n = pou.ops.len();
     let mut lead = vec![false; n + 1];
     if n > 0 {
@@ -98,22 +107,25 @@ fn leaders(pou: &Pou) -> Vec<bool> {
         }
     }
     // Very long straight-line code is cut into blocks of at most MAX_BLOCK ops: register
-    // allocation time grows faster than linearly with the values live across one block, and
-    // the cut costs only the write-back of the stack register and the dirty bytes.
+    // allocation time grows faster than linearly with the values live across one block. A
+    // cut is entered only by falling through, so the lowering carries the logic stack and the
+    // cached bytes across it unchanged and it costs no instruction.
+    let mut cut = vec![false; n];
     let mut since = 0;
-    for l in lead.iter_mut().take(n) {
+    for (l, c) in lead.iter_mut().zip(cut.iter_mut()) {
         if *l {
             since = 0;
         } else {
             since += 1;
             if since >= MAX_BLOCK {
                 *l = true;
+                *c = true;
                 since = 0;
             }
         }
     }
     lead.truncate(n);
-    lead
+    (lead, cut)
 }
 
 /// Longest run of ops lowered as one basic block.
@@ -238,8 +250,10 @@ pub(crate) fn analyse(prog: &Program) -> Vec<PouInfo> {
         .enumerate()
         .map(|(i, p)| {
             let (gate_one, _) = gate_flow(p, &exits);
+            let (leader, cut) = leaders_and_cuts(p);
             PouInfo {
-                leader: leaders(p),
+                leader,
+                cut,
                 gate_one,
                 exits_one: exits[i],
             }

@@ -501,12 +501,20 @@ impl<'e, 'f> Lower<'e, 'f> {
         for i in range {
             let op = &pou.ops[i];
             if let Some(&blk) = self.leaders.get(&i) {
-                if self.live {
-                    // (At op 0 this writes the initial stack into the register.)
-                    self.spill_state();
+                let cut = self.env.info[self.pou.index()].cut[i];
+                if self.live && cut {
+                    // Only this block falls into a cut: the logic stack, the gate and the
+                    // cached bytes carry over as they are.
                     self.b.ins().jump(blk, &[]);
+                    self.b.switch_to_block(blk);
+                } else {
+                    if self.live {
+                        // (At op 0 this writes the initial stack into the register.)
+                        self.spill_state();
+                        self.b.ins().jump(blk, &[]);
+                    }
+                    self.enter(blk, i);
                 }
-                self.enter(blk, i);
             }
             if !self.live {
                 // Unreachable ops after an unconditional transfer: lower them into a block
