@@ -281,6 +281,7 @@ fn lower_fn(
     l.b.seal_all_blocks();
     let fc = l.module.isa().frontend_config();
     l.b.finalize(fc);
+    crate::lower::value::settle_alignments(&mut ctx.func);
     match unsupported {
         Some(what) => Err(JitError::Unsupported(what)),
         None => Ok(()),
