@@ -146,6 +146,7 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
         let opts = |opt| JitOptions {
             opt,
             chunk_ops: args.chunk_ops,
+            ..JitOptions::default()
         };
         let compile = |opt| Ok(JitProgram::compile(program, &opts(opt))?);
         let (c_none, _) = fastest(args.compiles, || compile(OptLevel::None))?;

@@ -15,8 +15,10 @@ pub enum EngineKind {
     /// `stljit_jit::JitProgram` at an optimisation level.
     Jit(OptLevel),
     /// The JIT with every basic block of every POU in a chunk function of its own
-    /// ([`JitOptions::chunk_ops`] = 1): generated programs are far shorter than the default
-    /// chunk size, so this is what puts the chunk dispatcher under test.
+    /// ([`JitOptions::chunk_ops`] = 1) and 32-bit bit tests wherever they are valid
+    /// ([`JitOptions::hot_ops`] = 0): generated programs are far shorter than the default
+    /// chunk size and store too often for the default heuristic, so this is what puts the
+    /// chunk dispatcher and the wide loads under test.
     JitSplit(OptLevel),
 }
 
@@ -50,11 +52,15 @@ impl EngineKind {
                     message: e.to_string(),
                 }),
             EngineKind::Jit(opt) | EngineKind::JitSplit(opt) => {
-                let chunk_ops = match self {
-                    EngineKind::JitSplit(_) => 1,
-                    _ => JitOptions::default().chunk_ops,
+                let opts = match self {
+                    EngineKind::JitSplit(_) => JitOptions {
+                        opt,
+                        chunk_ops: 1,
+                        hot_ops: 0,
+                    },
+                    _ => JitOptions::at(opt),
                 };
-                JitProgram::compile(program, &JitOptions { opt, chunk_ops })
+                JitProgram::compile(program, &opts)
                     .map(|j| Box::new(j) as Box<dyn Engine>)
                     .map_err(|e| BuildError {
                         engine: self.name(),

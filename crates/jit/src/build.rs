@@ -181,6 +181,7 @@ pub(crate) fn build(
         info,
         op_counter,
         plans,
+        hot_ops: opts.hot_ops,
     };
     let mut ctx = module.make_context();
     let mut fbc = FunctionBuilderContext::new();
@@ -272,6 +273,11 @@ fn lower_fn(
         pred_reads: Vec::new(),
         free_box: false,
         chunk,
+        stores: crate::lower::cache::StoreLog::new(
+            env.layout.size,
+            env.layout.area_size(stljit_core::Area::L),
+            env.hot_ops,
+        ),
     };
     match chunk {
         None => l.lower_pou(),

@@ -61,16 +61,27 @@ pub struct JitOptions {
     /// The result is the same either way; the split only bounds the size of each Cranelift
     /// function, whose compile time grows faster than linearly.
     pub chunk_ops: usize,
+    /// How many ops after a store a bit test keeps reading single bytes instead of a 32-bit
+    /// load that covers the stored byte (see `docs/performance.md`, "wide loads"). Only speed
+    /// depends on it; 0 makes almost every bit test and bit write take the wide path, which
+    /// the differential tests use to cover it with short programs.
+    pub hot_ops: usize,
 }
 
 /// The default [`JitOptions::chunk_ops`].
 pub const DEFAULT_CHUNK_OPS: usize = 2048;
+
+/// The default [`JitOptions::hot_ops`]: on the Zen 3 development machine 64 ops (about 200
+/// instructions) left no more store-to-load interlocks than byte-only code; 32 left ~930 per
+/// `bitlogic_10k` scan, 16 ~1,700.
+pub const DEFAULT_HOT_OPS: usize = 64;
 
 impl Default for JitOptions {
     fn default() -> Self {
         JitOptions {
             opt: OptLevel::None,
             chunk_ops: DEFAULT_CHUNK_OPS,
+            hot_ops: DEFAULT_HOT_OPS,
         }
     }
 }

@@ -144,6 +144,18 @@ fn long_program_split_into_chunks() {
     check(&p, &stimulus(5, 12));
 }
 
+/// The bit-logic benchmark with the default options: long runs without stores, where bit tests
+/// and bit writes take 32-bit loads, next to bytes stored a few ops earlier, where they do not.
+#[test]
+fn long_bit_logic_program() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../benches/programs/bitlogic_10k.stl"
+    );
+    let text = std::fs::read_to_string(path).expect("benchmark corpus is checked in");
+    check(&stl(&text), &stimulus(7, 12));
+}
+
 /// Loops whose body and exit lie in different chunks: FOR/NEXT, a backward JMP counted by the
 /// loop budget, and CSCRE jumping to the SCRE of its segment (run with every block split).
 #[test]

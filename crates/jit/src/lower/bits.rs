@@ -25,12 +25,20 @@ impl Lower<'_, '_> {
     /// Reads a bit as a lazy boolean.
     pub(crate) fn read_bit(&mut self, bit: BitLoc) -> B {
         let a = self.bit_byte(bit);
-        let v = self.byte(a);
-        B::Bit { v, pos: bit.bit }
+        let (v, at) = self.test_byte(a);
+        B::Bit {
+            v,
+            pos: at + bit.bit,
+        }
     }
 
     /// Writes a boolean into bit `pos` of the byte at `a`.
     pub(crate) fn write_bit_at(&mut self, a: Addr, pos: u8, val: B) {
+        if let B::Bit { v, pos: from } = val
+            && self.write_bit_folded(a, pos, v, from)
+        {
+            return;
+        }
         let old = self.byte(a);
         let mask = 1i64 << pos;
         let new = match val {
@@ -51,6 +59,30 @@ impl Lower<'_, '_> {
             }
         };
         self.set_byte(a, new);
+    }
+
+    /// Writes bit `from` of `v` into bit `pos` of the byte at `a` as `old XOR ((old XOR v) AND
+    /// m)`, both `old`s being 32-bit loads from `a` that x86 folds into the two `xor`s: five
+    /// instructions where loading the byte, clearing, masking and merging take six. Only where
+    /// the byte is not cached and the four bytes from `a` are cold (see [`StoreLog`]); false
+    /// (nothing emitted) otherwise. The second load goes through an opaque copy of the image
+    /// pointer so that Cranelift does not merge the two loads into one register operand.
+    ///
+    /// [`StoreLog`]: super::cache::StoreLog
+    fn write_bit_folded(&mut self, a: Addr, pos: u8, v: Value, from: u8) -> bool {
+        if a.local || self.cache.get(a).is_some() || !self.cold_window(a) {
+            return false;
+        }
+        let s = super::value::align(&mut self.b, v, from, pos);
+        let first = self.load_window(a);
+        let diff = self.b.ins().bxor(s, first);
+        let diff = self.b.ins().band_imm_s(diff, 1i64 << pos);
+        let pair = self.b.ins().iconcat(self.image, self.image);
+        let (image, _) = self.b.ins().isplit(pair);
+        let second = self.b.ins().load(I32, super::mf(), image, Self::off32(a));
+        let new = self.b.ins().bxor(diff, second);
+        self.store_low_byte(a, new);
+        true
     }
 
     /// Evaluates a contact (compares may take a fatal exit).
@@ -339,20 +371,40 @@ impl Lower<'_, '_> {
     /// Sets (or clears) the bits of `mask` where `spread` (PF as all ones or zero; `None` for
     /// PF = 1) holds, leaves them elsewhere.
     fn cond_write_mask(&mut self, a: Addr, mask: i64, spread: Option<Value>, value: bool) {
-        let old = self.byte(a);
-        let new = match spread {
-            None if value => self.b.ins().bor_imm_s(old, mask),
-            None => self.b.ins().band_imm_s(old, !mask & 0xFF),
-            Some(sp) => {
-                let m = self.b.ins().band_imm_s(sp, mask);
-                if value {
-                    self.b.ins().bor(old, m)
-                } else {
-                    self.b.ins().band_not(old, m)
-                }
-            }
+        let Some(sp) = spread else {
+            let old = self.byte(a);
+            let new = if value {
+                self.b.ins().bor_imm_s(old, mask)
+            } else {
+                self.b.ins().band_imm_s(old, !mask & 0xFF)
+            };
+            self.set_byte(a, new);
+            return;
         };
-        self.set_byte(a, new);
+        let m = self.b.ins().band_imm_s(sp, mask);
+        self.merge_mask(a, m, value);
+    }
+
+    /// Sets (`value`) or clears the bits set in `m` (an `i32` that is zero outside the byte's
+    /// bits) in the byte at `a`. The old byte is a folded 32-bit load where the four bytes
+    /// from `a` are cold and uncached (the `or`/`andn` takes it as its memory operand).
+    fn merge_mask(&mut self, a: Addr, m: Value, value: bool) {
+        let folded = self.cache.get(a).is_none() && self.cold_window(a);
+        let old = if folded {
+            self.load_window(a)
+        } else {
+            self.byte(a)
+        };
+        let new = if value {
+            self.b.ins().bor(old, m)
+        } else {
+            self.b.ins().band_not(old, m)
+        };
+        if folded {
+            self.store_low_byte(a, new);
+        } else {
+            self.set_byte(a, new);
+        }
     }
 
     /// Runs `f` only where `pf` holds (a branch unless `pf` is constant); the cache survives.

@@ -134,3 +134,72 @@ impl Cache {
         }
     }
 }
+
+/// Which image bytes were stored recently, so that a bit test reads four bytes at once only
+/// where that load cannot overlap a store still in flight.
+///
+/// x86 folds a 32-bit load into the `and`/`or`/`andn` that consumes it, which saves both the
+/// `movzx` of a byte contact and its alignment shift; Cranelift folds no narrower load. But a
+/// wide load over a byte stored shortly before stalls until the store has left the store
+/// buffer (a store-to-load interlock), which made 32-bit contacts everywhere 1.8x slower than
+/// byte contacts. The log holds the op of the last store to each byte, and an op from which
+/// every byte counts as stored: a helper call, a pointer write, or the entry of a block that
+/// is reached by a jump or starts a function, where earlier stores are not visible. A store
+/// counts for [`JitOptions::hot_ops`](crate::JitOptions::hot_ops) ops.
+#[derive(Clone, Debug)]
+pub(crate) struct StoreLog {
+    /// Op of the last store, per image byte and per byte of the L frame.
+    image: Vec<usize>,
+    local: Vec<usize>,
+    all: usize,
+    hot_ops: usize,
+}
+
+impl StoreLog {
+    /// A log for an image of `image_size` bytes and an L frame of `local_size`, whose stores
+    /// count for `hot_ops` ops.
+    pub(crate) fn new(image_size: u32, local_size: u32, hot_ops: usize) -> StoreLog {
+        StoreLog {
+            image: vec![0; image_size as usize],
+            local: vec![0; local_size as usize],
+            all: 0,
+            hot_ops,
+        }
+    }
+
+    fn slot(&mut self, a: Addr) -> Option<&mut usize> {
+        let area = if a.local {
+            &mut self.local
+        } else {
+            &mut self.image
+        };
+        area.get_mut(a.off as usize)
+    }
+
+    /// Records a store of `len` bytes from `a` at op `now`.
+    pub(crate) fn stored(&mut self, a: Addr, len: u32, now: usize) {
+        for i in 0..len {
+            if let Some(at) = self.slot(a.plus(i)) {
+                *at = now;
+            }
+        }
+    }
+
+    /// Records that any byte may have been stored at op `now` (older per-byte entries then
+    /// no longer matter: they are older than this one).
+    pub(crate) fn stored_anywhere(&mut self, now: usize) {
+        self.all = now;
+    }
+
+    /// No byte of the `len` from `a` was stored within the last `hot_ops` ops before `now`
+    /// (bytes outside the image or frame count as just stored).
+    pub(crate) fn is_cold(&self, a: Addr, len: u32, now: usize) -> bool {
+        let long_ago = |at: usize| now.saturating_sub(at) > self.hot_ops;
+        let area = if a.local { &self.local } else { &self.image };
+        long_ago(self.all)
+            && (0..len).all(|i| {
+                area.get(a.plus(i).off as usize)
+                    .is_some_and(|&at| long_ago(at))
+            })
+    }
+}

@@ -65,6 +65,7 @@ impl Lower<'_, '_> {
         }
         let d = self.cache.take_dirty_in(a, n);
         for (da, v) in d {
+            self.stores.stored(da, 1, self.cache.now);
             let base = self.base(da);
             self.b.ins().istore8(mf(), v, base, da.off as i32);
         }
@@ -137,6 +138,7 @@ impl Lower<'_, '_> {
                     let m = self.b.ins().band_imm_s(s, 0xFF);
                     self.cache.put_clean(a.plus(i), m);
                 }
+                self.stores.stored(a, n, self.cache.now);
                 let base = self.base(a);
                 self.store_be(base, a.off as i32, width, v);
             }

@@ -23,7 +23,7 @@ pub(crate) mod value;
 
 use crate::analysis::{ChunkPlan, PouInfo};
 use crate::helpers::{Helper, HelperIds};
-use cache::{Addr, Cache};
+use cache::{Addr, Cache, StoreLog};
 use cranelift_codegen::ir::{
     Block, FuncRef, InstBuilder, MemFlagsData, SourceLoc, Type, Value,
     types::{I16, I32, I64},
@@ -50,6 +50,8 @@ pub(crate) struct Env<'a> {
     pub(crate) op_counter: Option<i64>,
     /// Per POU, how it is split into chunk functions (`None`: one function).
     pub(crate) plans: Vec<Option<ChunkPlan>>,
+    /// [`crate::JitOptions::hot_ops`].
+    pub(crate) hot_ops: usize,
 }
 
 /// Memory flags for every image access: the image is never null and every direct offset is in
@@ -93,6 +95,8 @@ pub(crate) struct Lower<'e, 'f> {
     pub(crate) free_box: bool,
     /// Lowering one chunk of a split POU: its index in the POU's [`ChunkPlan`].
     pub(crate) chunk: Option<usize>,
+    /// Recent stores, for [`Lower::test_byte`].
+    pub(crate) stores: StoreLog,
 }
 
 impl<'e, 'f> Lower<'e, 'f> {
@@ -130,10 +134,64 @@ impl<'e, 'f> Lower<'e, 'f> {
         v
     }
 
+    /// A byte for a bit test, as a value and the bit where the byte's bit 0 sits in it: the
+    /// cached byte (at 0), or else a plain 32-bit load of four bytes around it that were not
+    /// stored recently (see [`StoreLog`]), which x86 folds into the consuming `and`/`or`/`andn`
+    /// (little-endian: the byte `k` bytes into the load is at bit `8 * k`; the other bytes
+    /// are garbage to a [`B`]). The aligned word comes first, so that tests of neighbouring
+    /// bytes share one load; no load crosses a 16-byte boundary (the image is allocated at
+    /// least 16-byte aligned), which would cost a split access. Loads are not cached: the
+    /// cache holds clean bytes.
+    pub(crate) fn test_byte(&mut self, a: Addr) -> (Value, u8) {
+        if self.cache.get(a).is_none() {
+            let aligned = a.off & !3;
+            let starts = std::iter::once(aligned)
+                .chain((a.off.saturating_sub(3)..=a.off).filter(|&s| s != aligned));
+            for start in starts {
+                let w = Addr {
+                    local: a.local,
+                    off: start,
+                };
+                if self.cold_window(w) {
+                    return (self.load_window(w), (8 * (a.off - start)) as u8);
+                }
+            }
+        }
+        (self.byte(a), 0)
+    }
+
+    /// Whether a 32-bit load of the four bytes from `w` stays inside the image (or L frame),
+    /// does not cross a 16-byte boundary (the image is allocated at least 16-byte aligned, so
+    /// it never splits across cache lines) and overlaps no recent store (see [`StoreLog`]).
+    pub(crate) fn cold_window(&self, w: Addr) -> bool {
+        let room = if w.local {
+            self.env.layout.area_size(Area::L)
+        } else {
+            self.env.layout.size
+        };
+        w.off % 16 <= 12 && w.off + 4 <= room && self.stores.is_cold(w, 4, self.cache.now)
+    }
+
+    /// A plain 32-bit load of the four bytes from `w` (foldable into the instruction that
+    /// consumes it; see [`Lower::test_byte`]).
+    pub(crate) fn load_window(&mut self, w: Addr) -> Value {
+        let base = self.base(w);
+        self.b.ins().load(I32, mf(), base, Self::off32(w))
+    }
+
+    /// Stores the low byte of `v` (whose upper bits may be garbage, so it is not cached).
+    pub(crate) fn store_low_byte(&mut self, a: Addr, v: Value) {
+        self.stores.stored(a, 1, self.cache.now);
+        self.cache.forget(a, 1);
+        let base = self.base(a);
+        self.b.ins().istore8(mf(), v, base, Self::off32(a));
+    }
+
     /// Writes a byte (`v` must have its upper 24 bits zero). The store is immediate and the
     /// value stays cached: keeping writes in registers until the block ends made every value
     /// of the block live to its end, which the register allocator paid for with spills.
     pub(crate) fn set_byte(&mut self, a: Addr, v: Value) {
+        self.stores.stored(a, 1, self.cache.now);
         let base = self.base(a);
         self.b.ins().istore8(mf(), v, base, Self::off32(a));
         self.cache.put_clean(a, v);
@@ -155,6 +213,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// Stores the given dirty entries.
     fn store_entries(&mut self, entries: Vec<(Addr, Value)>) {
         for (a, v) in entries {
+            self.stores.stored(a, 1, self.cache.now);
             let base = self.base(a);
             self.b.ins().istore8(mf(), v, base, Self::off32(a));
         }
@@ -170,6 +229,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     pub(crate) fn flush_forget(&mut self) {
         self.flush();
         self.cache.clear();
+        self.stores.stored_anywhere(self.cache.now);
     }
 
     /// Loads `ty` in native byte order at a static address (scheduler fields).
@@ -185,6 +245,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     pub(crate) fn store_ne(&mut self, a: Addr, v: Value) {
         let ty = self.b.func.dfg.value_type(v);
         self.cache.forget(a, ty.bytes());
+        self.stores.stored(a, ty.bytes(), self.cache.now);
         let base = self.base(a);
         self.b.ins().store(mf(), v, base, Self::off32(a));
     }
@@ -231,6 +292,7 @@ impl<'e, 'f> Lower<'e, 'f> {
         let r = self.call_pure(h, args);
         for &(a, n) in ranges {
             self.cache.forget(a, n);
+            self.stores.stored(a, n, self.cache.now);
         }
         r
     }
@@ -350,6 +412,8 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// Starts lowering in `block` with state reloaded from the image and the stack register.
     pub(crate) fn enter(&mut self, block: Block, at_op: usize) {
+        // Reached by a jump or as a function entry: earlier stores are not in the log.
+        self.stores.stored_anywhere(at_op);
         self.b.switch_to_block(block);
         self.cache.clear();
         let st = self.b.use_var(self.st);

@@ -207,6 +207,17 @@ fn is_andn(b: &FunctionBuilder<'_>, v: Value) -> bool {
         })
 }
 
+/// Whether `v` is a plain load that the combining instruction can take as its memory operand:
+/// `and`/`or` take either operand, `andn` only the one that is not complemented.
+fn foldable(b: &FunctionBuilder<'_>, v: Value, neg: bool, other_neg: bool) -> bool {
+    let dfg = &b.func.dfg;
+    (neg == other_neg || !neg)
+        && dfg
+            .value_def(v)
+            .inst()
+            .is_some_and(|i| dfg.insts[i].opcode() == Opcode::Load)
+}
+
 /// `x AND y` for two non-constant booleans: one instruction (plus an alignment shift of `y`).
 fn and_parts(b: &mut FunctionBuilder<'_>, x: Parts, y: Parts) -> B {
     let ((v, pos, nx), (w, q, ny)) = (x, y);
@@ -218,7 +229,13 @@ fn and_parts(b: &mut FunctionBuilder<'_>, x: Parts, y: Parts) -> B {
             B::K(false)
         };
     }
-    let w = align(b, w, q, pos);
+    // x86 folds a 32-bit load (a word contact, see `Lower::test_byte`) into the `and`, `or` or
+    // `andn` that consumes it unshifted and not complemented, so the other operand moves.
+    let (v, w, pos) = if foldable(b, w, ny, nx) && !foldable(b, v, nx, ny) {
+        (align(b, v, pos, q), w, q)
+    } else {
+        (v, align(b, w, q, pos), pos)
+    };
     match (nx, ny) {
         (false, false) => mk(b.ins().band(v, w), pos, false),
         // v AND NOT w = NOT (NOT v OR w): see `is_andn`.

@@ -49,7 +49,8 @@ pub(crate) fn check_with(program: &Program, stim: &Stimulus, opts: RunOptions) {
 }
 
 /// Every JIT configuration checked: both optimisation levels, and each basic block in a chunk
-/// function of its own (the test programs are shorter than the default chunk size).
+/// function of its own with 32-bit bit tests wherever valid (the test programs are shorter
+/// than the default chunk size and store too often for the default wide-load heuristic).
 fn jit_options() -> [JitOptions; 3] {
     [
         JitOptions::at(OptLevel::None),
@@ -57,6 +58,7 @@ fn jit_options() -> [JitOptions; 3] {
         JitOptions {
             opt: OptLevel::None,
             chunk_ops: 1,
+            hot_ops: 0,
         },
     ]
 }
