@@ -278,7 +278,14 @@ impl Lower<'_, '_> {
             self.stack.set_top(B::K(false));
             return;
         }
-        let v = self.pf();
+        // The power flow as a clean 0/1 first: the edge byte stores it, and at bit 0, where
+        // the edge byte and the first-scan flag are, it needs no further alignment.
+        let pf = self.pf();
+        let v01 = pf.to01(&mut self.b);
+        let v = match pf {
+            B::K(_) => pf,
+            _ => B::Bit { v: v01, pos: 0 },
+        };
         let at = Addr::img(self.env.layout.edges + u32::from(slot));
         let mem = self.byte(at);
         let memb = B::Bit { v: mem, pos: 0 };
@@ -290,7 +297,6 @@ impl Lower<'_, '_> {
         let fa = self.sched(Sched::FIRST_SCAN);
         let first = self.byte(fa);
         let out = out.and_not(&mut self.b, B::Bit { v: first, pos: 0 });
-        let v01 = v.to01(&mut self.b);
         self.set_byte(at, v01);
         self.stack.set_top(out);
     }
@@ -340,6 +346,19 @@ impl Lower<'_, '_> {
                         Some((la, m)) if *la == a => *m |= 1 << pos,
                         _ => masks.push((a, 1 << pos)),
                     }
+                }
+                if let [(a, m)] = masks[..]
+                    && m.count_ones() == 1
+                    && !matches!(pf, B::K(_))
+                {
+                    // One bit: PF aligned to it and isolated, no spread.
+                    let t = pf.at_bit(&mut self.b, m.trailing_zeros() as u8);
+                    self.merge_mask(a, t, value);
+                    if phys {
+                        let pa = Addr::img(out + (a.off - base_q));
+                        self.merge_mask(pa, t, value);
+                    }
+                    return;
                 }
                 // All ones where PF holds, zero elsewhere.
                 let spread = match pf {
