@@ -25,6 +25,57 @@ pub(crate) struct PouInfo {
     pub(crate) gate_one: Vec<bool>,
     /// Every return of the POU happens with gate 1.
     pub(crate) exits_one: bool,
+    /// `stack_live[i]`: bit `k` set if logic-stack level `k` on entry to op `i` (or the end,
+    /// `i = ops.len()`) may still be read; the others are dead and need not be kept.
+    pub(crate) stack_live: Vec<u32>,
+}
+
+/// Which logic-stack levels are live on entry to every op, by backward dataflow to a fixed
+/// point over the op graph. A level is live if some path reads it (as the top: a contact's
+/// combination, a coil, a box's power flow; or after pops: ALD, LRD, LPP, LDS) before it is
+/// pushed off the bottom or overwritten. Ops not modelled here keep every level live, and
+/// every POU ends with nothing live (a subroutine's stack is its own).
+fn stack_liveness(pou: &Pou, depth: u8) -> Vec<u32> {
+    let n = pou.ops.len();
+    let full: u32 = if depth >= 32 {
+        u32::MAX
+    } else {
+        (1u32 << depth) - 1
+    };
+    let mut live = vec![0u32; n + 1];
+    let mut succ = Vec::new();
+    let mut changed = true;
+    while changed {
+        changed = false;
+        for i in (0..n).rev() {
+            successors(pou, i, &mut succ);
+            let out = succ.iter().fold(0, |m, &s| m | live[s.min(n)]);
+            let top = out & 1;
+            let new = full
+                & match &pou.ops[i] {
+                    // Push: the levels move down, the bottom one falls off.
+                    Op::Load(_) => out >> 1,
+                    Op::And(_) | Op::Or(_) | Op::Not | Op::AndEno | Op::Label(_) | Op::Nop => out,
+                    // The top and the level below combine; the rest move up.
+                    Op::AndBlock | Op::OrBlock => top | (top << 1) | ((out & !1) << 1),
+                    Op::Dup => (out >> 1) | top,
+                    Op::ReadSecond => (out & !1) | (top << 1),
+                    Op::Pop => out << 1,
+                    Op::Pick(k) if u32::from(*k) < u32::from(depth) => (out >> 1) | (top << k),
+                    Op::Pick(_) => out >> 1,
+                    // Read the power flow, leave the stack as it is.
+                    Op::Edge { .. } | Op::Assign { .. } | Op::SetRange { .. } | Op::Jump(_) => {
+                        out | 1
+                    }
+                    _ => full,
+                };
+            if new != live[i] {
+                live[i] = new;
+                changed = true;
+            }
+        }
+    }
+    live
 }
 
 /// Successor op indices of op `i` (`n` = the end of the POU, an exit).
@@ -256,6 +307,7 @@ pub(crate) fn analyse(prog: &Program) -> Vec<PouInfo> {
                 cut,
                 gate_one,
                 exits_one: exits[i],
+                stack_live: stack_liveness(p, prog.logic_stack_depth),
             }
         })
         .collect()
@@ -269,6 +321,44 @@ mod tests {
         let c = stljit_syntax::compile_str("t.stl", text, stljit_core::ProfileId::A5);
         let prog = c.program.expect("compiles");
         prog.pous[0].clone()
+    }
+
+    #[test]
+    fn stack_levels_are_live_until_read_or_pushed_off() {
+        // ops: 0 LD, 1 LD, 2 LPS, 3 JMP 1, 4 LBL 1, 5 LRD, 6 = , 7 LPP, 8 ALD, 9 = , 10 LD,
+        //      11 = ; depth 3 (a small stack makes the bottom drop visible)
+        let p = pou(
+            "LD I0.0\nLD I0.1\nLPS\nJMP 1\nLBL 1\nLRD\n= Q0.0\nLPP\nALD\n= Q0.1\n\
+                     LD I0.2\n= Q0.2\n",
+        );
+        let live = stack_liveness(&p, 3);
+        // After the last coil nothing is read again; the final LD's push needs nothing.
+        assert_eq!(live[12], 0);
+        assert_eq!(live[11], 0b001);
+        assert_eq!(live[10], 0b000);
+        // `= Q0.1` reads the top only.
+        assert_eq!(live[9], 0b001);
+        // ALD reads the top two; LPP drops the top and moves the levels up.
+        assert_eq!(live[8], 0b011);
+        assert_eq!(live[7], 0b110);
+        // The coil reads the top; LRD replaces the top by level 1, so only levels 1 and 2 are
+        // live before it, at the label and before the jump (which also reads its condition).
+        assert_eq!(live[6], 0b111);
+        assert_eq!(live[5], 0b110);
+        assert_eq!(live[4], 0b110);
+        assert_eq!(live[3], 0b111);
+        // LPS copies the top; the two LDs push it down, the first LD's push needs nothing.
+        assert_eq!(live[2], 0b011);
+        assert_eq!(live[1], 0b001);
+        assert_eq!(live[0], 0b000);
+    }
+
+    #[test]
+    fn unmodelled_ops_keep_every_level() {
+        let p = pou("LD I0.0\nMOVW 1, VW0\nLD I0.1\n= Q0.0\n");
+        let live = stack_liveness(&p, 4);
+        assert_eq!(live[1], 0b1111);
+        assert_eq!(live[0], 0b0111);
     }
 
     #[test]

@@ -144,6 +144,21 @@ fn long_program_split_into_chunks() {
     check(&p, &stimulus(5, 12));
 }
 
+/// Logic-stack levels pushed before a jump and read after its label (LRD, LPP, ALD, OLD, LDS),
+/// with the jump taken and not taken: the stack register carries exactly the live levels.
+#[test]
+fn stack_levels_across_jumps() {
+    let p = stl(
+        "LD I0.0\nLD I0.1\nLD I0.2\nLPS\nA I0.3\nJMP 1\nLBL 1\nLRD\n= Q0.0\nLPP\n= Q0.1\n\
+         ALD\n= Q0.2\nLD I0.4\nLD I0.5\nLD I0.6\nLD I0.7\nJMP 2\nLBL 2\nLDS 3\n= Q0.3\nOLD\n\
+         OLD\n= Q0.4\nLD I1.0\nJMP 3\nLPS\nLBL 3\nLPP\n= Q0.5\n\
+         LD I1.1\nLPS\nAN I1.2\nJMP 4\nLBL 4\nLRD\n= Q0.6\n",
+    );
+    for seed in 0..6 {
+        check(&p, &stimulus(seed, 40));
+    }
+}
+
 /// The bit-logic benchmark with the default options: long runs without stores, where bit tests
 /// and bit writes take 32-bit loads, next to bytes stored a few ops earlier, where they do not.
 #[test]

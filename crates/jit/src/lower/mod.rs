@@ -393,18 +393,29 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     // ---- blocks ------------------------------------------------------------------------------
 
-    /// Writes the stack register and every dirty byte back (end of a block).
-    pub(crate) fn spill_state(&mut self) {
+    /// Writes the stack register and every dirty byte back (end of a block that continues at
+    /// op `target`). Levels that are dead at `target` ([`crate::analysis::PouInfo`]'s
+    /// `stack_live`) are packed as 0: nothing reads them, and most of a long program's stack
+    /// is old rungs' results that later pushes drop off the bottom.
+    pub(crate) fn spill_state(&mut self, target: usize) {
+        let live = self.env.info[self.pou.index()]
+            .stack_live
+            .get(target)
+            .copied()
+            .unwrap_or(u32::MAX);
+        let stack = self.stack.keeping(live);
         let unchanged = self.entry_st.is_some_and(|st| {
-            self.stack.lv.iter().enumerate().all(|(i, l)| {
-                *l == B::Bit {
-                    v: st,
-                    pos: i as u8,
-                }
+            stack.lv.iter().enumerate().all(|(i, l)| {
+                live & (1 << i) == 0
+                    || *l
+                        == B::Bit {
+                            v: st,
+                            pos: i as u8,
+                        }
             })
         });
         if !unchanged {
-            let r = self.stack.to_reg(&mut self.b);
+            let r = stack.to_reg(&mut self.b);
             self.b.def_var(self.st, r);
         }
         self.flush();
@@ -442,7 +453,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// Ends the current block with a jump to the leader at op `target`.
     pub(crate) fn jump_to_op(&mut self, target: usize) {
         if let Some(&blk) = self.leaders.get(&target) {
-            self.spill_state();
+            self.spill_state(target);
             self.b.ins().jump(blk, &[]);
         } else if let Some(k) = self.chunk {
             self.exit_chunk_to(k, target);
@@ -461,7 +472,7 @@ impl<'e, 'f> Lower<'e, 'f> {
             // The plan lists every cross-chunk target; anything else is a bug in this crate.
             self.unsupported = Some(format!("chunk {k}: unplanned exit to op {target}"));
         }
-        self.spill_state();
+        self.spill_state(target);
         let st = self.b.use_var(self.st);
         let st = self.b.ins().uextend(I64, st);
         let r = self.b.ins().bor_imm_s(st, ((target as i64) + 1) << 32);
@@ -550,7 +561,7 @@ impl<'e, 'f> Lower<'e, 'f> {
             return;
         };
         if self.live {
-            self.spill_state();
+            self.spill_state(end);
             self.b.ins().jump(end_blk, &[]);
         }
         self.enter(end_blk, end);
@@ -574,7 +585,7 @@ impl<'e, 'f> Lower<'e, 'f> {
                 } else {
                     if self.live {
                         // (At op 0 this writes the initial stack into the register.)
-                        self.spill_state();
+                        self.spill_state(i);
                         self.b.ins().jump(blk, &[]);
                     }
                     self.enter(blk, i);

@@ -313,6 +313,17 @@ impl Stack {
         t
     }
 
+    /// The stack with every level whose bit is clear in `live` replaced by 0.
+    pub(crate) fn keeping(&self, live: u32) -> Stack {
+        let lv = self
+            .lv
+            .iter()
+            .enumerate()
+            .map(|(i, &l)| if live & (1 << i) != 0 { l } else { B::K(false) })
+            .collect();
+        Stack { lv }
+    }
+
     /// Packs the levels into one `i32` register value (bit i = level i). Levels that came from
     /// the same source value with the same bit distance share one shift and one mask, so an
     /// unchanged or uniformly pushed stack costs two or three instructions.
