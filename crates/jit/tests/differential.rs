@@ -134,12 +134,7 @@ fn call_nesting_limit() {
 /// with the default options (several chunk functions and a dispatcher) and split at every block.
 #[test]
 fn long_program_split_into_chunks() {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../benches/programs/mixed_10k.stl"
-    );
-    let text = std::fs::read_to_string(path).expect("benchmark corpus is checked in");
-    let p = stl(&text);
+    let p = benchmark("mixed_10k.stl");
     assert!(p.pous[0].ops.len() > 2 * stljit_jit::DEFAULT_CHUNK_OPS);
     check(&p, &stimulus(5, 12));
 }
@@ -163,12 +158,17 @@ fn stack_levels_across_jumps() {
 /// and bit writes take 32-bit loads, next to bytes stored a few ops earlier, where they do not.
 #[test]
 fn long_bit_logic_program() {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../benches/programs/bitlogic_10k.stl"
+    check(&benchmark("bitlogic_10k.stl"), &stimulus(7, 12));
+}
+
+/// A program of the benchmark corpus (`benches/programs/`).
+fn benchmark(name: &str) -> stljit_core::ir::Program {
+    let path = format!(
+        "{}/../../benches/programs/{name}",
+        env!("CARGO_MANIFEST_DIR")
     );
     let text = std::fs::read_to_string(path).expect("benchmark corpus is checked in");
-    check(&stl(&text), &stimulus(7, 12));
+    stl(&text)
 }
 
 /// Loops whose body and exit lie in different chunks: FOR/NEXT, a backward JMP counted by the
