@@ -1,11 +1,14 @@
 //! The per-block cache of image bytes held in SSA values.
 //!
 //! Bit logic reads and writes single bits, which on a byte-addressed image means a load, a
-//! shift, a mask and a read-modify-write store per instruction. Instead each byte is loaded at
-//! most once per basic block, every bit write produces a new SSA value for its byte, and the
-//! dirty bytes are stored once: at the end of the block, before any access whose address is
-//! only known at run time, before every helper call and before every exit. The cache maps a
-//! static address (image-relative, or relative to the current POU's L frame) to its value.
+//! shift, a mask and a read-modify-write store per instruction. A byte read or written within
+//! the last few ops is reused from its SSA value instead of loaded again; every write is stored
+//! at once (keeping writes in registers to the block's end cost spills), so the cache holds
+//! clean values. (The dirty-entry machinery, which stored deferred writes at the end of the
+//! block, before accesses whose address is only known at run time, before helper calls and
+//! before exits, is still in place but no lowering creates a dirty entry any more.) The cache maps a static address (image-relative, or relative to the current
+//! POU's L frame) to its value. [`StoreLog`] remembers where stores happened, for the wide
+//! loads of bit tests.
 //!
 //! Inside one op that branches (a box that may fail, a conditional call) the arms start from a
 //! clean copy of the cache and [`Cache::meet`] keeps only the entries no arm changed.

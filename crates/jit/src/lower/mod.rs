@@ -7,9 +7,10 @@
 //! from many places is compiled once.
 //!
 //! Straight-line code between two block leaders (see [`crate::analysis`]) is lowered with the
-//! logic stack as compile-time booleans ([`value::Stack`]) and the image bytes it touches in SSA
-//! values ([`cache::Cache`]); both are written back only at block boundaries, helper calls and
-//! exits. The submodules lower the instruction groups: bit logic, boxes, control flow, memory
+//! logic stack as compile-time booleans ([`value::Stack`]), packed into the stack register (its
+//! live levels only) where a block ends, and with recently read or written image bytes reused
+//! from SSA values ([`cache::Cache`]); writes are stored at once. Both carry across the cuts of
+//! long straight runs, which are entered only by falling through. The submodules lower the instruction groups: bit logic, boxes, control flow, memory
 //! operands and the stateful instructions that call the runtime.
 
 pub(crate) mod bits;
@@ -139,9 +140,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// stored recently (see [`StoreLog`]), which x86 folds into the consuming `and`/`or`/`andn`
     /// (little-endian: the byte `k` bytes into the load is at bit `8 * k`; the other bytes
     /// are garbage to a [`B`]). The aligned word comes first, so that tests of neighbouring
-    /// bytes share one load; no load crosses a 16-byte boundary (the image is allocated at
-    /// least 16-byte aligned), which would cost a split access. Loads are not cached: the
-    /// cache holds clean bytes.
+    /// bytes share one load. Loads are not cached: the cache holds clean bytes.
     pub(crate) fn test_byte(&mut self, a: Addr) -> (Value, u8) {
         if self.cache.get(a).is_none() {
             let aligned = a.off & !3;
@@ -161,8 +160,9 @@ impl<'e, 'f> Lower<'e, 'f> {
     }
 
     /// Whether a 32-bit load of the four bytes from `w` stays inside the image (or L frame),
-    /// does not cross a 16-byte boundary (the image is allocated at least 16-byte aligned, so
-    /// it never splits across cache lines) and overlaps no recent store (see [`StoreLog`]).
+    /// does not cross a 16-byte boundary of the image and overlaps no recent store (see
+    /// [`StoreLog`]). The system allocator aligns the image buffer to 16 bytes on the hosts we
+    /// run on, so such a load never splits across cache lines; elsewhere it is only slower.
     pub(crate) fn cold_window(&self, w: Addr) -> bool {
         let room = if w.local {
             self.env.layout.area_size(Area::L)

@@ -218,7 +218,8 @@ fn foldable(b: &FunctionBuilder<'_>, v: Value, neg: bool, other_neg: bool) -> bo
             .is_some_and(|i| dfg.insts[i].opcode() == Opcode::Load)
 }
 
-/// `x AND y` for two non-constant booleans: one instruction (plus an alignment shift of `y`).
+/// `x AND y` for two non-constant booleans: one instruction, plus an alignment shift of `y`,
+/// or of `x` where only `y` is a load that the instruction can fold.
 fn and_parts(b: &mut FunctionBuilder<'_>, x: Parts, y: Parts) -> B {
     let ((v, pos, nx), (w, q, ny)) = (x, y);
     if v == w && pos == q {
