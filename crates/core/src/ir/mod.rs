@@ -1,0 +1,222 @@
+//! The dialect-neutral IR.
+//!
+//! A [`Program`] is a list of POUs (main program first, then subroutines), each a flat list of
+//! [`Op`]s with a parallel list of source locations. Control flow is explicit and resolved: jumps
+//! name a [`LabelId`] whose position is in [`Pou::labels`], calls name a [`PouId`], FOR/NEXT and SCR
+//! ops name their partner's [`OpIdx`]. Every operand is resolved to an [`Area`] and a byte offset
+//! (checked against the profile at compile time) or to a constant or a pointer read at run time.
+//!
+//! **Boolean evaluation** uses a *logic stack* of [`Program::logic_stack_depth`] one-bit levels
+//! (`S0` is the top). A push loses the bottom level, a pop fills it with 0. S7-200 STL maps onto it
+//! one to one with depth 9; a front end whose stack is unbounded (Omron's block stack) picks a depth
+//! its static checks prove is never exceeded, so the truncation rule never fires. Engines may keep
+//! the stack in a register or in SSA values, as long as truncation and fill are preserved.
+//!
+//! **Power flow** `PF = S0 AND gate`, where the gate is 1 outside gated regions (SCR segments).
+//! Consumers (coils, boxes, timers, jumps, ...) read `PF`; no consumer pops the stack.
+
+mod facts;
+mod op;
+mod operand;
+mod verify;
+
+pub use facts::{StackEffect, Successors, enclosing_loop, loop_entered_by};
+pub use op::{ArithOp, BoxOp, Conversion, LogicOp, Op, RealFn};
+pub use operand::{Address, BitLoc, CmpOp, CmpType, Contact, Loc, Operand};
+pub use verify::{MAX_STACK_DEPTH, OpRule, PouRule, VerifyError, verify};
+
+use crate::index::{CounterId, FileId, LabelId, OpIdx, PouId, TimerId};
+use crate::profile::{ProfileId, Resolution};
+
+/// A checked program, ready for any engine.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Program {
+    /// The CPU profile the program was checked against; fixes the image layout.
+    pub profile: ProfileId,
+    /// The POUs; `pous[0]` is the main program.
+    pub pous: Vec<Pou>,
+    /// Timers the program uses, with their kind and resolution fixed at compile time.
+    pub timers: Vec<TimerDecl>,
+    /// Counters the program uses, with their kind.
+    pub counters: Vec<CounterDecl>,
+    /// One entry per edge slot ([`EdgeSlot`] indexes it).
+    pub edges: Vec<EdgeDecl>,
+    /// Number of logic-stack levels (9 for S7-200 STL).
+    pub logic_stack_depth: u8,
+    /// Source file names, indexed by [`FileId`].
+    pub files: Vec<String>,
+}
+
+impl Program {
+    /// The main program's id.
+    pub const MAIN: PouId = PouId(0);
+
+    /// The POU with id `id`.
+    pub fn pou(&self, id: PouId) -> &Pou {
+        &self.pous[id.index()]
+    }
+
+    /// Total number of IR ops over all POUs.
+    pub fn op_count(&self) -> usize {
+        self.pous.iter().map(|p| p.ops.len()).sum()
+    }
+}
+
+/// What a POU is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PouKind {
+    /// The main program (OB1); runs once per scan.
+    Main,
+    /// A subroutine with its number (`SBR0`).
+    Subroutine(u16),
+    /// An interrupt routine with its number; parsed and checked, never executed (spec P8).
+    Interrupt(u16),
+}
+
+/// A program organisation unit: the main program or a subroutine.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pou {
+    /// Symbolic name (`MAIN`, `Motor_Logic`, `SBR0`).
+    pub name: String,
+    /// Main, subroutine or interrupt.
+    pub kind: PouKind,
+    /// The instructions.
+    pub ops: Vec<Op>,
+    /// Source location of each op (`locs[i]` belongs to `ops[i]`).
+    pub locs: Vec<SrcLoc>,
+    /// Position of each label's [`Op::Label`].
+    pub labels: Vec<OpIdx>,
+}
+
+impl Pou {
+    /// The op a label marks.
+    pub fn label_target(&self, label: LabelId) -> OpIdx {
+        self.labels[label.index()]
+    }
+}
+
+/// A position in a source file, 1-based.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct SrcLoc {
+    /// The file.
+    pub file: FileId,
+    /// Line, 1-based.
+    pub line: u32,
+    /// Column (in characters), 1-based.
+    pub col: u32,
+}
+
+/// Timer behaviour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum TimerKind {
+    /// On-delay (`TON`).
+    On,
+    /// Retentive on-delay (`TONR`).
+    Retentive,
+    /// Off-delay (`TOF`, `TOFF`).
+    Off,
+}
+
+impl TimerKind {
+    /// The value stored in the timer's private `KIND` byte (0 means unused).
+    pub fn code(self) -> u8 {
+        match self {
+            TimerKind::On => 1,
+            TimerKind::Retentive => 2,
+            TimerKind::Off => 3,
+        }
+    }
+
+    /// The S7-200 mnemonic.
+    pub fn mnemonic(self) -> &'static str {
+        match self {
+            TimerKind::On => "TON",
+            TimerKind::Retentive => "TONR",
+            TimerKind::Off => "TOF",
+        }
+    }
+}
+
+/// A timer the program uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TimerDecl {
+    /// Its number.
+    pub id: TimerId,
+    /// Its only kind in this program.
+    pub kind: TimerKind,
+    /// Its resolution, from the profile's table.
+    pub resolution: Resolution,
+}
+
+/// Counter behaviour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CounterKind {
+    /// Count up (`CTU`): `CU = S1`, `R = S0`.
+    Up,
+    /// Count down (`CTD`): `CD = S1`, `LD = S0`.
+    Down,
+    /// Count up/down (`CTUD`): `CU = S2`, `CD = S1`, `R = S0`.
+    UpDown,
+}
+
+impl CounterKind {
+    /// The value stored in the counter's private `KIND` byte (0 means unused).
+    pub fn code(self) -> u8 {
+        match self {
+            CounterKind::Up => 1,
+            CounterKind::Down => 2,
+            CounterKind::UpDown => 3,
+        }
+    }
+
+    /// The S7-200 mnemonic.
+    pub fn mnemonic(self) -> &'static str {
+        match self {
+            CounterKind::Up => "CTU",
+            CounterKind::Down => "CTD",
+            CounterKind::UpDown => "CTUD",
+        }
+    }
+}
+
+/// A counter the program uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CounterDecl {
+    /// Its number.
+    pub id: CounterId,
+    /// Its kind (a counter number used by two kinds is rejected by the front end).
+    pub kind: CounterKind,
+}
+
+/// One edge-memory slot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EdgeDecl {
+    /// Value of the memory at cold start (0 for S7-200; Omron's rising edges start at 1).
+    pub init: bool,
+}
+
+/// Every variant of the small operation enums, in declaration order. The position of a variant in
+/// its `ALL` list is the integer code it crosses the JIT's `extern "C"` boundary as, and the
+/// program generator draws from the same lists, so one list serves both.
+macro_rules! all_variants {
+    ($($ty:ident: [$($v:ident),+ $(,)?];)+) => {$(
+        impl $ty {
+            /// Every variant, in declaration order.
+            pub const ALL: &'static [$ty] = &[$($ty::$v),+];
+        }
+    )+};
+}
+
+all_variants! {
+    ArithOp: [Add, Sub, Mul, Div];
+    LogicOp: [And, Or, Xor];
+    RealFn: [Sqrt, Ln, Exp, Sin, Cos, Tan];
+    Conversion: [
+        ByteToInt, IntToByte, IntToDInt, DIntToInt, DIntToReal, Round, Trunc, BcdToInt, IntToBcd,
+        Decode, Encode, Segment,
+    ];
+    CmpType: [Byte, Int, DInt, Real];
+    CmpOp: [Eq, Ne, Ge, Le, Gt, Lt];
+    TimerKind: [On, Retentive, Off];
+    CounterKind: [Up, Down, UpDown];
+}

@@ -1,0 +1,309 @@
+//! The IR verifier: the structural rules every engine relies on, stated once. A front end's
+//! checked program always passes; both engines call [`verify`] before they run or compile a
+//! program, so a malformed one (hand-built, fuzzed, or from a front-end bug) is an error, never
+//! a failing lookup or a miscompilation.
+//!
+//! The rules: there is a main POU; the logic stack has 1 to [`MAX_STACK_DEPTH`] levels; every
+//! POU has one source location per op and fewer than 2^31 ops; every label position holds its
+//! `LBL`; jumps name known labels and never enter a FOR body from outside; calls name a
+//! subroutine (never the main program); FOR and NEXT name each other and nest properly; CSCRE
+//! names a SCRE; edge slots exist, and the program has no more of them than its profile allows.
+
+use super::facts::loop_entered_by;
+use super::{Op, Pou, Program};
+use std::fmt;
+
+/// The deepest logic stack an engine supports (the interpreter keeps it in a `u16`).
+pub const MAX_STACK_DEPTH: u8 = 16;
+
+/// Why a program is malformed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum VerifyError {
+    /// The program has no POU (the main program is missing).
+    NoMain,
+    /// `logic_stack_depth` is 0 or above [`MAX_STACK_DEPTH`].
+    StackDepth(u8),
+    /// More edge slots than the profile's `max_edges`.
+    TooManyEdges(usize),
+    /// A POU breaks a rule.
+    Pou {
+        /// POU index.
+        pou: usize,
+        /// The rule.
+        rule: PouRule,
+    },
+    /// An op breaks a rule.
+    Op {
+        /// POU index.
+        pou: usize,
+        /// Op index.
+        op: usize,
+        /// The rule.
+        rule: OpRule,
+    },
+}
+
+/// A rule of a whole POU.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PouRule {
+    /// `locs` and `ops` differ in length.
+    LocsLength,
+    /// 2^31 ops or more.
+    TooLong,
+}
+
+/// A rule of one op.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OpRule {
+    /// A label's recorded position does not hold its `LBL`.
+    LabelPosition,
+    /// A jump names a label the POU does not have.
+    UnknownLabel,
+    /// A jump enters the body of the FOR loop at `head` from outside it.
+    JumpIntoLoop {
+        /// The loop's FOR.
+        head: usize,
+    },
+    /// A call names no POU, or the main program.
+    BadCall,
+    /// FOR does not name a NEXT that names it back, after it.
+    ForWithoutNext,
+    /// NEXT does not name a FOR that names it back, before it.
+    NextWithoutFor,
+    /// Two loops overlap without nesting.
+    LoopsOverlap,
+    /// CSCRE does not name a SCRE.
+    CondEndWithoutEnd,
+    /// An edge slot beyond `Program::edges`.
+    UnknownEdge,
+}
+
+impl fmt::Display for VerifyError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            VerifyError::NoMain => f.write_str("program has no main POU"),
+            VerifyError::StackDepth(d) => {
+                write!(f, "logic stack depth {d} not in 1..={MAX_STACK_DEPTH}")
+            }
+            VerifyError::TooManyEdges(n) => write!(f, "{n} edge slots exceed the profile's limit"),
+            VerifyError::Pou { pou, rule } => {
+                let what = match rule {
+                    PouRule::LocsLength => "one source location per op",
+                    PouRule::TooLong => "fewer than 2^31 ops",
+                };
+                write!(f, "pou{pou} must have {what}")
+            }
+            VerifyError::Op { pou, op, rule } => {
+                write!(f, "pou{pou} op{op}: ")?;
+                match rule {
+                    OpRule::LabelPosition => f.write_str("label position does not hold its LBL"),
+                    OpRule::UnknownLabel => f.write_str("unknown label"),
+                    OpRule::JumpIntoLoop { head } => {
+                        write!(f, "jump into the body of the FOR loop at op{head}")
+                    }
+                    OpRule::BadCall => f.write_str("call of an unknown POU or of main"),
+                    OpRule::ForWithoutNext => f.write_str("FOR without its NEXT"),
+                    OpRule::NextWithoutFor => f.write_str("NEXT without its FOR"),
+                    OpRule::LoopsOverlap => f.write_str("FOR loops overlap without nesting"),
+                    OpRule::CondEndWithoutEnd => f.write_str("CSCRE without its SCRE"),
+                    OpRule::UnknownEdge => f.write_str("edge slot not declared"),
+                }
+            }
+        }
+    }
+}
+
+impl std::error::Error for VerifyError {}
+
+/// Checks every structural rule of `program` (see the module documentation).
+pub fn verify(program: &Program) -> Result<(), VerifyError> {
+    if program.pous.is_empty() {
+        return Err(VerifyError::NoMain);
+    }
+    if !(1..=MAX_STACK_DEPTH).contains(&program.logic_stack_depth) {
+        return Err(VerifyError::StackDepth(program.logic_stack_depth));
+    }
+    if program.edges.len() > usize::from(program.profile.profile().max_edges) {
+        return Err(VerifyError::TooManyEdges(program.edges.len()));
+    }
+    for (p, pou) in program.pous.iter().enumerate() {
+        verify_pou(program, pou).map_err(|e| match e {
+            Err(rule) => VerifyError::Pou { pou: p, rule },
+            Ok((op, rule)) => VerifyError::Op { pou: p, op, rule },
+        })?;
+    }
+    Ok(())
+}
+
+/// One POU's rules; the error is a POU rule, or an op index and its rule.
+fn verify_pou(program: &Program, pou: &Pou) -> Result<(), Result<(usize, OpRule), PouRule>> {
+    let n = pou.ops.len();
+    if pou.locs.len() != n {
+        return Err(Err(PouRule::LocsLength));
+    }
+    if n >= 1 << 31 {
+        return Err(Err(PouRule::TooLong));
+    }
+    for (label, at) in pou.labels.iter().enumerate() {
+        if !matches!(pou.ops.get(at.index()), Some(Op::Label(l)) if l.index() == label) {
+            return Err(Ok((at.index().min(n), OpRule::LabelPosition)));
+        }
+    }
+    // Open loops, innermost last: a NEXT must close the innermost one.
+    let mut open: Vec<usize> = Vec::new();
+    for (i, op) in pou.ops.iter().enumerate() {
+        let bad = |rule| Err(Ok((i, rule)));
+        match op {
+            Op::Jump(l) if l.index() >= pou.labels.len() => return bad(OpRule::UnknownLabel),
+            Op::Call(c) if c.index() >= program.pous.len() || c.index() == 0 => {
+                return bad(OpRule::BadCall);
+            }
+            Op::For { next, .. } => {
+                let paired = matches!(pou.ops.get(next.index()), Some(Op::Next { head }) if head.index() == i);
+                if !paired || next.index() <= i {
+                    return bad(OpRule::ForWithoutNext);
+                }
+                open.push(i);
+            }
+            Op::Next { head } => {
+                let paired = matches!(pou.ops.get(head.index()), Some(Op::For { next, .. }) if next.index() == i);
+                if !paired || head.index() >= i {
+                    return bad(OpRule::NextWithoutFor);
+                }
+                if open.pop() != Some(head.index()) {
+                    return bad(OpRule::LoopsOverlap);
+                }
+            }
+            Op::ScrCondEnd { end } if !matches!(pou.ops.get(end.index()), Some(Op::ScrEnd)) => {
+                return bad(OpRule::CondEndWithoutEnd);
+            }
+            Op::Edge { slot, .. } if slot.index() >= program.edges.len() => {
+                return bad(OpRule::UnknownEdge);
+            }
+            _ => {}
+        }
+    }
+    // Loops nest properly now, so the loop a jump enters is well defined.
+    for (i, op) in pou.ops.iter().enumerate() {
+        if let Op::Jump(l) = op {
+            let target = pou.label_target(*l).index();
+            if let Some((head, _)) = loop_entered_by(pou, i, target) {
+                return Err(Ok((i, OpRule::JumpIntoLoop { head })));
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ir::{Operand, PouKind, SrcLoc};
+    use crate::{LabelId, OpIdx, ProfileId};
+
+    fn program(ops: Vec<Op>, labels: Vec<usize>) -> Program {
+        Program {
+            profile: ProfileId::A5,
+            pous: vec![Pou {
+                name: "MAIN".into(),
+                kind: PouKind::Main,
+                locs: vec![SrcLoc::default(); ops.len()],
+                ops,
+                labels: labels.into_iter().map(OpIdx::new).collect(),
+            }],
+            timers: vec![],
+            counters: vec![],
+            edges: vec![],
+            logic_stack_depth: 9,
+            files: vec![],
+        }
+    }
+
+    fn for_(next: usize) -> Op {
+        Op::For {
+            index: Operand::Const(0),
+            init: Operand::Const(0),
+            limit: Operand::Const(0),
+            next: OpIdx::new(next),
+        }
+    }
+
+    fn next(head: usize) -> Op {
+        Op::Next {
+            head: OpIdx::new(head),
+        }
+    }
+
+    fn op_rule(p: &Program) -> Option<(usize, OpRule)> {
+        match verify(p) {
+            Err(VerifyError::Op { op, rule, .. }) => Some((op, rule)),
+            Ok(()) => None,
+            Err(e) => panic!("unexpected {e}"),
+        }
+    }
+
+    #[test]
+    fn well_formed_loops_and_jumps_pass() {
+        let ok = program(
+            vec![
+                for_(3),
+                Op::Jump(LabelId::new(0)),
+                Op::Label(LabelId::new(0)),
+                next(0),
+                Op::Jump(LabelId::new(1)),
+                Op::Label(LabelId::new(1)),
+            ],
+            vec![2, 5],
+        );
+        assert_eq!(verify(&ok), Ok(()));
+    }
+
+    #[test]
+    fn a_jump_into_a_loop_is_rejected() {
+        let p = program(
+            vec![
+                Op::Jump(LabelId::new(0)),
+                for_(3),
+                Op::Label(LabelId::new(0)),
+                next(1),
+            ],
+            vec![2],
+        );
+        assert_eq!(op_rule(&p), Some((0, OpRule::JumpIntoLoop { head: 1 })));
+    }
+
+    #[test]
+    fn pairing_and_nesting_are_checked() {
+        let nested = program(vec![for_(3), for_(2), next(1), next(0)], vec![]);
+        assert_eq!(op_rule(&nested), None);
+        let mut bad = nested.clone();
+        bad.pous[0].ops = vec![for_(2), for_(3), next(0), next(1)];
+        assert_eq!(op_rule(&bad), Some((2, OpRule::LoopsOverlap)));
+        bad.pous[0].ops = vec![next(1), for_(0)];
+        bad.pous[0].locs.truncate(2);
+        assert_eq!(op_rule(&bad), Some((0, OpRule::NextWithoutFor)));
+        bad.pous[0].locs.pop();
+        assert_eq!(
+            verify(&bad),
+            Err(VerifyError::Pou {
+                pou: 0,
+                rule: PouRule::LocsLength
+            })
+        );
+    }
+
+    #[test]
+    fn references_are_checked() {
+        let p = program(vec![Op::Jump(LabelId::new(3))], vec![]);
+        assert_eq!(op_rule(&p), Some((0, OpRule::UnknownLabel)));
+        let p = program(vec![Op::Call(crate::PouId::new(0))], vec![]);
+        assert_eq!(op_rule(&p), Some((0, OpRule::BadCall)));
+        let p = program(vec![Op::Nop], vec![0]);
+        assert_eq!(op_rule(&p), Some((0, OpRule::LabelPosition)));
+        let mut p = program(vec![], vec![]);
+        p.logic_stack_depth = 17;
+        assert_eq!(verify(&p), Err(VerifyError::StackDepth(17)));
+        p.pous.clear();
+        assert_eq!(verify(&p), Err(VerifyError::NoMain));
+    }
+}
