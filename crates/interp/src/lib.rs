@@ -10,16 +10,13 @@
 mod boxes;
 mod exec;
 mod operand;
-mod validate;
 
 #[cfg(test)]
 mod tests;
 
 use stljit_core::ScanStatus;
-use stljit_core::ir::Program;
+use stljit_core::ir::{Program, VerifyError, verify};
 use stljit_runtime::{Engine, Image, scan};
-
-pub use validate::InterpError;
 
 /// The interpreter for one program.
 #[derive(Clone, Debug)]
@@ -32,10 +29,10 @@ pub struct Interpreter {
 }
 
 impl Interpreter {
-    /// Checks `program` for the references the interpreter follows (labels, calls, FOR/NEXT and
-    /// SCR partners, stack depth) and keeps a copy of it.
-    pub fn new(program: &Program) -> Result<Interpreter, InterpError> {
-        validate::check(program)?;
+    /// Verifies `program` ([`verify`]: every reference the interpreter follows exists) and keeps
+    /// a copy of it.
+    pub fn new(program: &Program) -> Result<Interpreter, VerifyError> {
+        verify(program)?;
         Ok(Interpreter {
             program: program.clone(),
             stack_mask: ((1u32 << program.logic_stack_depth) - 1) as u16,

@@ -31,9 +31,8 @@ pub(crate) struct PouInfo {
 }
 
 /// Which logic-stack levels are live on entry to every op, by backward dataflow to a fixed
-/// point over the op graph. A level is live if some path reads it (as the top: a contact's
-/// combination, a coil, a box's power flow; or after pops: ALD, LRD, LPP, LDS) before it is
-/// pushed off the bottom or overwritten. Ops not modelled here keep every level live, and
+/// point over the op graph, through each op's [`StackEffect`](stljit_core::ir::StackEffect). A
+/// level is live if some path reads it before it is pushed off the bottom or overwritten, and
 /// every POU ends with nothing live (a subroutine's stack is its own).
 fn stack_liveness(pou: &Pou, depth: u8) -> Vec<u32> {
     let n = pou.ops.len();
@@ -42,33 +41,14 @@ fn stack_liveness(pou: &Pou, depth: u8) -> Vec<u32> {
     } else {
         (1u32 << depth) - 1
     };
+    let effects: Vec<_> = pou.ops.iter().map(Op::stack_effect).collect();
     let mut live = vec![0u32; n + 1];
-    let mut succ = Vec::new();
     let mut changed = true;
     while changed {
         changed = false;
         for i in (0..n).rev() {
-            successors(pou, i, &mut succ);
-            let out = succ.iter().fold(0, |m, &s| m | live[s.min(n)]);
-            let top = out & 1;
-            let new = full
-                & match &pou.ops[i] {
-                    // Push: the levels move down, the bottom one falls off.
-                    Op::Load(_) => out >> 1,
-                    Op::And(_) | Op::Or(_) | Op::Not | Op::AndEno | Op::Label(_) | Op::Nop => out,
-                    // The top and the level below combine; the rest move up.
-                    Op::AndBlock | Op::OrBlock => top | (top << 1) | ((out & !1) << 1),
-                    Op::Dup => (out >> 1) | top,
-                    Op::ReadSecond => (out & !1) | (top << 1),
-                    Op::Pop => out << 1,
-                    Op::Pick(k) if u32::from(*k) < u32::from(depth) => (out >> 1) | (top << k),
-                    Op::Pick(_) => out >> 1,
-                    // Read the power flow, leave the stack as it is.
-                    Op::Edge { .. } | Op::Assign { .. } | Op::SetRange { .. } | Op::Jump(_) => {
-                        out | 1
-                    }
-                    _ => full,
-                };
+            let out = successors(pou, i).fold(0, |m, s| m | live[s]);
+            let new = effects[i].live_in(out, full);
             if new != live[i] {
                 live[i] = new;
                 changed = true;
@@ -78,57 +58,9 @@ fn stack_liveness(pou: &Pou, depth: u8) -> Vec<u32> {
     live
 }
 
-/// Successor op indices of op `i` (`n` = the end of the POU, an exit).
-fn successors(pou: &Pou, i: usize, out: &mut Vec<usize>) {
-    out.clear();
-    let n = pou.ops.len();
-    let fall = i + 1;
-    match &pou.ops[i] {
-        Op::Jump(l) => {
-            out.push(fall);
-            out.push(pou.label_target(*l).index().min(n));
-        }
-        Op::Return { conditional } | Op::End { conditional } => {
-            if *conditional {
-                out.push(fall);
-            }
-        }
-        Op::For { next, .. } => {
-            out.push(fall);
-            out.push((next.index() + 1).min(n));
-        }
-        Op::Next { head } => {
-            out.push(fall);
-            out.push((head.index() + 1).min(n));
-        }
-        Op::ScrCondEnd { end } => {
-            out.push(fall);
-            out.push(end.index().min(n));
-        }
-        _ => out.push(fall),
-    }
-}
-
-/// Whether a label or loop target is inside the POU (the front end guarantees it; a malformed
-/// program is rejected by [`crate::JitError::Malformed`] rather than miscompiled).
-pub(crate) fn check_targets(prog: &Program) -> Result<(), String> {
-    for (p, pou) in prog.pous.iter().enumerate() {
-        let n = pou.ops.len();
-        for (i, op) in pou.ops.iter().enumerate() {
-            let bad = match op {
-                Op::Jump(l) => pou.labels.get(l.index()).is_none_or(|t| t.index() >= n),
-                Op::For { next, .. } => !matches!(pou.ops.get(next.index()), Some(Op::Next { .. })),
-                Op::Next { head } => !matches!(pou.ops.get(head.index()), Some(Op::For { .. })),
-                Op::ScrCondEnd { end } => !matches!(pou.ops.get(end.index()), Some(Op::ScrEnd)),
-                Op::Call(c) => c.index() >= prog.pous.len() || c.index() == 0,
-                _ => false,
-            };
-            if bad {
-                return Err(format!("POU {p} op {i}: control target out of range"));
-            }
-        }
-    }
-    Ok(())
+/// Successor op indices of op `i` (`ops.len()` = the end of the POU, an exit).
+fn successors(pou: &Pou, i: usize) -> impl Iterator<Item = usize> {
+    pou.ops[i].successors(pou).indices(i)
 }
 
 #[cfg(test)]
@@ -143,12 +75,9 @@ fn leaders_and_cuts(pou: &Pou) -> (Vec<bool>, Vec<bool>) {
     if n > 0 {
         lead[0] = true;
     }
-    let mut succ = Vec::new();
     for i in 0..n {
-        successors(pou, i, &mut succ);
-        let branches = !matches!(succ.as_slice(), [s] if *s == i + 1);
-        if branches {
-            for &s in &succ {
+        if !pou.ops[i].successors(pou).is_straight() {
+            for s in successors(pou, i) {
                 lead[s] = true;
             }
             lead[i + 1] = true;
@@ -226,11 +155,9 @@ pub(crate) fn plan_chunks(pou: &Pou, leader: &[bool], chunk_ops: usize) -> Optio
         entries: starts.iter().map(|&s| vec![s]).collect(),
         starts,
     };
-    let mut succ = Vec::new();
     for i in 0..n {
-        successors(pou, i, &mut succ);
         let from = plan.chunk_of(i);
-        for &t in &succ {
+        for t in successors(pou, i) {
             let to = plan.chunk_of(t);
             if to != from && !plan.entries[to].contains(&t) {
                 plan.entries[to].push(t);
@@ -250,7 +177,6 @@ fn gate_flow(pou: &Pou, exits_one: &[bool]) -> (Vec<bool>, bool) {
     let mut state: Vec<Option<bool>> = vec![None; n + 1];
     state[0] = Some(true);
     let mut work = vec![0usize];
-    let mut succ = Vec::new();
     let mut exit_ok = true;
     while let Some(i) = work.pop() {
         if i >= n {
@@ -263,11 +189,10 @@ fn gate_flow(pou: &Pou, exits_one: &[bool]) -> (Vec<bool>, bool) {
             Op::Call(p) => inp && exits_one.get(p.index()).copied().unwrap_or(false),
             _ => inp,
         };
-        if matches!(pou.ops[i], Op::Return { .. } | Op::End { .. }) && !out {
+        if pou.ops[i].may_exit() && !out {
             exit_ok = false;
         }
-        successors(pou, i, &mut succ);
-        for &s in &succ {
+        for s in successors(pou, i) {
             let new = match state[s] {
                 None => Some(out),
                 Some(old) => Some(old && out),
@@ -354,11 +279,16 @@ mod tests {
     }
 
     #[test]
-    fn unmodelled_ops_keep_every_level() {
+    fn boxes_and_counters_read_only_their_levels() {
+        // A box reads the power flow only: the levels under it are dead.
         let p = pou("LD I0.0\nMOVW 1, VW0\nLD I0.1\n= Q0.0\n");
         let live = stack_liveness(&p, 4);
-        assert_eq!(live[1], 0b1111);
-        assert_eq!(live[0], 0b0111);
+        assert_eq!(live[1], 0b0001);
+        assert_eq!(live[0], 0b0000);
+        // CTUD reads S0..S2 (R, CD, CU); the level under them is dead.
+        let p = pou("LD I0.0\nLD I0.1\nLD I0.2\nLD I0.3\nCTUD C0, 5\n");
+        let live = stack_liveness(&p, 9);
+        assert_eq!(live[4], 0b0111);
     }
 
     #[test]

@@ -90,23 +90,9 @@ pub(crate) fn run_signature(cc: CallConv) -> Signature {
     s
 }
 
-/// Checks the properties lowering relies on.
+/// Checks the properties lowering relies on: the IR verifier's rules.
 pub(crate) fn validate(prog: &Program) -> Result<(), JitError> {
-    if prog.pous.is_empty() {
-        return Err(JitError::Malformed("no main POU".into()));
-    }
-    if !(1..=16).contains(&prog.logic_stack_depth) {
-        return Err(JitError::Malformed(format!(
-            "logic stack depth {} not in 1..=16",
-            prog.logic_stack_depth
-        )));
-    }
-    for p in &prog.pous {
-        if p.ops.len() >= u32::MAX as usize / 2 {
-            return Err(JitError::Malformed("POU too long".into()));
-        }
-    }
-    analysis::check_targets(prog).map_err(JitError::Malformed)
+    stljit_core::ir::verify(prog).map_err(JitError::Malformed)
 }
 
 /// What [`build`] produced.

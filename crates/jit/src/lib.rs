@@ -103,9 +103,8 @@ pub enum JitError {
     UnsupportedHost(String),
     /// Cranelift rejected a setting or the generated code (a bug in this crate).
     Codegen(String),
-    /// The program is not well formed (targets out of range, no main POU, stack depth not in
-    /// 1..=31); the front end never produces such a program.
-    Malformed(String),
+    /// The program breaks a rule of the IR verifier; a front end never produces such a program.
+    Malformed(stljit_core::ir::VerifyError),
     /// The program uses an instruction this engine does not compile yet.
     Unsupported(String),
 }

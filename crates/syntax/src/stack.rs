@@ -75,25 +75,35 @@ impl StackCheck {
                 s.depth = Some((d + 1).min(s.levels));
             }
         };
+        // The levels come from the op's stack effect (core's one statement of it); which ops
+        // are checked for underflow is this front end's rule (W001: contacts and the block ops).
+        let effect = op.stack_effect();
         match op {
-            Op::Load(_) | Op::ScrBegin { .. } => push(self, true, diags),
-            Op::Dup | Op::Pick(_) => push(self, false, diags),
-            Op::And(_) | Op::Or(_) => self.need(1, text, span, text, diags),
-            Op::AndBlock | Op::OrBlock | Op::Pop => {
-                self.need(2, text, span, text, diags);
-                self.depth = self.depth.map(|d| d.saturating_sub(1));
-            }
-            Op::ReadSecond => self.need(2, text, span, text, diags),
-            Op::Not | Op::AndEno | Op::Edge { .. } => {}
             Op::Label(_) | Op::Jump(_) | Op::Next { .. } => {
                 self.depth = None;
                 self.after_output = true;
                 return;
             }
-            _ => {
-                self.after_output = true;
-                return;
+            Op::And(_) | Op::Or(_) | Op::AndBlock | Op::OrBlock | Op::Pop | Op::ReadSecond => {
+                // The levels it reads, and a loaded level left as the top after its pops.
+                let net_pops = effect.pops.saturating_sub(effect.pushes);
+                let need = effect.levels_read().max(net_pops + 1);
+                self.need(need, text, span, text, diags);
             }
+            _ => {}
+        }
+        if effect.pushes == 0 && effect.pops == 0 {
+            self.after_output = true;
+            return;
+        }
+        if effect.pushes > effect.pops {
+            for _ in effect.pops..effect.pushes {
+                push(self, effect.pushes_fresh(), diags);
+            }
+        } else {
+            self.depth = self
+                .depth
+                .map(|d| d.saturating_sub(effect.pops - effect.pushes));
         }
         self.after_output = false;
     }

@@ -10,8 +10,8 @@ use stljit_core::ir::{BitLoc, BoxOp, CmpOp, CmpType, Contact, Loc, Op, Operand};
 use stljit_core::{Area, OpIdx, Width};
 
 impl Gen<'_, '_> {
-    /// Unstructured jumps: a jump to a label placed later at a random network boundary (possibly
-    /// inside a FOR body), or back to one placed earlier.
+    /// Unstructured jumps: a jump to a label placed later at a random network boundary outside
+    /// every FOR body, or back to one placed earlier (possibly out of a FOR body).
     pub(crate) fn wild_jump(&mut self) {
         let back = !self.placed_wild.is_empty() && self.c.chance(1, 3);
         let l = if back {
@@ -29,9 +29,15 @@ impl Gen<'_, '_> {
         self.emit(Op::Jump(l));
     }
 
-    /// Places some pending wild-jump labels here (never inside an SCR segment).
+    /// Places some pending wild-jump labels here: never inside an SCR segment, and never inside
+    /// a FOR body, since a jump from outside into one is rejected (spec §2.5, verifier rule
+    /// `JumpIntoLoop`); jumps *out of* FOR bodies stay covered.
     pub(crate) fn place_wild(&mut self, ctx: Ctx) {
-        if ctx.scr.is_some() || self.pending_wild.is_empty() || !self.c.chance(1, 3) {
+        if ctx.scr.is_some()
+            || ctx.for_depth > 0
+            || self.pending_wild.is_empty()
+            || !self.c.chance(1, 3)
+        {
             return;
         }
         let i = self.c.below(self.pending_wild.len() as u32) as usize;

@@ -1,8 +1,9 @@
 //! Program control (spec §4.13, §4.14, §2.5): CALL, RET/CRET, END, STOP, loop budget, fatal errors.
 
 use super::build::*;
-use crate::{InterpError, Interpreter};
+use crate::Interpreter;
 use stljit_core::ir::{BoxOp, CmpOp, CmpType, Contact, Loc, Op, Operand};
+use stljit_core::ir::{OpRule, VerifyError};
 use stljit_core::{Area, ErrorCode, FatalCode, ScanStatus, Width};
 
 fn incw(dst: Operand) -> Op {
@@ -269,8 +270,8 @@ fn new_rejects_dangling_references() {
     let mut p = program(vec![jmp(0)], vec![]);
     assert!(matches!(
         Interpreter::new(&p),
-        Err(InterpError::BadReference {
-            what: "unknown label",
+        Err(VerifyError::Op {
+            rule: OpRule::UnknownLabel,
             ..
         })
     ));
@@ -282,8 +283,8 @@ fn new_rejects_dangling_references() {
     p.logic_stack_depth = 0;
     assert_eq!(
         Interpreter::new(&p).unwrap_err(),
-        InterpError::StackDepth(0)
+        VerifyError::StackDepth(0)
     );
     p.pous.clear();
-    assert_eq!(Interpreter::new(&p).unwrap_err(), InterpError::NoMain);
+    assert_eq!(Interpreter::new(&p).unwrap_err(), VerifyError::NoMain);
 }
