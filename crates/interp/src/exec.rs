@@ -333,10 +333,12 @@ impl<'a> Machine<'a> {
             return Step::Goto(next + 1);
         }
         let r = (|| {
+            // Spec §4.14 order: INDX := INIT, then FINAL is read, so a FINAL that overlaps
+            // INDX sees the new index (docs/semantics.md, "FOR operands").
             let dst = self.resolve(index, Width::Word, frame, true)?;
             let first = self.read(init, Width::Word, frame)?;
-            let last = self.read(limit, Width::Word, frame)?;
             self.store(dst, Width::Word, first);
+            let last = self.read(limit, Width::Word, frame)?;
             Ok((first as u16 as i16) <= (last as u16 as i16))
         })();
         match r {

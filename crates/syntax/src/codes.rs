@@ -115,6 +115,8 @@ codes! {
     Encoding = "E030", Error, "the file is neither UTF-8 nor GBK text";
     /// One S bit used as segment flag in two blocks.
     ScrBitShared = "E031", Error, "one S bit is used as an SCR segment flag in two blocks";
+    /// Jump into a FOR body.
+    JumpIntoLoop = "E032", Error, "a JMP enters a FOR loop's body from outside the loop";
     /// Contact or stack operation consuming an unloaded level.
     StackUnderflow = "W001", Warning, "a contact or ALD/OLD/LPP/LRD consumes a stack level that nothing loaded";
     /// Too many live stack levels.

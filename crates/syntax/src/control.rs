@@ -100,7 +100,8 @@ impl Lowerer<'_> {
                 let id = ps.label(n);
                 if m == "JMP" {
                     let span = self.cx.span(o[0]);
-                    ps.jumps.push((n, span, o[0].text.to_owned()));
+                    ps.jumps
+                        .push((n, span, o[0].text.to_owned(), ps.next_idx()));
                     Op::Jump(id)
                 } else {
                     let span = self.cx.span(o[0]);

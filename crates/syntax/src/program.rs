@@ -11,7 +11,7 @@ use crate::structure::PouSrc;
 use std::collections::HashMap;
 use stljit_core::ir::{
     BitLoc, CounterDecl, CounterKind, EdgeDecl, Op, Pou, PouKind, Program, SrcLoc, TimerDecl,
-    TimerKind,
+    TimerKind, loop_entered_by,
 };
 use stljit_core::{CounterId, LabelId, OpIdx, PouId, TimerId};
 
@@ -41,8 +41,8 @@ pub(crate) struct PouState {
     pub(crate) label_ids: HashMap<u32, LabelId>,
     /// Per label id: its LBL op and where it was defined.
     pub(crate) label_defs: Vec<Option<(OpIdx, Span)>>,
-    /// JMPs: label number, where.
-    pub(crate) jumps: Vec<(u32, Span, String)>,
+    /// JMPs: label number, where, the operand as written, and the JMP op.
+    pub(crate) jumps: Vec<(u32, Span, String, OpIdx)>,
     /// Open FOR ops.
     pub(crate) fors: Vec<(OpIdx, Span)>,
     /// The open SCR segment.
@@ -290,12 +290,25 @@ pub(crate) fn lower<'s>(
     }
     // Jumps resolve only inside their POU; a label of another POU gets a sharper message.
     for ps in &states {
-        for (n, span, text) in &ps.jumps {
-            let defined = ps
-                .label_ids
-                .get(n)
-                .is_some_and(|id| ps.label_defs[id.index()].is_some());
-            if defined {
+        for (n, span, text, at) in &ps.jumps {
+            let def = ps.label_ids.get(n).and_then(|id| ps.label_defs[id.index()]);
+            if let Some((target, label_span)) = def {
+                let pou = &pous[ps.id.index()];
+                if let Some((head, _)) = loop_entered_by(pou, at.index(), target.index()) {
+                    let for_line = pou.locs.get(head).map_or(0, |l| l.line);
+                    lw.cx.diags.push(
+                        Diagnostic::new(
+                            Code::JumpIntoLoop,
+                            *span,
+                            text,
+                            format!(
+                                "`JMP {n}` enters the FOR loop of line {for_line} at `LBL {n}` (line {})",
+                                label_span.line
+                            ),
+                        )
+                        .help("NEXT would run with no active FOR; jump to a label before the FOR or after its NEXT"),
+                    );
+                }
                 continue;
             }
             let elsewhere = states.iter().find(|o| {

@@ -117,20 +117,55 @@ impl Gen<'_, '_> {
             _ => self.value(Width::Word, Class::OUT),
         };
         let init_v = self.c.range(0, 3);
-        let init = Operand::Const(init_v);
-        let limit = if self.c.chance(5, 6) {
+        let mut init = Operand::Const(init_v);
+        let mut limit = if self.c.chance(5, 6) {
             // Nested loops multiply; keep inner ones short.
             let span = if ctx.for_depth > 1 { 1 } else { 4 };
             Operand::Const((init_v + self.c.below(span + 1)).wrapping_sub(self.c.below(2)) & 0xFFFF)
         } else {
             self.value(Width::Word, Class::IN)
         };
+        // Operands overlapping INDX (spec §4.14 order: INDX := INIT, then FINAL is read), and
+        // writes to INDX inside the body, so the evaluation order stays covered (issue 16).
+        let mut bump_index = false;
+        if let Operand::Mem(at) = index {
+            // Only byte-granular areas, with room for a word one byte past the index.
+            let size = match at.area {
+                Area::V => self.p.variable_memory,
+                Area::L => self.p.local_frame,
+                _ => 0,
+            };
+            if at.offset + 3 <= size && self.c.chance(1, 5) {
+                let near = |g: &mut Self| {
+                    Operand::Mem(Loc {
+                        offset: at.offset.saturating_sub(1) + g.c.below(3),
+                        ..at
+                    })
+                };
+                match self.c.weighted(&[3, 1, 1]) {
+                    0 => limit = near(self),
+                    1 => init = near(self),
+                    _ => (init, limit) = (near(self), near(self)),
+                }
+            }
+            bump_index = self.c.chance(1, 6);
+        }
         let head = self.emit(Op::For {
             index,
             init,
             limit,
             next: OpIdx(0),
         });
+        if bump_index {
+            // Counting down against NEXT's increment never ends: only where endless loops are.
+            let up = !self.allow_endless || self.c.chance(3, 4);
+            self.emit(Op::Load(on(sm(0, 0))));
+            self.emit(Op::Box(BoxOp::Step {
+                width: Width::Word,
+                up,
+                dst: index,
+            }));
+        }
         self.body(Ctx {
             in_loop: true,
             for_depth: ctx.for_depth + 1,

@@ -105,8 +105,9 @@ impl Lower<'_, '_> {
         err
     }
 
-    /// `FOR` (interpreter `exec_for`): skipped without PF; INDX, INIT, FINAL resolved in that
-    /// order (an error skips the loop); INIT stored; `INIT > FINAL` sets S0 and skips.
+    /// `FOR` (interpreter `exec_for`): skipped without PF; INDX and INIT resolved, INIT stored
+    /// into INDX, then FINAL resolved and read (an error skips the loop); `INIT > FINAL` sets S0
+    /// and skips.
     fn lower_for(&mut self, index: &Operand, init: &Operand, limit: &Operand, past: usize) {
         let pf = self.pf();
         let not_pf = pf.not(&mut self.b);
@@ -117,12 +118,13 @@ impl Lower<'_, '_> {
         self.flush();
         let err = self.loop_fail_block(past);
         let fail = OnFail::Branch(err);
+        // Spec §4.14 order (as the interpreter's `exec_for`): INDX := INIT, then FINAL is read.
         let dst = self.place(index, Width::Word, true, fail);
         let first = self.read_operand(init, Width::Word, fail);
-        let last = self.read_operand(limit, Width::Word, fail);
         if let Some(p) = dst {
             self.write_place(p, Width::Word, first);
         }
+        let last = self.read_operand(limit, Width::Word, fail);
         let f16 = self.b.ins().ireduce(I16, first);
         let l16 = self.b.ins().ireduce(I16, last);
         let over = self.b.ins().icmp(IntCC::SignedGreaterThan, f16, l16);
