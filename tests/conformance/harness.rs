@@ -1,5 +1,5 @@
 //! The conformance runner behind `tests/conformance.rs`: reads a case file, compiles its program,
-//! drives every engine through `stljit_runtime::sim`, and turns every mismatch into a
+//! drives every engine through `stljit_sim`, and turns every mismatch into a
 //! [`Failure`] that names the case file, the scan, the address, the engine, and both values.
 //!
 //! Case format: see `README.md` in this directory. Parsing is strict (unknown keys, bad
@@ -13,11 +13,11 @@ use stljit_core::layout::Layout;
 use stljit_core::{Area, CpuProfile, FatalCode, ProfileId, ScanStatus};
 use stljit_diff::engines::EngineKind;
 use stljit_jit::OptLevel;
-use stljit_runtime::sim::{
+use stljit_runtime::{Engine, Image};
+use stljit_sim::{
     FnObserver, Format, Outcome, ScanEvent, Simulation, Stimulus, TimeBase, Until, ValueKind,
     WatchSpec, parse_value,
 };
-use stljit_runtime::{Engine, Image};
 use toml::{Table, Value};
 
 /// Builds an engine for a program; the error is a message.

@@ -22,7 +22,6 @@ pub mod image;
 pub mod mem;
 pub mod pointer;
 pub mod scan;
-pub mod sim;
 pub mod timer;
 
 #[cfg(test)]
