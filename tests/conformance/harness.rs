@@ -9,7 +9,7 @@ use std::fmt;
 use std::io;
 use std::path::{Path, PathBuf};
 use stljit_core::ir::{Address, Program};
-use stljit_core::layout::Layout;
+use stljit_core::layout::{Block, Layout};
 use stljit_core::{Area, CpuProfile, FatalCode, ProfileId, ScanStatus};
 use stljit_diff::engines::EngineKind;
 use stljit_jit::OptLevel;
@@ -393,24 +393,19 @@ fn image_diff(a: &Image, b: &Image) -> Option<String> {
     ))
 }
 
+/// Names an image offset for a failure message: the area and offset, or the private block it is in
+/// or pads (blocks and their names from core's layout).
 fn region(l: &Layout, off: u32) -> String {
     if let Some((area, o)) = l.locate(off) {
         return format!("{area:?} offset {o}");
     }
-    let blocks = [
-        ("edge memory", l.edges),
-        ("timer state", l.timer_state),
-        ("counter state", l.counter_state),
-        ("scheduler", l.sched),
-        ("physical inputs", l.phys_in),
-        ("physical outputs", l.phys_out),
-    ];
-    blocks
-        .iter()
-        .filter(|(_, base)| *base <= off)
-        .max_by_key(|(_, base)| *base)
-        .map_or(format!("image offset {off}"), |(name, base)| {
-            format!("{name} +{} (image offset {off})", off - base)
+    Block::ALL
+        .into_iter()
+        .map(|block| (block, l.block_start(block)))
+        .filter(|&(_, start)| start <= off)
+        .max_by_key(|&(_, start)| start)
+        .map_or(format!("image offset {off}"), |(block, start)| {
+            format!("{} +{} (image offset {off})", block.name(), off - start)
         })
 }
 
