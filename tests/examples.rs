@@ -11,9 +11,7 @@ use crate::conformance::harness::ENGINES;
 use std::path::{Path, PathBuf};
 use stljit_core::ir::{Address, Program};
 use stljit_runtime::Image;
-use stljit_runtime::sim::{
-    FnObserver, ScanEvent, Simulation, Stimulus, TimeBase, Until, read_address,
-};
+use stljit_sim::{FnObserver, ScanEvent, Simulation, Stimulus, TimeBase, Until, read_address};
 use stljit_syntax::{SourceFile, SymbolTable};
 
 struct Example {

@@ -9,7 +9,7 @@ use crate::conformance::harness::ENGINES;
 use std::path::PathBuf;
 use stljit_core::ir::{Address, Program};
 use stljit_runtime::Image;
-use stljit_runtime::sim::{FnObserver, ScanEvent, Simulation, Stimulus, Until};
+use stljit_sim::{FnObserver, ScanEvent, Simulation, Stimulus, Until};
 use stljit_syntax::{SourceFile, SymbolTable};
 
 fn example(name: &str) -> PathBuf {

@@ -7,7 +7,7 @@ use libfuzzer_sys::fuzz_target;
 use stljit_core::ProfileId;
 use stljit_core::ir::Address;
 use stljit_runtime::Image;
-use stljit_runtime::sim::{FnObserver, ScanEvent, Simulation, Stimulus, Until};
+use stljit_sim::{FnObserver, ScanEvent, Simulation, Stimulus, Until};
 
 const PROGRAM: &str = "LD I0.0\nTON T37, 10\nLD T37\n= Q0.0\nLD I0.1\nMOVW AIW0, VW0\n";
 

@@ -1,5 +1,5 @@
 //! The conformance runner behind `tests/conformance.rs`: reads a case file, compiles its program,
-//! drives every engine through `stljit_runtime::sim`, and turns every mismatch into a
+//! drives every engine through `stljit_sim`, and turns every mismatch into a
 //! [`Failure`] that names the case file, the scan, the address, the engine, and both values.
 //!
 //! Case format: see `README.md` in this directory. Parsing is strict (unknown keys, bad
@@ -9,15 +9,15 @@ use std::fmt;
 use std::io;
 use std::path::{Path, PathBuf};
 use stljit_core::ir::{Address, Program};
-use stljit_core::layout::Layout;
+use stljit_core::layout::{Block, Layout};
 use stljit_core::{Area, CpuProfile, FatalCode, ProfileId, ScanStatus};
 use stljit_diff::engines::EngineKind;
 use stljit_jit::OptLevel;
-use stljit_runtime::sim::{
+use stljit_runtime::{Engine, Image};
+use stljit_sim::{
     FnObserver, Format, Outcome, ScanEvent, Simulation, Stimulus, TimeBase, Until, ValueKind,
     WatchSpec, parse_value,
 };
-use stljit_runtime::{Engine, Image};
 use toml::{Table, Value};
 
 /// Builds an engine for a program; the error is a message.
@@ -393,24 +393,19 @@ fn image_diff(a: &Image, b: &Image) -> Option<String> {
     ))
 }
 
+/// Names an image offset for a failure message: the area and offset, or the private block it is in
+/// or pads (blocks and their names from core's layout).
 fn region(l: &Layout, off: u32) -> String {
     if let Some((area, o)) = l.locate(off) {
         return format!("{area:?} offset {o}");
     }
-    let blocks = [
-        ("edge memory", l.edges),
-        ("timer state", l.timer_state),
-        ("counter state", l.counter_state),
-        ("scheduler", l.sched),
-        ("physical inputs", l.phys_in),
-        ("physical outputs", l.phys_out),
-    ];
-    blocks
-        .iter()
-        .filter(|(_, base)| *base <= off)
-        .max_by_key(|(_, base)| *base)
-        .map_or(format!("image offset {off}"), |(name, base)| {
-            format!("{name} +{} (image offset {off})", off - base)
+    Block::ALL
+        .into_iter()
+        .map(|block| (block, l.block_start(block)))
+        .filter(|&(_, start)| start <= off)
+        .max_by_key(|&(_, start)| start)
+        .map_or(format!("image offset {off}"), |(block, start)| {
+            format!("{} +{} (image offset {off})", block.name(), off - start)
         })
 }
 

@@ -15,7 +15,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 use stljit_core::ir::{Address, Program};
 use stljit_runtime::Image;
-use stljit_runtime::sim::{
+use stljit_sim::{
     CsvTrace, Observer, Outcome, Progress, RunReport, ScanEvent, Simulation, Stimulus, TimeBase,
     Until, VcdTrace, WatchSpec,
 };

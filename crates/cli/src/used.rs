@@ -6,7 +6,7 @@ use std::collections::{BTreeSet, HashMap};
 use stljit_core::ir::{Address, BitLoc, BoxOp, Contact, Loc, Op, Operand, Program};
 use stljit_core::{Area, Width};
 use stljit_runtime::Image;
-use stljit_runtime::sim::read_address;
+use stljit_sim::read_address;
 use stljit_syntax::SymbolTable;
 
 /// Every bit the program reads or writes in I, Q or M, in address order.

@@ -6,6 +6,10 @@
 //! the private blocks below ([`TimerState`], [`CounterState`], [`Sched`]) use native-endian fields
 //! because only the engines and the runtime read them. Both engines must leave identical bytes in
 //! every block after every scan; the differential oracle compares the whole image.
+//!
+//! Each private record's field offsets, types and names are declared once (`record_fields!`), so
+//! the constants the engines use and the `FIELDS` tables that name bytes in reports cannot drift
+//! apart; [`Layout::region`] and [`Block::field_at`] name any image offset from them.
 
 use crate::area::Area;
 use crate::profile::{CpuProfile, ProfileId};
@@ -19,71 +23,114 @@ pub const SCHED_SIZE: u32 = 64;
 /// Number of `L` frames: the main program plus eight subroutine levels.
 pub const L_FRAMES: u32 = 9;
 
-/// Field offsets inside one timer's private state block.
-pub struct TimerState;
-impl TimerState {
-    /// `u8`: TON/TONR timing active.
-    pub const RUN: u32 = 0;
-    /// `u8`: TOF phase, see `TofPhase` in the runtime (0 idle, 1 on, 2 timing, 3 done).
-    pub const TOF: u32 = 1;
-    /// `u8`: the timer's kind (0 unused, 1 TON, 2 TONR, 3 TOF), written at cold start.
-    pub const KIND: u32 = 2;
-    /// `u8`: resolution in ms (1, 10, 100), written at cold start.
-    pub const RES: u32 = 3;
-    /// `i16` native-endian: the preset seen at the last execution, used by the clock refresh.
-    pub const PT_CACHE: u32 = 4;
+/// One named field of a private record ([`TimerState`], [`CounterState`], [`Sched`]): its name,
+/// its offset in the record and its size in bytes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Field {
+    /// The field's name, as its constant is spelled (`LOOP_COUNT`).
+    pub name: &'static str,
+    /// Byte offset inside the record.
+    pub offset: u32,
+    /// Size in bytes.
+    pub size: u32,
 }
 
-/// Field offsets inside one counter's private state block.
-pub struct CounterState;
-impl CounterState {
-    /// `u8`: count-up input at the last execution.
-    pub const PREV_UP: u32 = 0;
-    /// `u8`: count-down input at the last execution.
-    pub const PREV_DOWN: u32 = 1;
-    /// `u8`: the counter's kind (0 unused, 1 CTU, 2 CTD, 3 CTUD), written at cold start.
-    pub const KIND: u32 = 2;
+/// Declares a private record's field offsets as `u32` constants and, from the same lines, its
+/// `FIELDS` table, so that a field's offset, type and name are written once.
+macro_rules! record_fields {
+    (
+        $(#[$doc:meta])*
+        $record:ident {
+            $( $(#[$field_doc:meta])* $field:ident: $ty:ty = $offset:literal; )*
+        }
+    ) => {
+        $(#[$doc])*
+        pub struct $record;
+        impl $record {
+            $(
+                $(#[$field_doc])*
+                #[doc = ""]
+                #[doc = concat!("Type `", stringify!($ty), "`.")]
+                pub const $field: u32 = $offset;
+            )*
+            /// Every field in offset order; bytes between fields are spare.
+            pub const FIELDS: &'static [Field] = &[$(Field {
+                name: stringify!($field),
+                offset: $offset,
+                size: std::mem::size_of::<$ty>() as u32,
+            }),*];
+        }
+    };
 }
 
-/// Field offsets inside the scan bookkeeping block (spec §1.8 "scheduler").
-pub struct Sched;
-impl Sched {
-    /// `u64`: number of the current scan (0 for the first).
-    pub const SCAN_NO: u32 = 0;
-    /// `u64`: virtual time in ms at the start of the current scan.
-    pub const T_NOW: u32 = 8;
-    /// `u64`: virtual time of the previous scan.
-    pub const T_PREV: u32 = 16;
-    /// `u32`: ms elapsed since the previous scan.
-    pub const D1: u32 = 24;
-    /// `u32`: 10-ms intervals elapsed since the previous scan.
-    pub const D10: u32 = 28;
-    /// `u32`: 100-ms intervals elapsed since the previous scan.
-    pub const D100: u32 = 32;
-    /// `u32`: loop-budget events counted in this scan (taken back-edges, NEXT loop-backs).
-    pub const LOOP_COUNT: u32 = 36;
-    /// `u8`: ENO of the last box instruction.
-    pub const ENO: u32 = 40;
-    /// `u8`: 1 during the first scan.
-    pub const FIRST_SCAN: u32 = 41;
-    /// `u8`: SCR power-flow gate (1 outside segments).
-    pub const SCR_ENABLE: u32 = 42;
-    /// `u8`: a STOP instruction executed in this scan.
-    pub const STOP_REQ: u32 = 43;
-    /// `u8`: 0 RUN, 1 STOP (entered by STOP or a fatal error).
-    pub const MODE: u32 = 44;
-    /// `u8`: 1 when the harness declares retentive data lost (SM0.2 in the first scan).
-    pub const RETENTIVE_LOST: u32 = 45;
-    /// `u16`: code of the last non-fatal error (0 none).
-    pub const LAST_ERR: u32 = 46;
-    /// `u16`: fatal error code (0 none).
-    pub const FATAL: u32 = 48;
-    /// `u16`: POU of the instruction that raised the last error.
-    pub const ERR_POU: u32 = 50;
-    /// `u32`: instruction index that raised the last error.
-    pub const ERR_OP: u32 = 52;
-    /// `u32`: loop budget per scan (watchdog), written at cold start.
-    pub const LOOP_LIMIT: u32 = 56;
+record_fields! {
+    /// Field offsets inside one timer's private state block.
+    TimerState {
+        /// TON/TONR timing active.
+        RUN: u8 = 0;
+        /// TOF phase, see `TofPhase` in the runtime (0 idle, 1 on, 2 timing, 3 done).
+        TOF: u8 = 1;
+        /// The timer's kind (0 unused, 1 TON, 2 TONR, 3 TOF), written at cold start.
+        KIND: u8 = 2;
+        /// Resolution in ms (1, 10, 100), written at cold start.
+        RES: u8 = 3;
+        /// Native-endian: the preset seen at the last execution, used by the clock refresh.
+        PT_CACHE: i16 = 4;
+    }
+}
+
+record_fields! {
+    /// Field offsets inside one counter's private state block.
+    CounterState {
+        /// Count-up input at the last execution.
+        PREV_UP: u8 = 0;
+        /// Count-down input at the last execution.
+        PREV_DOWN: u8 = 1;
+        /// The counter's kind (0 unused, 1 CTU, 2 CTD, 3 CTUD), written at cold start.
+        KIND: u8 = 2;
+    }
+}
+
+record_fields! {
+    /// Field offsets inside the scan bookkeeping block (spec §1.8 "scheduler").
+    Sched {
+        /// Number of the current scan (0 for the first).
+        SCAN_NO: u64 = 0;
+        /// Virtual time in ms at the start of the current scan.
+        T_NOW: u64 = 8;
+        /// Virtual time of the previous scan.
+        T_PREV: u64 = 16;
+        /// Ms elapsed since the previous scan.
+        D1: u32 = 24;
+        /// 10-ms intervals elapsed since the previous scan.
+        D10: u32 = 28;
+        /// 100-ms intervals elapsed since the previous scan.
+        D100: u32 = 32;
+        /// Loop-budget events counted in this scan (taken back-edges, NEXT loop-backs).
+        LOOP_COUNT: u32 = 36;
+        /// ENO of the last box instruction.
+        ENO: u8 = 40;
+        /// 1 during the first scan.
+        FIRST_SCAN: u8 = 41;
+        /// SCR power-flow gate (1 outside segments).
+        SCR_ENABLE: u8 = 42;
+        /// A STOP instruction executed in this scan.
+        STOP_REQ: u8 = 43;
+        /// 0 RUN, 1 STOP (entered by STOP or a fatal error).
+        MODE: u8 = 44;
+        /// 1 when the harness declares retentive data lost (SM0.2 in the first scan).
+        RETENTIVE_LOST: u8 = 45;
+        /// Code of the last non-fatal error (0 none).
+        LAST_ERR: u16 = 46;
+        /// Fatal error code (0 none).
+        FATAL: u16 = 48;
+        /// POU of the instruction that raised the last error.
+        ERR_POU: u16 = 50;
+        /// Instruction index that raised the last error.
+        ERR_OP: u32 = 52;
+        /// Loop budget per scan (watchdog), written at cold start.
+        LOOP_LIMIT: u32 = 56;
+    }
 }
 
 /// Default loop budget per scan (spec §2.5).
@@ -110,6 +157,7 @@ pub struct Layout {
     pub phys_out: u32,
     /// Total image size in bytes.
     pub size: u32,
+    block_size: [u32; Block::ALL.len()],
 }
 
 fn align16(x: u32) -> u32 {
@@ -131,17 +179,25 @@ impl Layout {
             area_size[area as usize] = profile.area_size(area);
             next = align16(next + size);
         }
-        let mut take = |size: u32| {
+        let mut block_size = [0; Block::ALL.len()];
+        let mut take = |block: Block, size: u32| {
+            block_size[block as usize] = size;
             let at = next;
             next = align16(next + size);
             at
         };
-        let edges = take(u32::from(profile.max_edges));
-        let timer_state = take(TIMER_STATE_SIZE * u32::from(profile.timers));
-        let counter_state = take(COUNTER_STATE_SIZE * u32::from(profile.counters));
-        let sched = take(SCHED_SIZE);
-        let phys_in = take(profile.inputs);
-        let phys_out = take(profile.outputs);
+        let edges = take(Block::Edges, u32::from(profile.max_edges));
+        let timer_state = take(
+            Block::TimerState,
+            TIMER_STATE_SIZE * u32::from(profile.timers),
+        );
+        let counter_state = take(
+            Block::CounterState,
+            COUNTER_STATE_SIZE * u32::from(profile.counters),
+        );
+        let sched = take(Block::Sched, SCHED_SIZE);
+        let phys_in = take(Block::PhysIn, profile.inputs);
+        let phys_out = take(Block::PhysOut, profile.outputs);
         Layout {
             profile: profile.id,
             area_base,
@@ -153,6 +209,7 @@ impl Layout {
             phys_in,
             phys_out,
             size: next,
+            block_size,
         }
     }
 
@@ -215,6 +272,155 @@ impl Layout {
                 .then(|| (area, image_offset - base))
         })
     }
+
+    /// Image offset of the first byte of a private block.
+    pub fn block_start(&self, block: Block) -> u32 {
+        match block {
+            Block::Edges => self.edges,
+            Block::TimerState => self.timer_state,
+            Block::CounterState => self.counter_state,
+            Block::Sched => self.sched,
+            Block::PhysIn => self.phys_in,
+            Block::PhysOut => self.phys_out,
+        }
+    }
+
+    /// Size of a private block in bytes (without its alignment padding).
+    pub fn block_size(&self, block: Block) -> u32 {
+        self.block_size[block as usize]
+    }
+
+    /// Names image offset `image_offset`: a PLC area byte ([`Layout::locate`]), a byte of a
+    /// private block (whose field [`Block::field_at`] names), or alignment padding.
+    pub fn region(&self, image_offset: u32) -> Region {
+        if let Some((area, offset)) = self.locate(image_offset) {
+            return Region::Area { area, offset };
+        }
+        Block::ALL
+            .into_iter()
+            .find_map(|block| {
+                let start = self.block_start(block);
+                (start..start + self.block_size(block))
+                    .contains(&image_offset)
+                    .then(|| Region::Block {
+                        block,
+                        offset: image_offset - start,
+                    })
+            })
+            .unwrap_or(Region::Padding)
+    }
+}
+
+/// The blocks of the image after the PLC areas, in layout order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Block {
+    /// Edge memories, one byte per EU/ED slot.
+    Edges,
+    /// Timer private state, one [`TimerState`] record per timer.
+    TimerState,
+    /// Counter private state, one [`CounterState`] record per counter.
+    CounterState,
+    /// Scan bookkeeping, one [`Sched`] record.
+    Sched,
+    /// The physical input copy.
+    PhysIn,
+    /// The physical output copy.
+    PhysOut,
+}
+
+impl Block {
+    /// Every block, in layout order.
+    pub const ALL: [Block; 6] = [
+        Block::Edges,
+        Block::TimerState,
+        Block::CounterState,
+        Block::Sched,
+        Block::PhysIn,
+        Block::PhysOut,
+    ];
+
+    /// A short name for reports (`timer state`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Block::Edges => "edge memory",
+            Block::TimerState => "timer state",
+            Block::CounterState => "counter state",
+            Block::Sched => "scheduler",
+            Block::PhysIn => "physical inputs",
+            Block::PhysOut => "physical outputs",
+        }
+    }
+
+    /// For a block of records with named fields: the bytes per record and the fields.
+    pub fn record(self) -> Option<(u32, &'static [Field])> {
+        match self {
+            Block::TimerState => Some((TIMER_STATE_SIZE, TimerState::FIELDS)),
+            Block::CounterState => Some((COUNTER_STATE_SIZE, CounterState::FIELDS)),
+            Block::Sched => Some((SCHED_SIZE, Sched::FIELDS)),
+            Block::Edges | Block::PhysIn | Block::PhysOut => None,
+        }
+    }
+
+    /// The record and the field (or run of spare bytes) holding byte `offset` of this block;
+    /// `None` for a block without fields.
+    pub fn field_at(self, offset: u32) -> Option<FieldAt> {
+        let (record_size, fields) = self.record()?;
+        let (record, rel) = (offset / record_size, offset % record_size);
+        let at = |name, start: u32, size| FieldAt {
+            record,
+            name,
+            start,
+            size,
+            byte: rel - start,
+        };
+        let mut spare_start = 0;
+        for f in fields {
+            if rel < f.offset {
+                return Some(at(None, spare_start, f.offset - spare_start));
+            }
+            if rel < f.offset + f.size {
+                return Some(at(Some(f.name), f.offset, f.size));
+            }
+            spare_start = f.offset + f.size;
+        }
+        Some(at(None, spare_start, record_size - spare_start))
+    }
+}
+
+/// Where a byte of a record block falls (see [`Block::field_at`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FieldAt {
+    /// Record number: the timer or counter number (0 for [`Sched`]).
+    pub record: u32,
+    /// The field's name, or `None` for spare bytes.
+    pub name: Option<&'static str>,
+    /// Offset in the record of the field or the run of spare bytes.
+    pub start: u32,
+    /// Size of the field or the run of spare bytes.
+    pub size: u32,
+    /// Index of the byte inside it.
+    pub byte: u32,
+}
+
+/// What an image byte belongs to (see [`Layout::region`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Region {
+    /// Byte `offset` of a PLC area (for `L`, counted from frame 0).
+    Area {
+        /// The area.
+        area: Area,
+        /// Byte offset inside the area.
+        offset: u32,
+    },
+    /// Byte `offset` of a private block.
+    Block {
+        /// The block.
+        block: Block,
+        /// Byte offset inside the block.
+        offset: u32,
+    },
+    /// Alignment padding between blocks, or an offset past the end of the image.
+    Padding,
 }
 
 #[cfg(test)]
@@ -259,5 +465,53 @@ mod tests {
         assert_eq!(l.locate(l.addr(Area::V, 100, 0)), Some((Area::V, 100)));
         assert_eq!(l.locate(l.addr(Area::L, 3, 2)), Some((Area::L, 131)));
         assert_eq!(l.locate(l.sched), None);
+    }
+
+    #[test]
+    fn record_fields_are_ordered_and_fit() {
+        for block in Block::ALL {
+            let Some((size, fields)) = block.record() else {
+                continue;
+            };
+            let mut end = 0;
+            for f in fields {
+                assert!(f.offset >= end, "{block:?}.{} overlaps", f.name);
+                end = f.offset + f.size;
+            }
+            assert!(end <= size, "{block:?} fields exceed {size} bytes");
+        }
+        assert_eq!(Sched::FIELDS[6].name, "LOOP_COUNT");
+        assert_eq!(Sched::FIELDS[6].offset, Sched::LOOP_COUNT);
+        assert_eq!(TimerState::FIELDS[4].size, 2);
+    }
+
+    #[test]
+    fn region_names_fields_and_spare_bytes() {
+        let l = Layout::of(ProfileId::A5);
+        assert_eq!(
+            l.region(l.addr(Area::V, 7, 0)),
+            Region::Area {
+                area: Area::V,
+                offset: 7
+            }
+        );
+        let Region::Block { block, offset } =
+            l.region(l.timer_state(37) + TimerState::PT_CACHE + 1)
+        else {
+            panic!("not a block")
+        };
+        assert_eq!(block, Block::TimerState);
+        let at = block.field_at(offset).unwrap();
+        assert_eq!((at.record, at.name, at.byte), (37, Some("PT_CACHE"), 1));
+        let spare = Block::Sched.field_at(61).unwrap();
+        assert_eq!(
+            (spare.name, spare.start, spare.size, spare.byte),
+            (None, 60, 4, 1)
+        );
+        assert_eq!(Block::Edges.field_at(0), None);
+        assert_eq!(
+            l.region(l.phys_out + l.block_size(Block::PhysOut)),
+            Region::Padding
+        );
     }
 }

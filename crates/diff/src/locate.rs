@@ -1,13 +1,11 @@
-//! Names for image offsets: [`Layout::locate`] for the PLC areas, and the private blocks (edge
-//! memories, timer and counter state, the scan bookkeeping, the physical I/O copies) by field, so
-//! that a divergence report says `Sched.LOOP_COUNT` or `T37.RUN` instead of a bare number.
+//! Names for image offsets: the PLC areas, and the private blocks (edge memories, timer and
+//! counter state, the scan bookkeeping, the physical I/O copies) by field, so that a divergence
+//! report says `Sched.LOOP_COUNT` or `T37.RUN` instead of a bare number. Which block and field a
+//! byte belongs to comes from core's layout ([`Layout::region`]); this module only spells it.
 
 use std::fmt;
-use stljit_core::layout::{
-    COUNTER_STATE_SIZE, CounterState, L_FRAMES, Layout, SCHED_SIZE, Sched, TIMER_STATE_SIZE,
-    TimerState,
-};
-use stljit_core::{Area, ProfileId};
+use stljit_core::Area;
+use stljit_core::layout::{Block, L_FRAMES, Layout, Region};
 
 /// What an image byte belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -54,111 +52,50 @@ pub enum Place {
     Padding(u32),
 }
 
-/// Scan bookkeeping fields: offset, size, name.
-const SCHED_FIELDS: [(u32, u32, &str); 20] = [
-    (Sched::SCAN_NO, 8, "SCAN_NO"),
-    (Sched::T_NOW, 8, "T_NOW"),
-    (Sched::T_PREV, 8, "T_PREV"),
-    (Sched::D1, 4, "D1"),
-    (Sched::D10, 4, "D10"),
-    (Sched::D100, 4, "D100"),
-    (Sched::LOOP_COUNT, 4, "LOOP_COUNT"),
-    (Sched::ENO, 1, "ENO"),
-    (Sched::FIRST_SCAN, 1, "FIRST_SCAN"),
-    (Sched::SCR_ENABLE, 1, "SCR_ENABLE"),
-    (Sched::STOP_REQ, 1, "STOP_REQ"),
-    (Sched::MODE, 1, "MODE"),
-    (Sched::RETENTIVE_LOST, 1, "RETENTIVE_LOST"),
-    (Sched::LAST_ERR, 2, "LAST_ERR"),
-    (Sched::FATAL, 2, "FATAL"),
-    (Sched::ERR_POU, 2, "ERR_POU"),
-    (Sched::ERR_OP, 4, "ERR_OP"),
-    (Sched::LOOP_LIMIT, 4, "LOOP_LIMIT"),
-    (60, 4, "(unused)"),
-    (64, 0, ""),
-];
-
 impl Place {
-    /// Names image offset `off` of `layout`.
+    /// Names image offset `off` of `layout`, from the blocks and record fields the layout
+    /// declares ([`Layout::region`], [`Block::field_at`]).
     pub fn of(layout: &Layout, off: u32) -> Place {
-        if let Some((area, offset)) = layout.locate(off) {
-            return Place::Area {
-                area,
-                offset,
-                frame_size: layout.area_size(Area::L),
-            };
+        let (block, offset) = match layout.region(off) {
+            Region::Area { area, offset } => {
+                return Place::Area {
+                    area,
+                    offset,
+                    frame_size: layout.area_size(Area::L),
+                };
+            }
+            Region::Block { block, offset } => (block, offset),
+            Region::Padding => return Place::Padding(off),
+        };
+        match (block, block.field_at(offset)) {
+            (Block::Edges, _) => Place::Edge(offset),
+            (Block::TimerState, Some(at)) => Place::Timer {
+                n: at.record,
+                field: at.name.unwrap_or("(pad)"),
+            },
+            (Block::CounterState, Some(at)) => Place::Counter {
+                n: at.record,
+                field: at.name.unwrap_or("(pad)"),
+            },
+            (Block::Sched, Some(at)) => Place::Sched {
+                field: at.name.unwrap_or("(unused)"),
+                at: at.start,
+                byte: at.byte,
+            },
+            (Block::PhysIn, _) => Place::PhysIn(offset),
+            (Block::PhysOut, _) => Place::PhysOut(offset),
+            // Record blocks always name their bytes; a block without fields is matched above.
+            (Block::TimerState | Block::CounterState | Block::Sched, None) => Place::Padding(off),
         }
-        let p = profile_of(layout.profile);
-        let within = |base: u32, len: u32| off >= base && off < base + len;
-        if within(layout.edges, u32::from(p.max_edges)) {
-            return Place::Edge(off - layout.edges);
-        }
-        if within(layout.timer_state, TIMER_STATE_SIZE * u32::from(p.timers)) {
-            let rel = off - layout.timer_state;
-            let field = match rel % TIMER_STATE_SIZE {
-                TimerState::RUN => "RUN",
-                TimerState::TOF => "TOF",
-                TimerState::KIND => "KIND",
-                TimerState::RES => "RES",
-                4 | 5 => "PT_CACHE",
-                _ => "(pad)",
-            };
-            return Place::Timer {
-                n: rel / TIMER_STATE_SIZE,
-                field,
-            };
-        }
-        if within(
-            layout.counter_state,
-            COUNTER_STATE_SIZE * u32::from(p.counters),
-        ) {
-            let rel = off - layout.counter_state;
-            let field = match rel % COUNTER_STATE_SIZE {
-                CounterState::PREV_UP => "PREV_UP",
-                CounterState::PREV_DOWN => "PREV_DOWN",
-                CounterState::KIND => "KIND",
-                _ => "(pad)",
-            };
-            return Place::Counter {
-                n: rel / COUNTER_STATE_SIZE,
-                field,
-            };
-        }
-        if within(layout.sched, SCHED_SIZE) {
-            let rel = off - layout.sched;
-            let (at, _, field) = SCHED_FIELDS
-                .windows(2)
-                .find(|w| rel >= w[0].0 && rel < w[1].0)
-                .map_or((0, 0, "?"), |w| w[0]);
-            return Place::Sched {
-                field,
-                at,
-                byte: rel - at,
-            };
-        }
-        if within(layout.phys_in, layout.area_size(Area::I)) {
-            return Place::PhysIn(off - layout.phys_in);
-        }
-        if within(layout.phys_out, layout.area_size(Area::Q)) {
-            return Place::PhysOut(off - layout.phys_out);
-        }
-        Place::Padding(off)
     }
 
     /// For a scan bookkeeping field: its offset in the block and size, to show whole values.
     pub fn sched_field(&self) -> Option<(u32, u32)> {
         match *self {
-            Place::Sched { at, .. } => SCHED_FIELDS
-                .iter()
-                .find(|f| f.0 == at)
-                .map(|&(at, size, _)| (at, size)),
+            Place::Sched { at, .. } => Block::Sched.field_at(at).map(|f| (f.start, f.size)),
             _ => None,
         }
     }
-}
-
-fn profile_of(id: ProfileId) -> &'static stljit_core::CpuProfile {
-    id.profile()
 }
 
 impl fmt::Display for Place {
@@ -200,6 +137,8 @@ impl fmt::Display for Place {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use stljit_core::ProfileId;
+    use stljit_core::layout::{Sched, TimerState};
 
     #[test]
     fn names_every_block() {

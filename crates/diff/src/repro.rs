@@ -16,7 +16,7 @@ use std::fmt::{self, Write as _};
 use std::path::Path;
 use stljit_core::ir::{Address, BitLoc, Loc};
 use stljit_core::{Area, ProfileId, Width};
-use stljit_runtime::sim;
+use stljit_sim as sim;
 
 /// Facts about a case that are not in the program or the stimulus.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -6,7 +6,8 @@
 //! Everything is a function on the image bytes (`&mut [u8]` plus its [`Layout`]), so the
 //! interpreter calls it directly and the Cranelift JIT calls the same code through the
 //! `extern "C"` shims of [`ffi`]. Semantics that both engines must agree on bit for bit exist once,
-//! here.
+//! here. Tooling around the engines (stimulus files, traces, the simulation driver) is not
+//! semantics and lives in the `stljit-sim` crate.
 
 pub mod arith;
 pub mod bitops;
@@ -22,7 +23,6 @@ pub mod image;
 pub mod mem;
 pub mod pointer;
 pub mod scan;
-pub mod sim;
 pub mod timer;
 
 #[cfg(test)]

@@ -13,8 +13,8 @@
 //! ignored. Every error names the line and column (1-based) of the offending cell; a stimulus
 //! with any error is rejected whole, so nothing runs on half a stimulus.
 
-use super::Resolver;
-use super::value::{ValueError, ValueKind, parse_value, writable};
+use crate::Resolver;
+use crate::value::{ValueError, ValueKind, parse_value, writable};
 use std::fmt;
 use stljit_core::CpuProfile;
 use stljit_core::ir::Address;

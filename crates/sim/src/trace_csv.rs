@@ -1,8 +1,8 @@
 //! The CSV trace: a `scan,t_ms,WATCH,...` header, then one row per scan with the watched values
 //! after the scan, formatted per [`WatchSpec`].
 
-use super::driver::{Observer, ScanEvent};
-use super::watch::WatchSpec;
+use crate::driver::{Observer, ScanEvent};
+use crate::watch::WatchSpec;
 use std::io::{self, Write};
 
 /// Streams one CSV row per scan to `W`.
@@ -48,10 +48,10 @@ impl<W: Write> Observer for CsvTrace<W> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::image::Image;
-    use crate::sim::test_resolver::resolve;
-    use crate::sim::value::write_address;
+    use crate::test_resolver::resolve;
+    use crate::value::write_address;
     use stljit_core::{ProfileId, ScanStatus};
+    use stljit_runtime::image::Image;
 
     #[test]
     fn golden() {

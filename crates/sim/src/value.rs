@@ -6,11 +6,11 @@
 //! signed and the unsigned range (`-1` and `65535` are the same word), bytes only 0…255.
 //! Every result is the raw bit pattern, zero-extended to `u32`.
 
-use crate::image::{Image, bit_addr, loc_addr};
 use std::fmt;
 use stljit_core::ir::{Address, BitLoc, Loc};
 use stljit_core::layout::Layout;
 use stljit_core::{Area, Width};
+use stljit_runtime::image::{Image, bit_addr, loc_addr};
 
 /// What a literal is parsed as: a bit or a value of a width.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -174,13 +174,13 @@ pub fn write_address(image: &mut Image, address: &Address, raw: u32) -> bool {
             let Some(at) = target_bit(layout, bit) else {
                 return false;
             };
-            crate::mem::set_bit(bytes, at, bit.bit, raw & 1 != 0);
+            stljit_runtime::mem::set_bit(bytes, at, bit.bit, raw & 1 != 0);
         }
         Address::Value { loc, width } => {
             let Some(at) = target_value(layout, loc, width) else {
                 return false;
             };
-            crate::mem::set_be(bytes, at, width, raw);
+            stljit_runtime::mem::set_be(bytes, at, width, raw);
         }
     }
     true

@@ -1,7 +1,7 @@
 //! Unit tests of the stimulus CSV parser: accepted forms and every error with its line:column.
 
 use super::*;
-use crate::sim::test_resolver::resolve;
+use crate::test_resolver::resolve;
 use stljit_core::ProfileId;
 use stljit_core::ir::{BitLoc, Loc};
 use stljit_core::{Area, Width};

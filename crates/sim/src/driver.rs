@@ -6,14 +6,14 @@
 //! requested scans, or early when a scan reports STOP or a fatal error, or when the caller's
 //! cancel flag is set (checked between scans only, so the image is always a whole-scan state).
 
-use super::stimulus::Stimulus;
-use super::value::write_address;
-use crate::engine::Engine;
-use crate::image::Image;
+use crate::stimulus::Stimulus;
+use crate::value::write_address;
 use std::fmt;
 use std::io;
 use std::sync::atomic::{AtomicBool, Ordering};
 use stljit_core::{FatalCode, ScanStatus};
+use stljit_runtime::engine::Engine;
+use stljit_runtime::image::Image;
 
 /// How long to run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

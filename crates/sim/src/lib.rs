@@ -1,15 +1,20 @@
-//! The deterministic simulation driver: stimulus in, scans at virtual time, traces out.
+//! The deterministic simulation tooling of stljit: stimulus in, scans at virtual time, traces out.
 //!
+//! It drives any engine through the runtime's [`Engine`] trait and reads and writes the runtime's
+//! [`Image`]; it needs neither the interpreter nor the JIT, and the runtime does not know it.
 //! Nothing here reads a clock or touches the file system: time is `k · scan_ms`, inputs come from
 //! a parsed [`Stimulus`], traces go to any `impl Write`. Address names are resolved by a closure
 //! the caller supplies (normally `stljit_syntax::parse_address` for the program's profile), so
-//! the runtime does not depend on the front end.
+//! the simulation does not depend on the front end.
 //!
 //! * [`stimulus`] — the stimulus CSV (`scan,I0.0,VW100` or `t_ms,...`).
 //! * [`watch`] — watch specs (`VD50:real`) and how values print.
 //! * [`trace_csv`], [`trace_vcd`] — trace writers, both [`Observer`]s.
-//! * [`driver`] — [`Simulation`]: runs an [`crate::Engine`] scan by scan.
+//! * [`driver`] — [`Simulation`]: runs an [`Engine`] scan by scan.
 //! * [`value`] — value literals and reading/writing an [`Address`] in an image.
+//!
+//! [`Engine`]: stljit_runtime::Engine
+//! [`Image`]: stljit_runtime::Image
 
 pub mod driver;
 pub mod stimulus;

@@ -9,8 +9,8 @@
 //! `_` (`I0.0` → `I0_0`, `VD50:real` → `VD50_real`), because viewers split names at `.` into a
 //! hierarchy and `:`/`[` have meanings of their own.
 
-use super::driver::{Observer, ScanEvent};
-use super::watch::{Format, WatchSpec};
+use crate::driver::{Observer, ScanEvent};
+use crate::watch::{Format, WatchSpec};
 use std::io::{self, Write};
 
 /// Streams a VCD to `W`.
@@ -135,10 +135,10 @@ impl<W: Write> Observer for VcdTrace<W> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::image::Image;
-    use crate::sim::test_resolver::resolve;
-    use crate::sim::value::write_address;
+    use crate::test_resolver::resolve;
+    use crate::value::write_address;
     use stljit_core::{ProfileId, ScanStatus};
+    use stljit_runtime::image::Image;
 
     #[test]
     fn identifiers_are_unique_and_printable() {

@@ -1,12 +1,12 @@
 //! Unit tests of the simulation driver, with a toy engine built on the real scan cycle.
 
 use super::*;
-use crate::mem;
-use crate::scan;
-use crate::sim::stimulus::TimeBase;
-use crate::sim::test_resolver::resolve;
+use crate::stimulus::TimeBase;
+use crate::test_resolver::resolve;
 use stljit_core::layout::Sched;
 use stljit_core::{Area, ProfileId};
+use stljit_runtime::mem;
+use stljit_runtime::scan;
 
 /// Per scan: QB0 := IB0, VW0 += 1, VB2 := AIW0 low byte; I0.7 requests STOP, I0.6 is fatal
 /// (Watchdog) before anything else happens.

@@ -6,13 +6,13 @@
 //! counter name (`T37`, `C5`) is its bit; with a numeric suffix (`T37:i`) it is its current value
 //! — the only way to name the word of a timer outside a program.
 
-use super::Resolver;
-use super::value::read_address;
-use crate::image::{Image, bit_addr, loc_addr};
+use crate::Resolver;
+use crate::value::read_address;
 use std::fmt;
 use stljit_core::ir::{Address, Loc};
 use stljit_core::layout::Layout;
 use stljit_core::{Area, Width};
+use stljit_runtime::image::{Image, bit_addr, loc_addr};
 
 /// How a watched value prints.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -212,8 +212,8 @@ impl WatchSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::test_resolver::resolve;
-    use crate::sim::value::write_address;
+    use crate::test_resolver::resolve;
+    use crate::value::write_address;
     use stljit_core::ProfileId;
     use stljit_core::ir::BitLoc;
 
