@@ -11,6 +11,7 @@ pub mod index;
 pub mod ir;
 pub mod layout;
 pub mod profile;
+pub mod text;
 
 pub use area::{Area, Width};
 pub use codes::{ErrorCode, FatalCode, ScanStatus};
