@@ -1,6 +1,8 @@
 //! Every fuzz finding stays fixed: each directory under `tests/regressions/` (written by
-//! `stljit fuzz`: program.stl, stimulus.csv, meta) is replayed on the interpreter and on the JIT
-//! at both optimisation levels, with the whole image compared after every scan.
+//! `stljit fuzz`: program.ir in the IR text form, stimulus.csv, meta) is replayed on the
+//! interpreter and on the JIT at both optimisation levels, with the whole image compared after
+//! every scan. The program is read as IR text, so a case does not depend on any dialect's
+//! printer; `check_case` also runs both round trips (IR text and S7 front end) on it.
 
 use stljit_diff::campaign::check_case;
 use stljit_diff::engines::EngineKind;
@@ -15,7 +17,7 @@ fn every_regression_case_agrees_on_both_engines() {
         .unwrap_or_else(|e| panic!("{}: {e}", root.display()))
         .flatten()
         .map(|e| e.path())
-        .filter(|p| p.join("program.stl").is_file())
+        .filter(|p| p.join("program.ir").is_file())
         .collect();
     dirs.sort();
     assert!(!dirs.is_empty(), "no cases under {}", root.display());

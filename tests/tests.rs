@@ -6,6 +6,7 @@ mod diagnostics;
 mod examples;
 mod fuzz_smoke;
 mod inputs;
+mod ir_text;
 mod mutate;
 mod regressions;
 mod tidy;

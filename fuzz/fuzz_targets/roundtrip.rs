@@ -1,5 +1,7 @@
-//! Fuzz target: the fuzzer's bytes drive the program generator; the generated IR, printed as STL
-//! and compiled again, must give back the same IR (and the front end must accept it).
+//! Fuzz target: the fuzzer's bytes drive the program generator; the generated IR must survive
+//! both round trips: IR text (`stljit_core::text`) printed and parsed back gives exactly the same
+//! program, and the S7 printer's STL compiled again gives the same IR (and the front end must
+//! accept it).
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;

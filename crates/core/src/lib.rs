@@ -2,8 +2,10 @@
 //! ranges and timer resolutions ([`profile::CpuProfile`]), the flat memory-image layout every engine
 //! addresses ([`layout::Layout`]) and the status and error codes engines report ([`codes`]).
 //!
-//! This crate has no dependencies and no behaviour beyond arithmetic on offsets: front ends build
-//! [`ir::Program`]s, engines execute them, and both agree on bytes through [`layout::Layout`].
+//! This crate has no dependencies and no behaviour beyond arithmetic on offsets, the structural
+//! rules of the IR ([`ir::verify`], [`ir::Op::successors`], [`ir::Op::stack_effect`]) and the IR's
+//! own text form ([`text`]): front ends build [`ir::Program`]s, engines execute them, and both
+//! agree on bytes through [`layout::Layout`].
 
 pub mod area;
 pub mod codes;
@@ -11,6 +13,7 @@ pub mod index;
 pub mod ir;
 pub mod layout;
 pub mod profile;
+pub mod text;
 
 pub use area::{Area, Width};
 pub use codes::{ErrorCode, FatalCode, ScanStatus};

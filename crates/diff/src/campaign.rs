@@ -1,5 +1,6 @@
 //! A fuzzing campaign: program `i` of campaign seed `s` is generated from
-//! [`program_seed`]`(s, i)`, checked (print → compile round trip, then both engines side by side),
+//! [`program_seed`]`(s, i)`, checked (the IR text and S7 front-end round trips, then both engines
+//! side by side),
 //! and counted. Programs are split across threads (`jobs`) and machines (`shard K/N`: program `i`
 //! belongs to shard `i mod N`), and the split never changes which program a number denotes, so a
 //! finding is reproduced from its seed alone.
@@ -12,7 +13,7 @@ use crate::engines::EngineKind;
 use crate::generate::{Case, GenConfig, case_from_seed};
 use crate::oracle::{Finding, RunOptions, RunStats, run_pair};
 use crate::rng::program_seed;
-use crate::roundtrip::roundtrip;
+use crate::roundtrip::{RoundTripError, roundtrip};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -34,7 +35,8 @@ pub struct CampaignConfig {
     pub generator: GenConfig,
     /// Oracle knobs.
     pub run: RunOptions,
-    /// Also require every program to survive print → compile unchanged.
+    /// Also require every program to survive both round trips ([`roundtrip`]): IR text print →
+    /// parse, and S7 print → compile.
     pub roundtrip: bool,
 }
 
@@ -81,8 +83,9 @@ pub struct Report {
     pub failure: Option<Failure>,
 }
 
-/// Checks one case: front-end round trip (optional), then both engines, each built fresh. Panics
-/// while building are findings like panics while running.
+/// Checks one case: the round trips (optional; a failure is a build finding of "ir text" or
+/// "front end"), then both engines, each built fresh. Panics while building are findings like
+/// panics while running.
 pub fn check_case(
     case: &Case,
     engines: [EngineKind; 2],
@@ -95,7 +98,12 @@ pub fn check_case(
             message: "panicked on the printed program".into(),
         })?;
         rt.map_err(|e| Finding::Build {
-            engine: "front end",
+            engine: match e {
+                RoundTripError::IrTextRejected { .. } | RoundTripError::IrTextChanged { .. } => {
+                    "ir text"
+                }
+                RoundTripError::S7Rejected { .. } | RoundTripError::S7Changed { .. } => "front end",
+            },
             message: e.to_string(),
         })?;
     }

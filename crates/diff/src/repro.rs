@@ -1,7 +1,8 @@
 //! Reproducer directories: what a divergence leaves behind, and what `tests/regressions/` holds.
 //!
 //! ```text
-//! program.stl    the program, printed from the IR (it compiles back to the same IR)
+//! program.ir     the program in the IR text form (`stljit_core::text`); what is read back
+//! program.stl    the same program printed as S7 STL, for reading only (never read back)
 //! stimulus.csv   inputs, analog inputs and HMI writes per scan, in runtime::sim's CSV format
 //! meta           key = value lines: profile, seed, engines, loop limit, the time of every scan
 //! README.txt     what failed: the scan, the first differing bytes with both values, the seed
@@ -15,6 +16,7 @@ use std::collections::BTreeMap;
 use std::fmt::{self, Write as _};
 use std::path::Path;
 use stljit_core::ir::{Address, BitLoc, Loc};
+use stljit_core::text::{self, ParseError};
 use stljit_core::{Area, ProfileId, Width};
 use stljit_sim as sim;
 
@@ -50,8 +52,8 @@ pub enum ReproError {
     Io(std::path::PathBuf, std::io::Error),
     /// `meta` is malformed.
     Meta(String),
-    /// `program.stl` does not compile.
-    Program(String),
+    /// `program.ir` does not parse.
+    Program(ParseError),
     /// `stimulus.csv` is malformed.
     Stimulus(String),
 }
@@ -61,7 +63,7 @@ impl fmt::Display for ReproError {
         match self {
             ReproError::Io(p, e) => write!(f, "{}: {e}", p.display()),
             ReproError::Meta(m) => write!(f, "meta: {m}"),
-            ReproError::Program(m) => write!(f, "program.stl: {m}"),
+            ReproError::Program(e) => write!(f, "program.ir: {e}"),
             ReproError::Stimulus(m) => write!(f, "stimulus.csv: {m}"),
         }
     }
@@ -198,6 +200,7 @@ pub fn write_repro(
     let put = |file: &str, text: String| {
         std::fs::write(dir.join(file), text).map_err(|e| ReproError::Io(dir.join(file), e))
     };
+    put("program.ir", text::print(&case.program))?;
     put("program.stl", stljit_syntax::print_program(&case.program))?;
     put("stimulus.csv", stimulus_csv(meta.profile, &case.stimulus))?;
     put("meta", meta_text(meta, &case.stimulus))?;
@@ -223,8 +226,9 @@ pub fn write_repro(
     }
     let _ = writeln!(
         readme,
-        "Engines: {}; loop budget per scan: {}.\nScan times (ms) are listed in `meta`; \
-         `stimulus.csv` gives inputs per scan number.\nReplay: `cargo test --release -p \
+        "Engines: {}; loop budget per scan: {}.\nThe program is `program.ir` (IR text, \
+         docs/ir-text.md); `program.stl` is the same program as S7 STL, for reading.\nScan times \
+         (ms) are listed in `meta`; `stimulus.csv` gives inputs per scan number.\nReplay: `cargo test --release -p \
          stljit-harness regressions` once this directory is in tests/regressions/.",
         meta.engines, meta.loop_limit
     );
@@ -341,17 +345,14 @@ pub fn parse_stimulus(
 /// Reads a reproducer directory back into a case.
 pub fn read_case(dir: &Path) -> Result<(Case, Meta), ReproError> {
     let (meta, times) = parse_meta(&read(dir, "meta")?)?;
-    let text = read(dir, "program.stl")?;
-    let c = stljit_syntax::compile_str("program.stl", &text, meta.profile);
-    let Some(program) = c.program else {
-        let first = c
-            .diagnostics
-            .iter()
-            .find(|d| d.severity == stljit_syntax::Severity::Error)
-            .map(|d| stljit_syntax::render_human(d, &c.sources))
-            .unwrap_or_default();
-        return Err(ReproError::Program(first));
-    };
+    let program = text::parse(&read(dir, "program.ir")?).map_err(ReproError::Program)?;
+    if program.profile != meta.profile {
+        return Err(ReproError::Meta(format!(
+            "profile {} but program.ir is for {}",
+            meta.profile.name(),
+            program.profile.name()
+        )));
+    }
     let stimulus = parse_stimulus(meta.profile, &read(dir, "stimulus.csv")?, &times)?;
     Ok((Case { program, stimulus }, meta))
 }
@@ -360,7 +361,6 @@ pub fn read_case(dir: &Path) -> Result<(Case, Meta), ReproError> {
 mod tests {
     use super::*;
     use crate::generate::{GenConfig, case_from_seed};
-    use crate::roundtrip::normalized;
 
     #[test]
     fn repro_directory_reads_back_the_same_case() {
@@ -371,11 +371,7 @@ mod tests {
             write_repro(&dir, &case, &meta, None).unwrap();
             let (back, m) = read_case(&dir).unwrap();
             assert_eq!(m, meta);
-            assert_eq!(
-                normalized(&back.program),
-                normalized(&case.program),
-                "seed {seed}"
-            );
+            assert_eq!(back.program, case.program, "seed {seed}");
             assert_eq!(back.stimulus, case.stimulus, "seed {seed}");
         }
         let _ = std::fs::remove_dir_all(&dir);

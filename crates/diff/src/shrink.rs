@@ -5,7 +5,9 @@
 //! ops; drop runs of scans; clear HMI writes and inputs. Every candidate is repaired into a
 //! structurally sound program (indices of labels, FOR/NEXT and SCR partners remapped, edge slots
 //! and timer/counter tables rebuilt) and then judged by the caller's `fails`, which is expected to
-//! include the front-end round trip so that only valid programs are kept.
+//! include [`crate::roundtrip::roundtrip`] (IR text and S7 front end) so that only valid programs
+//! are kept. The shrinker works on the IR alone; its result is written as IR text (`program.ir`,
+//! [`crate::repro::write_repro`]), so a shrunk case does not depend on any dialect's printer.
 
 use crate::canon::canonicalize;
 use crate::generate::{Case, ScanInput};
@@ -389,7 +391,10 @@ mod tests {
             readme.contains("after scan 3") && readme.contains("VB1500"),
             "{readme}"
         );
+        let ir = std::fs::read_to_string(dir.join("program.ir")).unwrap();
+        assert_eq!(stljit_core::text::parse(&ir).as_ref(), Ok(&small.program));
         let (back, _) = read_case(&dir).unwrap();
+        assert_eq!(back.program, small.program);
         assert_eq!(back.stimulus, small.stimulus);
         let _ = std::fs::remove_dir_all(&dir);
     }
