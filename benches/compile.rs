@@ -11,7 +11,7 @@ fn compile(c: &mut Criterion) {
             .join("benches/programs")
             .join(name);
         let text = std::fs::read_to_string(&path).unwrap_or_default();
-        let p = stljit_syntax::compile_str(name, &text, ProfileId::A5)
+        let p = stljit_front_s7::compile_str(name, &text, ProfileId::A5)
             .program
             .unwrap_or_else(|| panic!("{name} does not compile"));
         // 100k at `speed` takes about a second per compile; `stljit bench` reports it.

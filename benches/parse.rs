@@ -1,4 +1,4 @@
-//! Front-end throughput: `stljit_syntax::compile` on a generated 100,000-line program mixing every
+//! Front-end throughput: `stljit_front_s7::compile` on a generated 100,000-line program mixing every
 //! instruction group (bit logic, stack, timers, counters, compares, moves, arithmetic, word logic,
 //! shifts, conversions, program control, SCR), reported in lines per second.
 //!
@@ -8,7 +8,7 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use std::fmt::Write as _;
 use stljit_core::ProfileId;
-use stljit_syntax::{SourceFile, compile};
+use stljit_front_s7::{SourceFile, compile};
 
 /// One network per group; `i` varies the addresses so that lines are not all identical.
 fn network(out: &mut String, i: usize) {

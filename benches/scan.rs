@@ -14,7 +14,7 @@ fn program(name: &str) -> Program {
         .join("benches/programs")
         .join(name);
     let text = std::fs::read_to_string(&path).unwrap_or_default();
-    let c = stljit_syntax::compile_str(name, &text, ProfileId::A5);
+    let c = stljit_front_s7::compile_str(name, &text, ProfileId::A5);
     c.program
         .unwrap_or_else(|| panic!("{name} does not compile"))
 }

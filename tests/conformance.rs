@@ -2,7 +2,7 @@
 //!
 //! Each `tests/conformance/*.toml` file is one case: a program, a CPU profile, a scan time and a
 //! list of scans with inputs and expected values (format in `tests/conformance/README.md`). The
-//! harness compiles the program with `stljit_syntax`, runs it on **every** engine in [`ENGINES`]
+//! harness compiles the program with `stljit_front_s7`, runs it on **every** engine in [`ENGINES`]
 //! through the runtime's simulation driver, checks the expectations after each listed scan, and
 //! checks that all engines leave byte-identical images after every scan.
 //!

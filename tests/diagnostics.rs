@@ -11,7 +11,7 @@
 
 use std::path::{Path, PathBuf};
 use stljit_core::ProfileId;
-use stljit_syntax::{Code, Severity, SourceFile, compile, render_human};
+use stljit_front_s7::{Code, Severity, SourceFile, compile, render_human};
 
 fn root() -> PathBuf {
     stljit_harness::repo_root().join("tests/diagnostics")
@@ -181,7 +181,7 @@ fn every_code_has_a_fixture_and_a_doc_entry() {
     }
 }
 
-fn compile_bytes(bytes: Vec<u8>) -> stljit_syntax::Compilation {
+fn compile_bytes(bytes: Vec<u8>) -> stljit_front_s7::Compilation {
     let file = SourceFile {
         name: "input.stl".into(),
         bytes,
@@ -189,7 +189,7 @@ fn compile_bytes(bytes: Vec<u8>) -> stljit_syntax::Compilation {
     let c = compile(std::slice::from_ref(&file), Some(&file), ProfileId::A5);
     for d in &c.diagnostics {
         let _ = render_human(d, &c.sources);
-        let _ = stljit_syntax::render_json(d, &c.sources);
+        let _ = stljit_front_s7::render_json(d, &c.sources);
     }
     c
 }

@@ -10,9 +10,9 @@
 use crate::conformance::harness::ENGINES;
 use std::path::{Path, PathBuf};
 use stljit_core::ir::{Address, Program};
+use stljit_front_s7::{SourceFile, SymbolTable};
 use stljit_runtime::Image;
 use stljit_sim::{FnObserver, ScanEvent, Simulation, Stimulus, TimeBase, Until, read_address};
-use stljit_syntax::{SourceFile, SymbolTable};
 
 struct Example {
     dir: PathBuf,
@@ -41,14 +41,14 @@ fn load(dir: &Path) -> Example {
     let sources: Vec<SourceFile> = files.iter().map(|p| read(p)).collect();
     let symbols_path = dir.join("symbols.txt");
     let symbols = symbols_path.exists().then(|| read(&symbols_path));
-    let c = stljit_syntax::compile(&sources, symbols.as_ref(), stljit_core::ProfileId::A5);
+    let c = stljit_front_s7::compile(&sources, symbols.as_ref(), stljit_core::ProfileId::A5);
     let program = c
         .program
         .unwrap_or_else(|| panic!("{}: does not compile: {:?}", dir.display(), c.diagnostics));
     let profile = program.profile.profile();
     let table = c.symbols;
     let resolve = |name: &str| {
-        stljit_syntax::parse_address(name, profile, table.as_ref()).map_err(|e| e.message)
+        stljit_front_s7::parse_address(name, profile, table.as_ref()).map_err(|e| e.message)
     };
     let stimulus_path = dir.join("stimulus.csv");
     let stimulus = if stimulus_path.exists() {

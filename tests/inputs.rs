@@ -8,9 +8,9 @@
 use crate::conformance::harness::ENGINES;
 use std::path::PathBuf;
 use stljit_core::ir::{Address, Program};
+use stljit_front_s7::{SourceFile, SymbolTable};
 use stljit_runtime::Image;
 use stljit_sim::{FnObserver, ScanEvent, Simulation, Stimulus, Until};
-use stljit_syntax::{SourceFile, SymbolTable};
 
 fn example(name: &str) -> PathBuf {
     stljit_harness::repo_root()
@@ -23,7 +23,7 @@ fn traffic_light() -> (Program, Option<SymbolTable>) {
         name: name.into(),
         bytes: std::fs::read(example(name)).expect("example is checked in"),
     };
-    let c = stljit_syntax::compile(
+    let c = stljit_front_s7::compile(
         &[read("traffic_light.awl")],
         Some(&read("symbols.txt")),
         stljit_core::ProfileId::A5,
@@ -35,7 +35,7 @@ fn traffic_light() -> (Program, Option<SymbolTable>) {
 fn exercise(text: &str, program: &Program, symbols: Option<&SymbolTable>) -> bool {
     let profile = program.profile.profile();
     let resolve = |name: &str| -> Result<Address, String> {
-        stljit_syntax::parse_address(name, profile, symbols).map_err(|e| e.message)
+        stljit_front_s7::parse_address(name, profile, symbols).map_err(|e| e.message)
     };
     let stimulus = match Stimulus::parse(text, profile, &resolve) {
         Ok(s) => s,

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use stljit_core::ProfileId;
 use stljit_core::ir::Program;
 use stljit_core::text;
-use stljit_syntax::{SourceFile, compile};
+use stljit_front_s7::{SourceFile, compile};
 
 fn files_in(dir: &Path, exts: &[&str]) -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(dir)

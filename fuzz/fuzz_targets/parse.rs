@@ -4,7 +4,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use stljit_core::ProfileId;
-use stljit_syntax::{SourceFile, compile, print_program, render_human, render_json};
+use stljit_front_s7::{SourceFile, compile, print_program, render_human, render_json};
 
 fuzz_target!(|data: &[u8]| {
     let file = SourceFile {

@@ -13,11 +13,11 @@ const PROGRAM: &str = "LD I0.0\nTON T37, 10\nLD T37\n= Q0.0\nLD I0.1\nMOVW AIW0,
 
 fuzz_target!(|data: &[u8]| {
     let text = String::from_utf8_lossy(data);
-    let c = stljit_syntax::compile_str("p.stl", PROGRAM, ProfileId::A5);
+    let c = stljit_front_s7::compile_str("p.stl", PROGRAM, ProfileId::A5);
     let program = c.program.expect("the fixed program compiles");
     let profile = program.profile.profile();
     let resolve = |name: &str| -> Result<Address, String> {
-        stljit_syntax::parse_address(name, profile, None).map_err(|e| e.message)
+        stljit_front_s7::parse_address(name, profile, None).map_err(|e| e.message)
     };
     match Stimulus::parse(&text, profile, &resolve) {
         Err(e) => {

@@ -430,23 +430,23 @@ impl Engine for Skew {
 // ---- case files ---------------------------------------------------------------------------
 
 fn resolver(profile: &'static CpuProfile) -> impl Fn(&str) -> Result<Address, String> {
-    move |name: &str| match stljit_syntax::parse_address(name, profile, None) {
-        Ok(stljit_syntax::Address::Bit(b)) => Ok(Address::Bit(b)),
-        Ok(stljit_syntax::Address::Value { loc, width }) => Ok(Address::Value { loc, width }),
+    move |name: &str| match stljit_front_s7::parse_address(name, profile, None) {
+        Ok(stljit_front_s7::Address::Bit(b)) => Ok(Address::Bit(b)),
+        Ok(stljit_front_s7::Address::Value { loc, width }) => Ok(Address::Value { loc, width }),
         Err(e) => Err(e.message),
     }
 }
 
 fn compile(file: &str, case: &Case) -> Result<Program, String> {
-    let c = stljit_syntax::compile_str(file, &case.program, case.profile);
+    let c = stljit_front_s7::compile_str(file, &case.program, case.profile);
     match c.program {
         Some(p) => Ok(p),
         None => {
             let errors: Vec<String> = c
                 .diagnostics
                 .iter()
-                .filter(|d| d.severity == stljit_syntax::Severity::Error)
-                .map(|d| stljit_syntax::render_human(d, &c.sources))
+                .filter(|d| d.severity == stljit_front_s7::Severity::Error)
+                .map(|d| stljit_front_s7::render_human(d, &c.sources))
                 .collect();
             Err(format!("program does not compile:\n{}", errors.join("\n")))
         }

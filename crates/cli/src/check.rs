@@ -7,7 +7,7 @@ use anyhow::Context as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use stljit_core::ProfileId;
-use stljit_syntax::{Compilation, SourceFile, render_human, render_json};
+use stljit_front_s7::{Compilation, SourceFile, render_human, render_json};
 
 /// Output format of the diagnostics.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -53,7 +53,7 @@ impl Input {
             .map(|p| read(p))
             .collect::<anyhow::Result<Vec<_>>>()?;
         let symbols = self.symbols.as_deref().map(read).transpose()?;
-        Ok(stljit_syntax::compile(&files, symbols.as_ref(), profile))
+        Ok(stljit_front_s7::compile(&files, symbols.as_ref(), profile))
     }
 }
 

@@ -14,12 +14,12 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 use stljit_core::ir::{Address, Program};
+use stljit_front_s7::Compilation;
 use stljit_runtime::Image;
 use stljit_sim::{
     CsvTrace, Observer, Outcome, Progress, RunReport, ScanEvent, Simulation, Stimulus, TimeBase,
     Until, VcdTrace, WatchSpec,
 };
-use stljit_syntax::Compilation;
 
 /// Arguments of `stljit run`.
 #[derive(clap::Args)]
@@ -63,7 +63,7 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     };
     let profile = program.profile.profile();
     let resolve = |name: &str| -> Result<Address, String> {
-        stljit_syntax::parse_address(name, profile, compilation.symbols.as_ref())
+        stljit_front_s7::parse_address(name, profile, compilation.symbols.as_ref())
             .map(to_core_address)
             .map_err(|e| e.to_string())
     };
@@ -119,10 +119,10 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
 }
 
 /// The syntax crate's address and the runtime's are the same shape; convert at the boundary.
-fn to_core_address(a: stljit_syntax::Address) -> Address {
+fn to_core_address(a: stljit_front_s7::Address) -> Address {
     match a {
-        stljit_syntax::Address::Bit(b) => Address::Bit(b),
-        stljit_syntax::Address::Value { loc, width } => Address::Value { loc, width },
+        stljit_front_s7::Address::Bit(b) => Address::Bit(b),
+        stljit_front_s7::Address::Value { loc, width } => Address::Value { loc, width },
     }
 }
 

@@ -5,9 +5,9 @@
 use std::collections::{BTreeSet, HashMap};
 use stljit_core::ir::{Address, BitLoc, BoxOp, Contact, Loc, Op, Operand, Program};
 use stljit_core::{Area, Width};
+use stljit_front_s7::SymbolTable;
 use stljit_runtime::Image;
 use stljit_sim::read_address;
-use stljit_syntax::SymbolTable;
 
 /// Every bit the program reads or writes in I, Q or M, in address order.
 pub(crate) fn io_bits(program: &Program) -> Vec<BitLoc> {
@@ -95,7 +95,7 @@ impl Names {
         if let Some(table) = symbols {
             for name in table.names() {
                 if let Ok(a) =
-                    stljit_syntax::parse_address(name, program.profile.profile(), Some(table))
+                    stljit_front_s7::parse_address(name, program.profile.profile(), Some(table))
                 {
                     by_address.entry(a).or_insert_with(|| name.to_string());
                 }
@@ -106,7 +106,7 @@ impl Names {
 
     /// `Car_Red (Q0.0)` or `Q0.0`.
     pub(crate) fn name(&self, a: &Address) -> String {
-        let plain = stljit_syntax::print_address(a);
+        let plain = stljit_front_s7::print_address(a);
         match self.by_address.get(a) {
             Some(sym) => format!("{sym} ({plain})"),
             None => plain,
@@ -118,7 +118,7 @@ impl Names {
         self.by_address
             .get(a)
             .cloned()
-            .unwrap_or_else(|| stljit_syntax::print_address(a))
+            .unwrap_or_else(|| stljit_front_s7::print_address(a))
     }
 }
 

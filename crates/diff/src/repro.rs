@@ -201,7 +201,7 @@ pub fn write_repro(
         std::fs::write(dir.join(file), text).map_err(|e| ReproError::Io(dir.join(file), e))
     };
     put("program.ir", text::print(&case.program))?;
-    put("program.stl", stljit_syntax::print_program(&case.program))?;
+    put("program.stl", stljit_front_s7::print_program(&case.program))?;
     put("stimulus.csv", stimulus_csv(meta.profile, &case.stimulus))?;
     put("meta", meta_text(meta, &case.stimulus))?;
     let mut readme = String::new();
@@ -290,7 +290,7 @@ pub fn parse_stimulus(
 ) -> Result<Stimulus, ReproError> {
     let p = profile.profile();
     let resolve = |s: &str| -> Result<Address, String> {
-        stljit_syntax::parse_address(s, p, None).map_err(|e| e.to_string())
+        stljit_front_s7::parse_address(s, p, None).map_err(|e| e.to_string())
     };
     let st =
         sim::Stimulus::parse(csv, p, &resolve).map_err(|e| ReproError::Stimulus(e.to_string()))?;

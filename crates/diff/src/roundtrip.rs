@@ -13,7 +13,7 @@
 use std::fmt;
 use stljit_core::ir::{Program, SrcLoc};
 use stljit_core::text::{self, ParseError};
-use stljit_syntax::{compile_str, print_program, render_human};
+use stljit_front_s7::{compile_str, print_program, render_human};
 
 /// Why a program did not survive a round trip.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -126,7 +126,7 @@ pub fn s7_roundtrip(program: &Program) -> Result<Program, RoundTripError> {
         let diagnostics = c
             .diagnostics
             .iter()
-            .filter(|d| d.severity == stljit_syntax::Severity::Error)
+            .filter(|d| d.severity == stljit_front_s7::Severity::Error)
             .map(|d| render_human(d, &c.sources))
             .collect::<Vec<_>>()
             .join("");

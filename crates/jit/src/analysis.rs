@@ -243,7 +243,7 @@ mod tests {
     use super::*;
 
     fn pou(text: &str) -> Pou {
-        let c = stljit_syntax::compile_str("t.stl", text, stljit_core::ProfileId::A5);
+        let c = stljit_front_s7::compile_str("t.stl", text, stljit_core::ProfileId::A5);
         let prog = c.program.expect("compiles");
         prog.pous[0].clone()
     }

@@ -6,7 +6,7 @@ use stljit_core::ir::Program;
 use stljit_jit::{JitOptions, OptLevel, asm_text, clif_text, optimized_clif_text};
 
 fn stl(text: &str) -> Program {
-    let c = stljit_syntax::compile_str("test.stl", text, stljit_core::ProfileId::A5);
+    let c = stljit_front_s7::compile_str("test.stl", text, stljit_core::ProfileId::A5);
     c.program.expect("test program compiles")
 }
 

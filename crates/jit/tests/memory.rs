@@ -12,7 +12,7 @@ fn rss_pages() -> Option<u64> {
 fn compile_and_drop_does_not_grow() {
     let text =
         "LD I0.0\nA I0.1\n= Q0.0\nLD I0.2\nTON T37, 10\nLD SM0.0\nMOVW IW0, VW0\n+I 1, VW0\n";
-    let c = stljit_syntax::compile_str("mem.stl", text, stljit_core::ProfileId::A5);
+    let c = stljit_front_s7::compile_str("mem.stl", text, stljit_core::ProfileId::A5);
     let p = c.program.expect("compiles");
     let opts = JitOptions::default();
     let n = if cfg!(debug_assertions) { 600 } else { 2000 };

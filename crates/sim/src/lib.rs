@@ -4,7 +4,7 @@
 //! [`Image`]; it needs neither the interpreter nor the JIT, and the runtime does not know it.
 //! Nothing here reads a clock or touches the file system: time is `k · scan_ms`, inputs come from
 //! a parsed [`Stimulus`], traces go to any `impl Write`. Address names are resolved by a closure
-//! the caller supplies (normally `stljit_syntax::parse_address` for the program's profile), so
+//! the caller supplies (normally `stljit_front_s7::parse_address` for the program's profile), so
 //! the simulation does not depend on the front end.
 //!
 //! * [`stimulus`] — the stimulus CSV (`scan,I0.0,VW100` or `t_ms,...`).

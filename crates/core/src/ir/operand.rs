@@ -110,7 +110,7 @@ pub enum Contact {
 }
 
 /// An address named outside a program (stimulus files, watch lists, HMI writes): a bit or a
-/// value of a width. Parsed by the front end (`stljit_syntax::parse_address`), applied by the
+/// value of a width. Parsed by the front end (`stljit_front_s7::parse_address`), applied by the
 /// runtime's simulation driver.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Address {

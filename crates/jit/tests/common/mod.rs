@@ -10,7 +10,7 @@ use stljit_jit::{JitOptions, JitProgram, OptLevel};
 
 /// Compiles STL text for the A5 profile, panicking with the diagnostics on failure.
 pub(crate) fn stl(text: &str) -> Program {
-    let c = stljit_syntax::compile_str("test.stl", text, ProfileId::A5);
+    let c = stljit_front_s7::compile_str("test.stl", text, ProfileId::A5);
     match c.program {
         Some(p) => p,
         None => panic!("program does not compile: {:#?}", c.diagnostics),
@@ -64,7 +64,7 @@ fn jit_options() -> [JitOptions; 3] {
 }
 
 fn report(program: &Program, f: Finding, jo: JitOptions) -> ! {
-    let text = stljit_syntax::print_program(program);
+    let text = stljit_front_s7::print_program(program);
     panic!("JIT ({jo:?}) differs from the interpreter: {f:#?}\nprogram:\n{text}");
 }
 
