@@ -1,13 +1,13 @@
 //! Operand classes (spec §4.0): turns a written operand into an IR operand of the width the
 //! instruction fixes, checking class, width, profile range and write access on the way.
 
-use crate::codes::Code;
-use crate::diag::{Diagnostic, Span, clip};
 use crate::lexer::Tok;
 use crate::operand::{Const, ResolveError, Syn, resolve};
 use crate::symbols::SymbolTable;
 use stljit_core::ir::{BitLoc, Loc, Operand};
 use stljit_core::{Area, CounterId, CpuProfile, FileId, TimerId, Width};
+use stljit_source::Code;
+use stljit_source::{Diagnostic, Span, clip};
 
 /// The diagnostic for this operand has already been pushed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

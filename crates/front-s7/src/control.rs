@@ -2,14 +2,14 @@
 //! instructions, with the block-structure checks they need.
 
 use crate::classes::{BitClass, R};
-use crate::codes::Code;
-use crate::diag::clip;
 use crate::lexer::{Line, Tok};
 use crate::operand::unquote;
 use crate::program::{Lowerer, OpenScr, PouState};
 use crate::symbols::{PouRef, SymTarget};
 use stljit_core::ir::{Op, PouKind};
 use stljit_core::{OpIdx, PouId, Width};
+use stljit_source::Code;
+use stljit_source::clip;
 
 impl Lowerer<'_> {
     /// Rejects `what` inside an open SCR segment.

@@ -11,10 +11,7 @@
 
 mod address;
 mod classes;
-mod codes;
 mod control;
-mod decode;
-mod diag;
 mod lexer;
 mod lower;
 mod mnemonics;
@@ -26,81 +23,19 @@ mod structure;
 mod symbols;
 
 pub use address::{Address, AddressError, parse_address};
-pub use codes::{Code, Severity};
-pub use decode::Encoding;
-pub use diag::{Diagnostic, SourceText, Sources, render_human, render_json};
 pub use print::{print_address, print_op, print_program};
+pub use stljit_source::{
+    Code, Diagnostic, Encoding, Severity, SourceFile, SourceText, Sources, render_human,
+    render_json,
+};
 pub use symbols::{PouRef, SymbolTable};
 
 use classes::Cx;
-use stljit_core::ir::Program;
 use stljit_core::{FileId, ProfileId};
+use stljit_source::decode_file;
 
-/// One input file: its name (for messages) and raw bytes (any encoding the front end accepts).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct SourceFile {
-    /// The name shown in diagnostics, usually the path.
-    pub name: String,
-    /// The raw contents.
-    pub bytes: Vec<u8>,
-}
-
-/// The result of [`compile`].
-#[derive(Clone, Debug)]
-pub struct Compilation {
-    /// The checked program; `Some` iff there is no error diagnostic.
-    pub program: Option<Program>,
-    /// Every diagnostic of every file, sorted by file, line and column.
-    pub diagnostics: Vec<Diagnostic>,
-    /// The decoded sources (program files first, then the symbol table), for rendering.
-    pub sources: Sources,
-    /// The symbol table, when one was given (for resolving watch addresses by name).
-    pub symbols: Option<SymbolTable>,
-}
-
-impl Compilation {
-    /// Number of error diagnostics.
-    pub fn error_count(&self) -> usize {
-        self.diagnostics
-            .iter()
-            .filter(|d| d.severity == Severity::Error)
-            .count()
-    }
-
-    /// Number of warnings.
-    pub fn warning_count(&self) -> usize {
-        self.diagnostics.len() - self.error_count()
-    }
-}
-
-/// Decodes `file`, reporting undecodable bytes as [`Code::Encoding`] on `id`.
-fn decode_file(file: &SourceFile, id: FileId, diags: &mut Vec<Diagnostic>) -> SourceText {
-    let (text, _, issue) = decode::decode(&file.bytes);
-    if let Some(issue) = issue {
-        let before = String::from_utf8_lossy(&file.bytes[..issue.byte.min(file.bytes.len())]);
-        let line = before.matches('\n').count() + 1;
-        let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-        let span = diag::Span {
-            file: id,
-            line: u32::try_from(line).unwrap_or(u32::MAX),
-            col: u32::try_from(col).unwrap_or(u32::MAX),
-            len: 1,
-        };
-        diags.push(
-            Diagnostic::new(
-                Code::Encoding,
-                span,
-                "",
-                "the file is neither UTF-8 nor GBK text (invalid byte sequence here)",
-            )
-            .help("save the program as UTF-8 or GBK text"),
-        );
-    }
-    SourceText {
-        name: file.name.clone(),
-        text,
-    }
-}
+/// What compiling an S7 project produced (with its MicroWIN symbol table).
+pub type Compilation = stljit_source::Compilation<SymbolTable>;
 
 /// Compiles a project: every file in `files` (together one program), the optional symbol table,
 /// against the CPU `profile`. All diagnostics of all files are reported.

@@ -2,8 +2,6 @@
 //! IR ops. Program control (§4.13) is in `control.rs`.
 
 use crate::classes::{BitClass, R, Val};
-use crate::codes::Code;
-use crate::diag::clip;
 use crate::lexer::{Line, Tok};
 use crate::operand::Syn;
 use crate::program::{Lowerer, PouState};
@@ -13,6 +11,8 @@ use stljit_core::ir::{
     ArithOp, BoxOp, CmpOp, CmpType, Contact, Conversion, CounterKind, LogicOp, Op, Operand, RealFn,
     TimerKind,
 };
+use stljit_source::Code;
+use stljit_source::clip;
 
 fn width_of(c: u8) -> Width {
     match c {

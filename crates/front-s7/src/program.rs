@@ -3,8 +3,6 @@
 //! tables (timers, counters, edge slots) into an [`stljit_core::ir::Program`].
 
 use crate::classes::Cx;
-use crate::codes::Code;
-use crate::diag::{Diagnostic, Span, clip};
 use crate::lexer::{Line, Tok, upper};
 use crate::stack::StackCheck;
 use crate::structure::PouSrc;
@@ -14,6 +12,8 @@ use stljit_core::ir::{
     TimerKind, loop_entered_by,
 };
 use stljit_core::{CounterId, LabelId, OpIdx, PouId, TimerId};
+use stljit_source::Code;
+use stljit_source::{Diagnostic, Span, clip};
 
 /// An open SCR segment.
 pub(crate) struct OpenScr {

@@ -6,9 +6,9 @@
 //! well-formed rung reads them. Labels and jumps make the depth unknown (no warnings) until the
 //! next rung starts, so that jump targets never produce false alarms.
 
-use crate::codes::Code;
-use crate::diag::{Diagnostic, Span};
 use stljit_core::ir::Op;
+use stljit_source::Code;
+use stljit_source::{Diagnostic, Span};
 
 /// Depth tracker for one POU.
 #[derive(Clone, Copy, Debug)]

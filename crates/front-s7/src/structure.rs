@@ -3,11 +3,11 @@
 //! blocks (`ORGANIZATION_BLOCK`, `SUBROUTINE_BLOCK`, `INTERRUPT_BLOCK` with `TITLE=`, `VAR_…`
 //! sections, `BEGIN` and `END_…_BLOCK`).
 
-use crate::codes::Code;
-use crate::diag::{Diagnostic, Span, clip};
 use crate::lexer::{Line, Tok, lex_line};
 use stljit_core::ir::PouKind;
 use stljit_core::{CpuProfile, FileId};
+use stljit_source::Code;
+use stljit_source::{Diagnostic, Span, clip};
 
 /// The source lines of one POU.
 #[derive(Debug)]

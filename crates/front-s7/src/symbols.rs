@@ -1,11 +1,11 @@
 //! MicroWIN symbol tables: one symbol a line, `name<TAB>address[<TAB>comment]` (leading tabs and
 //! a header line allowed) or the same columns as CSV. Names may be any text, including non-ASCII.
 
-use crate::codes::Code;
-use crate::diag::{Diagnostic, Span};
 use crate::operand::{Syn, SynError, parse_syn};
 use std::collections::HashMap;
 use stljit_core::FileId;
+use stljit_source::Code;
+use stljit_source::{Diagnostic, Span};
 
 /// A program organisation unit named by a symbol (`Motor_Logic  SBR0`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -102,7 +102,7 @@ impl SymbolTable {
                             Code::SymbolAddress,
                             span(addr),
                             addr,
-                            format!("`{}` is not a valid address for symbol `{}`", crate::diag::clip(addr), crate::diag::clip(&name_text)),
+                            format!("`{}` is not a valid address for symbol `{}`", stljit_source::clip(addr), stljit_source::clip(&name_text)),
                         )
                         .help(format!("{why}; allowed: bit (I0.0), byte/word/dword (VB10, VW10, VD10), T, C, AC, HC, AIW, AQW, SBRn, INTn, OB1")),
                     );
@@ -117,7 +117,7 @@ impl SymbolTable {
                         name,
                         format!(
                             "symbol `{}` is defined twice",
-                            crate::diag::clip(&name_text)
+                            stljit_source::clip(&name_text)
                         ),
                     )
                     .help(format!("first defined on line {prev}")),

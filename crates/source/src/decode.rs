@@ -3,9 +3,9 @@
 
 /// Why a file's bytes could not be decoded cleanly.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct DecodeIssue {
+pub struct DecodeIssue {
     /// Byte offset of the first byte that is neither valid UTF-8 nor valid GBK.
-    pub(crate) byte: usize,
+    pub byte: usize,
 }
 
 /// The text encoding a file turned out to use.
@@ -21,7 +21,7 @@ pub enum Encoding {
 
 /// Decodes `bytes`: UTF-8 (BOM stripped) first, because valid UTF-8 text is almost never valid
 /// GBK by accident for non-ASCII content, then GBK, then lossy UTF-8 with the first bad offset.
-pub(crate) fn decode(bytes: &[u8]) -> (String, Encoding, Option<DecodeIssue>) {
+pub fn decode(bytes: &[u8]) -> (String, Encoding, Option<DecodeIssue>) {
     let body = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     match std::str::from_utf8(body) {
         Ok(s) => (s.to_owned(), Encoding::Utf8, None),

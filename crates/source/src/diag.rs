@@ -33,7 +33,7 @@ pub struct Diagnostic {
 }
 
 /// Shortens `s` to at most [`MAX_TEXT`] characters for use inside messages.
-pub(crate) fn clip(s: &str) -> String {
+pub fn clip(s: &str) -> String {
     if s.chars().count() <= MAX_TEXT {
         s.to_owned()
     } else {
@@ -45,20 +45,20 @@ pub(crate) fn clip(s: &str) -> String {
 
 /// A position range on one line, used while building diagnostics.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub(crate) struct Span {
+pub struct Span {
     /// The file.
-    pub(crate) file: FileId,
+    pub file: FileId,
     /// Line, 1-based.
-    pub(crate) line: u32,
+    pub line: u32,
     /// Start column, 1-based, in characters.
-    pub(crate) col: u32,
+    pub col: u32,
     /// Length in characters.
-    pub(crate) len: u32,
+    pub len: u32,
 }
 
 impl Diagnostic {
     /// Builds a diagnostic; the severity comes from the code.
-    pub(crate) fn new(code: Code, span: Span, text: &str, message: impl Into<String>) -> Self {
+    pub fn new(code: Code, span: Span, text: &str, message: impl Into<String>) -> Self {
         Diagnostic {
             code,
             severity: code.severity(),
@@ -73,7 +73,7 @@ impl Diagnostic {
     }
 
     /// Adds a help line.
-    pub(crate) fn help(mut self, help: impl Into<String>) -> Self {
+    pub fn help(mut self, help: impl Into<String>) -> Self {
         self.help = Some(help.into());
         self
     }
