@@ -30,9 +30,12 @@ pub(crate) struct Args {
     /// Virtual time per scan in ms.
     #[arg(long, default_value_t = 10)]
     scan_ms: u64,
-    /// CPU profile.
-    #[arg(long, default_value = "a5")]
-    cpu: String,
+    /// Program dialect (see `stljit check --help`).
+    #[arg(long, default_value = "s7")]
+    dialect: String,
+    /// CPU profile (default: the dialect's).
+    #[arg(long)]
+    cpu: Option<String>,
     /// MicroWIN symbol table used by every program (name<TAB>address, or CSV).
     #[arg(long)]
     symbols: Option<std::path::PathBuf>,
@@ -136,6 +139,7 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     for path in &args.files {
         let input = crate::check::Input {
             files: vec![path.clone()],
+            dialect: args.dialect.clone(),
             cpu: args.cpu.clone(),
             symbols: args.symbols.clone(),
         };

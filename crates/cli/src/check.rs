@@ -1,13 +1,16 @@
 //! `stljit check`: parse and check programs, print diagnostics.
 //!
 //! Exit codes: 0 when there is no error (warnings allowed), 1 when there are errors, 2 for usage
-//! errors (unreadable file, unknown `--cpu`).
+//! errors (unreadable file, unknown `--dialect` or `--cpu`).
+//!
+//! [`Input`] is the one seam between the command line and the front ends: every command that
+//! reads programs compiles them through [`Input::compile`], which picks the dialect.
 
 use anyhow::Context as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use stljit_core::ProfileId;
-use stljit_front_s7::{Compilation, SourceFile, render_human, render_json};
+use stljit_front::{Compilation, Dialect, SourceFile, render_human, render_json};
 
 /// Output format of the diagnostics.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -24,9 +27,12 @@ pub(crate) struct Input {
     /// Program files (plain STL or MicroWIN .awl exports), checked as one project.
     #[arg(required = true)]
     pub(crate) files: Vec<PathBuf>,
-    /// CPU profile: a5 (default) or s7-200.
-    #[arg(long, default_value = "a5")]
-    pub(crate) cpu: String,
+    /// Program dialect: s7 (S7-200/A5 STL and MicroWIN exports; the default).
+    #[arg(long, default_value = "s7")]
+    pub(crate) dialect: String,
+    /// CPU profile: a5 (the s7 default) or s7-200.
+    #[arg(long)]
+    pub(crate) cpu: Option<String>,
     /// MicroWIN symbol table (name<TAB>address[<TAB>comment], or CSV).
     #[arg(long)]
     pub(crate) symbols: Option<PathBuf>,
@@ -41,19 +47,37 @@ fn read(path: &Path) -> anyhow::Result<SourceFile> {
 }
 
 impl Input {
+    /// The dialect named by `--dialect`; `Err` is a usage error (exit 2).
+    pub(crate) fn dialect(&self) -> anyhow::Result<Dialect> {
+        Dialect::from_name(&self.dialect).with_context(|| {
+            let names: Vec<_> = Dialect::ALL.iter().map(|d| d.name()).collect();
+            format!(
+                "unknown --dialect `{}` (known: {})",
+                self.dialect,
+                names.join(", ")
+            )
+        })
+    }
+
     /// Reads every file and compiles the project; `Err` is a usage error (exit 2).
     pub(crate) fn compile(&self) -> anyhow::Result<Compilation> {
-        let profile = ProfileId::from_name(&self.cpu).with_context(|| {
-            let names: Vec<_> = ProfileId::ALL.iter().map(|p| p.name()).collect();
-            format!("unknown --cpu `{}` (known: {})", self.cpu, names.join(", "))
-        })?;
+        let dialect = self.dialect()?;
+        let profile = match &self.cpu {
+            None => dialect.default_profile(),
+            Some(cpu) => ProfileId::from_name(cpu)
+                .filter(|p| dialect.profiles().contains(p))
+                .with_context(|| {
+                    let names: Vec<_> = dialect.profiles().iter().map(|p| p.name()).collect();
+                    format!("unknown --cpu `{cpu}` (known: {})", names.join(", "))
+                })?,
+        };
         let files = self
             .files
             .iter()
             .map(|p| read(p))
             .collect::<anyhow::Result<Vec<_>>>()?;
         let symbols = self.symbols.as_deref().map(read).transpose()?;
-        Ok(stljit_front_s7::compile(&files, symbols.as_ref(), profile))
+        Ok(dialect.compile(&files, symbols.as_ref(), profile))
     }
 }
 

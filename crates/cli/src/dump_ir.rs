@@ -5,7 +5,7 @@
 //! programs.
 
 use std::process::ExitCode;
-use stljit_front_s7::render_human;
+use stljit_front::render_human;
 
 /// Arguments of `stljit dump-ir`.
 #[derive(clap::Args)]

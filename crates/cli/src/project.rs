@@ -3,7 +3,7 @@
 
 use std::io::Write as _;
 use stljit_core::ir::Program;
-use stljit_front_s7::{Compilation, render_human};
+use stljit_front::{Compilation, render_human};
 
 /// Prints every diagnostic to stderr; returns the program when there were no errors.
 pub(crate) fn checked_program(c: &Compilation) -> Option<&Program> {

@@ -14,7 +14,7 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 use stljit_core::ir::{Address, Program};
-use stljit_front_s7::Compilation;
+use stljit_front::{Compilation, Dialect};
 use stljit_runtime::Image;
 use stljit_sim::{
     CsvTrace, Observer, Outcome, Progress, RunReport, ScanEvent, Simulation, Stimulus, TimeBase,
@@ -61,10 +61,11 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     let Some(program) = crate::project::checked_program(&compilation) else {
         return Ok(ExitCode::from(1));
     };
+    let dialect = args.input.dialect()?;
     let profile = program.profile.profile();
     let resolve = |name: &str| -> Result<Address, String> {
-        stljit_front_s7::parse_address(name, profile, compilation.symbols.as_ref())
-            .map(to_core_address)
+        dialect
+            .parse_address(name, program.profile, compilation.symbols.as_ref())
             .map_err(|e| e.to_string())
     };
     let stimulus = match &args.inputs {
@@ -77,7 +78,7 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
         None => Stimulus::empty(TimeBase::Scan, profile),
     };
     let layout = stljit_core::Layout::new(profile);
-    let watch = watch_list(&args, program, &compilation, &resolve, &layout)?;
+    let watch = watch_list(&args, program, (dialect, &compilation), &resolve, &layout)?;
     let mut engine = build_engine(args.engine, args.opt, program)?;
     let until = match (args.scans, args.duration) {
         (Some(n), _) => Until::Scans(n),
@@ -108,7 +109,14 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
         let mut all = Fanout(observers);
         let report = sim.run(until, &stimulus, &mut all)?;
         all.finish()?;
-        summarise(&args, program, &compilation, &report, sim.image(), &stats);
+        summarise(
+            &args,
+            program,
+            (dialect, &compilation),
+            &report,
+            sim.image(),
+            &stats,
+        );
         report
     };
     bar.clear();
@@ -118,25 +126,17 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     })
 }
 
-/// The syntax crate's address and the runtime's are the same shape; convert at the boundary.
-fn to_core_address(a: stljit_front_s7::Address) -> Address {
-    match a {
-        stljit_front_s7::Address::Bit(b) => Address::Bit(b),
-        stljit_front_s7::Address::Value { loc, width } => Address::Value { loc, width },
-    }
-}
-
 /// The watch list: `--watch` as given, or for a trace without one, every I/Q/M bit the program
 /// reads or writes.
 fn watch_list(
     args: &Args,
     program: &Program,
-    compilation: &Compilation,
+    (dialect, compilation): (Dialect, &Compilation),
     resolve: &dyn Fn(&str) -> Result<Address, String>,
     layout: &stljit_core::Layout,
 ) -> anyhow::Result<Vec<WatchSpec>> {
     let names: Vec<String> = if args.watch.is_empty() && args.trace.is_some() {
-        let names = crate::used::Names::new(program, compilation.symbols.as_ref());
+        let names = crate::used::Names::new(program, dialect, compilation.symbols.as_ref());
         crate::used::io_bits(program)
             .into_iter()
             .map(|b| names.watch_name(&Address::Bit(b)))
@@ -239,7 +239,7 @@ impl ScanStats {
 fn summarise(
     args: &Args,
     program: &Program,
-    compilation: &Compilation,
+    (dialect, compilation): (Dialect, &Compilation),
     report: &RunReport,
     image: &Image,
     stats: &ScanStats,
@@ -280,7 +280,7 @@ fn summarise(
         let outputs = crate::used::outputs(program);
         if !outputs.is_empty() {
             let _ = writeln!(err, "outputs after the last scan:");
-            let names = crate::used::Names::new(program, compilation.symbols.as_ref());
+            let names = crate::used::Names::new(program, dialect, compilation.symbols.as_ref());
             for (name, value) in crate::used::describe(&outputs, image, &names) {
                 let _ = writeln!(err, "  {name:<24} {value}");
             }

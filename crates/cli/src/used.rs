@@ -5,7 +5,7 @@
 use std::collections::{BTreeSet, HashMap};
 use stljit_core::ir::{Address, BitLoc, BoxOp, Contact, Loc, Op, Operand, Program};
 use stljit_core::{Area, Width};
-use stljit_front_s7::SymbolTable;
+use stljit_front::{Dialect, Symbols};
 use stljit_runtime::Image;
 use stljit_sim::read_address;
 
@@ -86,27 +86,29 @@ impl Key {
 /// Names for addresses: the symbol when the table has one, else the address itself.
 pub(crate) struct Names {
     by_address: HashMap<Address, String>,
+    dialect: Dialect,
 }
 
 impl Names {
     /// Reverse index of a symbol table (resolving each symbol against the program's profile).
-    pub(crate) fn new(program: &Program, symbols: Option<&SymbolTable>) -> Names {
+    pub(crate) fn new(program: &Program, dialect: Dialect, symbols: Option<&Symbols>) -> Names {
         let mut by_address = HashMap::new();
         if let Some(table) = symbols {
             for name in table.names() {
-                if let Ok(a) =
-                    stljit_front_s7::parse_address(name, program.profile.profile(), Some(table))
-                {
+                if let Ok(a) = dialect.parse_address(name, program.profile, Some(table)) {
                     by_address.entry(a).or_insert_with(|| name.to_string());
                 }
             }
         }
-        Names { by_address }
+        Names {
+            by_address,
+            dialect,
+        }
     }
 
     /// `Car_Red (Q0.0)` or `Q0.0`.
     pub(crate) fn name(&self, a: &Address) -> String {
-        let plain = stljit_front_s7::print_address(a);
+        let plain = self.dialect.print_address(a);
         match self.by_address.get(a) {
             Some(sym) => format!("{sym} ({plain})"),
             None => plain,
@@ -118,7 +120,7 @@ impl Names {
         self.by_address
             .get(a)
             .cloned()
-            .unwrap_or_else(|| stljit_front_s7::print_address(a))
+            .unwrap_or_else(|| self.dialect.print_address(a))
     }
 }
 
