@@ -5,8 +5,6 @@
 //! are big-endian in every area, accumulators included, so that a byte write to an accumulator
 //! (offset `4n + 3`) replaces only its low byte (spec §1.5, item A5).
 
-use std::fmt;
-
 /// Access width of a value operand. Reals are `DWord`s whose bits are an IEEE-754 binary32.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Width {
@@ -45,15 +43,6 @@ impl Width {
             Width::Byte => 0xFF,
             Width::Word => 0xFFFF,
             Width::DWord => 0xFFFF_FFFF,
-        }
-    }
-
-    /// The STL suffix letter (`B`, `W`, `D`).
-    pub fn suffix(self) -> char {
-        match self {
-            Width::Byte => 'B',
-            Width::Word => 'W',
-            Width::DWord => 'D',
         }
     }
 }
@@ -137,38 +126,5 @@ impl Area {
         Area::ALL
             .into_iter()
             .find(|a| a.pointer_code() == Some(code))
-    }
-
-    /// Whether the area is byte-addressable memory whose bits use `byte.bit` syntax.
-    pub fn has_bit_syntax(self) -> bool {
-        matches!(
-            self,
-            Area::I | Area::Q | Area::M | Area::S | Area::SM | Area::V | Area::L
-        )
-    }
-
-    /// The area's prefix in STL text (`V`, `SM`, `AI`, `T`, ...).
-    pub fn prefix(self) -> &'static str {
-        match self {
-            Area::I => "I",
-            Area::Q => "Q",
-            Area::M => "M",
-            Area::S => "S",
-            Area::SM => "SM",
-            Area::V => "V",
-            Area::L => "L",
-            Area::AI => "AI",
-            Area::AQ => "AQ",
-            Area::TimerValue | Area::TimerBit => "T",
-            Area::CounterValue | Area::CounterBit => "C",
-            Area::HC => "HC",
-            Area::AC => "AC",
-        }
-    }
-}
-
-impl fmt::Display for Area {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.prefix())
     }
 }

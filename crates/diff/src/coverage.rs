@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 use stljit_core::ir::{BoxOp, CmpType, Contact, Conversion, Op, Operand, Program};
 use stljit_core::{Area, Width};
+use stljit_front_s7::spelling::{area_prefix, counter_mnemonic, timer_mnemonic};
 
 /// Counts per mnemonic (`LD`, `LDW>=`, `MOVD`, `TONR`, ...) and per operand kind (`V`, `*VD`, `&`,
 /// `const`, ...).
@@ -132,8 +133,8 @@ pub fn mnemonic(op: &Op) -> &'static str {
         },
         Op::ResetTimers { .. } => "R T",
         Op::ResetCounters { .. } => "R C",
-        Op::Timer { kind, .. } => kind.mnemonic(),
-        Op::Counter { kind, .. } => kind.mnemonic(),
+        Op::Timer { kind, .. } => timer_mnemonic(*kind),
+        Op::Counter { kind, .. } => counter_mnemonic(*kind),
         Op::Box(b) => box_mnemonic(b),
         Op::Jump(_) => "JMP",
         Op::Label(_) => "LBL",
@@ -317,6 +318,6 @@ fn area_name(a: Area) -> &'static str {
         Area::CounterValue => "C",
         Area::TimerBit => "T-bit",
         Area::CounterBit => "C-bit",
-        other => other.prefix(),
+        other => area_prefix(other),
     }
 }

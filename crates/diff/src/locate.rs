@@ -6,6 +6,7 @@
 use std::fmt;
 use stljit_core::Area;
 use stljit_core::layout::{Block, L_FRAMES, Layout, Region};
+use stljit_front_s7::spelling::area_prefix;
 
 /// What an image byte belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -114,14 +115,20 @@ impl fmt::Display for Place {
                 )
             }
             Place::Area { area, offset, .. } => match area {
-                Area::AI | Area::AQ => write!(f, "{area}W{} byte {}", offset & !1, offset & 1),
+                Area::AI | Area::AQ => write!(
+                    f,
+                    "{}W{} byte {}",
+                    area_prefix(area),
+                    offset & !1,
+                    offset & 1
+                ),
                 Area::TimerValue => write!(f, "T{} value byte {}", offset / 2, offset % 2),
                 Area::CounterValue => write!(f, "C{} value byte {}", offset / 2, offset % 2),
                 Area::TimerBit => write!(f, "T{} bit", offset),
                 Area::CounterBit => write!(f, "C{} bit", offset),
                 Area::HC => write!(f, "HC{} byte {}", offset / 4, offset % 4),
                 Area::AC => write!(f, "AC{} byte {}", offset / 4, offset % 4),
-                _ => write!(f, "{}B{offset}", area.prefix()),
+                _ => write!(f, "{}B{offset}", area_prefix(area)),
             },
             Place::Edge(n) => write!(f, "edge memory {n}"),
             Place::Timer { n, field } => write!(f, "T{n}.{field} (private)"),

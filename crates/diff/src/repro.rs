@@ -72,13 +72,7 @@ impl fmt::Display for ReproError {
 impl std::error::Error for ReproError {}
 
 fn name(a: &Address) -> String {
-    match *a {
-        Address::Bit(b) => format!("{}{}.{}", b.area.prefix(), b.byte, b.bit),
-        Address::Value { loc, width } => match loc.area {
-            Area::AI => format!("AIW{}", loc.offset),
-            _ => format!("{}{}{}", loc.area.prefix(), width.suffix(), loc.offset),
-        },
-    }
+    stljit_front_s7::print_address(a)
 }
 
 /// The stimulus as runtime::sim CSV: one column per input byte, analog word or HMI address that

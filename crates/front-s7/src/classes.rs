@@ -3,6 +3,7 @@
 
 use crate::lexer::Tok;
 use crate::operand::{Const, ResolveError, Syn, resolve};
+use crate::spelling::{area_prefix, width_letter};
 use crate::symbols::SymbolTable;
 use stljit_core::ir::{BitLoc, Loc, Operand};
 use stljit_core::{Area, CounterId, CpuProfile, FileId, TimerId, Width};
@@ -245,14 +246,14 @@ impl Cx<'_> {
         let prefix = match area {
             Area::AI => "AIW".to_owned(),
             Area::AQ => "AQW".to_owned(),
-            a => format!("{}{}", a.prefix(), width.suffix()),
+            a => format!("{}{}", area_prefix(a), width_letter(width)),
         };
         let last = size.saturating_sub(width.bytes());
         let mut allowed = format!("{prefix}0 - {prefix}{last}");
         if width != Width::Byte && offset < size {
             allowed.push_str(&format!(
                 " ({prefix}{offset} needs {}B{})",
-                area.prefix(),
+                area_prefix(area),
                 offset + width.bytes() - 1
             ));
         }
@@ -316,7 +317,7 @@ impl Cx<'_> {
                 }
                 let size = self.profile.area_size(area);
                 if byte >= size {
-                    let p = area.prefix();
+                    let p = area_prefix(area);
                     return Err(self.out_of_range(
                         t,
                         format!("`{}`", clip(t.text)),

@@ -18,6 +18,7 @@ mod mnemonics;
 mod operand;
 mod print;
 mod program;
+pub mod spelling;
 mod stack;
 mod structure;
 mod symbols;

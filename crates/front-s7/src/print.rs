@@ -2,6 +2,7 @@
 //! back to the same IR, up to source locations; fuzz reproducers and the round-trip fuzz target
 //! rely on that.
 
+use crate::spelling::{area_prefix, counter_mnemonic, timer_mnemonic, width_letter};
 use std::fmt::Write as _;
 use stljit_core::ir::{
     Address, ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, Conversion, LogicOp, Op, Operand,
@@ -14,7 +15,7 @@ fn bit(b: BitLoc) -> String {
     match b.area {
         Area::TimerBit => format!("T{}", b.byte),
         Area::CounterBit => format!("C{}", b.byte),
-        a => format!("{}{}.{}", a.prefix(), b.byte, b.bit),
+        a => format!("{}{}.{}", area_prefix(a), b.byte, b.bit),
     }
 }
 
@@ -27,7 +28,7 @@ fn loc(area: Area, offset: u32, width: Width) -> String {
         Area::CounterValue => format!("C{}", offset / 2),
         Area::HC => format!("HC{}", offset / 4),
         Area::AC => format!("AC{}", offset / 4),
-        a => format!("{}{}{offset}", a.prefix(), width.suffix()),
+        a => format!("{}{}{offset}", area_prefix(a), width_letter(width)),
     }
 }
 
@@ -114,7 +115,7 @@ fn box_op(x: &BoxOp) -> String {
         BoxOp::Move { width, src, dst } => {
             format!(
                 "MOV{} {}, {}",
-                width.suffix(),
+                width_letter(width),
                 val(src, width, false),
                 val(dst, width, false)
             )
@@ -127,7 +128,7 @@ fn box_op(x: &BoxOp) -> String {
             count,
         } => format!(
             "BM{} {}, {}, {}",
-            width.suffix(),
+            width_letter(width),
             val(src, width, false),
             val(dst, width, false),
             b(count)
@@ -164,7 +165,7 @@ fn box_op(x: &BoxOp) -> String {
         BoxOp::Step { width, up, dst } => format!(
             "{}{} {}",
             if up { "INC" } else { "DEC" },
-            width.suffix(),
+            width_letter(width),
             val(dst, width, false)
         ),
         BoxOp::Logic {
@@ -180,12 +181,14 @@ fn box_op(x: &BoxOp) -> String {
             };
             format!(
                 "{name}{} {}, {}",
-                width.suffix(),
+                width_letter(width),
                 val(src, width, false),
                 val(dst, width, false)
             )
         }
-        BoxOp::Invert { width, dst } => format!("INV{} {}", width.suffix(), val(dst, width, false)),
+        BoxOp::Invert { width, dst } => {
+            format!("INV{} {}", width_letter(width), val(dst, width, false))
+        }
         BoxOp::Shift {
             left,
             width,
@@ -206,7 +209,7 @@ fn box_op(x: &BoxOp) -> String {
             let dir = if left { 'L' } else { 'R' };
             format!(
                 "{kind}{dir}{} {}, {}",
-                width.suffix(),
+                width_letter(width),
                 val(dst, width, false),
                 b(count)
             )
@@ -290,13 +293,13 @@ pub fn print_op(program: &Program, pou: &Pou, op: &Op) -> String {
             kind,
             timer,
             preset,
-        } => format!("{} {timer}, {}", kind.mnemonic(), w(*preset)),
+        } => format!("{} {timer}, {}", timer_mnemonic(*kind), w(*preset)),
         Op::Counter {
             kind,
             counter,
             preset,
         } => {
-            format!("{} {counter}, {}", kind.mnemonic(), w(*preset))
+            format!("{} {counter}, {}", counter_mnemonic(*kind), w(*preset))
         }
         Op::Box(x) => box_op(x),
         Op::Jump(l) => format!("JMP {}", l.0),

@@ -4,6 +4,7 @@
 
 use crate::classes::Cx;
 use crate::lexer::{Line, Tok, upper};
+use crate::spelling::{counter_mnemonic, timer_mnemonic};
 use crate::stack::StackCheck;
 use crate::structure::PouSrc;
 use std::collections::HashMap;
@@ -142,13 +143,13 @@ impl<'s> Lowerer<'s> {
     pub(crate) fn use_timer(&mut self, t: Tok<'_>, id: TimerId, kind: TimerKind) {
         let allowed = self.cx.profile.timer_kinds(id.0);
         if !allowed.contains(&kind) {
-            let names: Vec<_> = allowed.iter().map(|k| k.mnemonic()).collect();
+            let names: Vec<_> = allowed.iter().map(|&k| timer_mnemonic(k)).collect();
             self.cx.report(
                 Code::TimerKindNumber,
                 t,
                 format!(
                     "{id} cannot be a {} timer on the {}",
-                    kind.mnemonic(),
+                    timer_mnemonic(kind),
                     self.cx.profile.model
                 ),
                 Some(format!("{id} allows: {}", names.join(", "))),
@@ -163,8 +164,8 @@ impl<'s> Lowerer<'s> {
                     t,
                     format!(
                         "{id} is used as {} here but as {} on line {}",
-                        kind.mnemonic(),
-                        k.mnemonic(),
+                        timer_mnemonic(kind),
+                        timer_mnemonic(k),
                         first.line
                     ),
                     Some("use one timer number per timer kind".into()),
@@ -187,8 +188,8 @@ impl<'s> Lowerer<'s> {
                     t,
                     format!(
                         "{id} is used as {} here but as {} on line {}",
-                        kind.mnemonic(),
-                        k.mnemonic(),
+                        counter_mnemonic(kind),
+                        counter_mnemonic(k),
                         first.line
                     ),
                     Some("use one counter number per counter kind".into()),

@@ -31,7 +31,7 @@ impl fmt::Display for ImageError {
             ImageError::OutOfRange { area, offset, len } => {
                 write!(
                     f,
-                    "{len} byte(s) at {area}{offset} run past the end of the area"
+                    "{len} byte(s) at {area:?} byte {offset} run past the end of the area"
                 )
             }
         }

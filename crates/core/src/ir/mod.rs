@@ -126,15 +126,6 @@ impl TimerKind {
             TimerKind::Off => 3,
         }
     }
-
-    /// The S7-200 mnemonic.
-    pub fn mnemonic(self) -> &'static str {
-        match self {
-            TimerKind::On => "TON",
-            TimerKind::Retentive => "TONR",
-            TimerKind::Off => "TOF",
-        }
-    }
 }
 
 /// A timer the program uses.
@@ -166,15 +157,6 @@ impl CounterKind {
             CounterKind::Up => 1,
             CounterKind::Down => 2,
             CounterKind::UpDown => 3,
-        }
-    }
-
-    /// The S7-200 mnemonic.
-    pub fn mnemonic(self) -> &'static str {
-        match self {
-            CounterKind::Up => "CTU",
-            CounterKind::Down => "CTD",
-            CounterKind::UpDown => "CTUD",
         }
     }
 }
