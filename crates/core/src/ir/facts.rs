@@ -224,27 +224,7 @@ pub fn loop_entered_by(pou: &Pou, from: usize, to: usize) -> Option<(usize, usiz
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ir::{Operand, PouKind};
-    use crate::{LabelId, OpIdx};
-
-    fn pou(ops: Vec<Op>, labels: Vec<usize>) -> Pou {
-        Pou {
-            name: "MAIN".into(),
-            kind: PouKind::Main,
-            locs: vec![Default::default(); ops.len()],
-            ops,
-            labels: labels.into_iter().map(OpIdx::new).collect(),
-        }
-    }
-
-    fn for_(next: usize) -> Op {
-        Op::For {
-            index: Operand::Const(0),
-            init: Operand::Const(0),
-            limit: Operand::Const(0),
-            next: OpIdx::new(next),
-        }
-    }
+    use crate::ir::test_ops::{for_, jmp, lbl, next, pou};
 
     #[test]
     fn live_in_matches_the_stack_rules() {
@@ -272,12 +252,10 @@ mod tests {
     fn successors_follow_jumps_loops_and_exits() {
         let p = pou(
             vec![
-                Op::Jump(LabelId::new(0)),
+                jmp(0),
                 for_(3),
-                Op::Label(LabelId::new(0)),
-                Op::Next {
-                    head: OpIdx::new(1),
-                },
+                lbl(0),
+                next(1),
                 Op::End { conditional: false },
             ],
             vec![2],
@@ -295,18 +273,14 @@ mod tests {
         // 0 JMP, 1 FOR, 2 JMP, 3 FOR, 4 LBL, 5 NEXT, 6 NEXT, 7 JMP
         let p = pou(
             vec![
-                Op::Jump(LabelId::new(0)),
+                jmp(0),
                 for_(6),
-                Op::Jump(LabelId::new(0)),
+                jmp(0),
                 for_(5),
-                Op::Label(LabelId::new(0)),
-                Op::Next {
-                    head: OpIdx::new(3),
-                },
-                Op::Next {
-                    head: OpIdx::new(1),
-                },
-                Op::Jump(LabelId::new(0)),
+                lbl(0),
+                next(3),
+                next(1),
+                jmp(0),
             ],
             vec![4],
         );

@@ -18,6 +18,8 @@
 mod facts;
 mod op;
 mod operand;
+#[cfg(test)]
+mod test_ops;
 mod verify;
 
 pub use facts::{StackEffect, Successors, enclosing_loop, loop_entered_by};

@@ -198,41 +198,7 @@ fn verify_pou(program: &Program, pou: &Pou) -> Result<(), Result<(usize, OpRule)
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ir::{Operand, PouKind, SrcLoc};
-    use crate::{LabelId, OpIdx, ProfileId};
-
-    fn program(ops: Vec<Op>, labels: Vec<usize>) -> Program {
-        Program {
-            profile: ProfileId::A5,
-            pous: vec![Pou {
-                name: "MAIN".into(),
-                kind: PouKind::Main,
-                locs: vec![SrcLoc::default(); ops.len()],
-                ops,
-                labels: labels.into_iter().map(OpIdx::new).collect(),
-            }],
-            timers: vec![],
-            counters: vec![],
-            edges: vec![],
-            logic_stack_depth: 9,
-            files: vec![],
-        }
-    }
-
-    fn for_(next: usize) -> Op {
-        Op::For {
-            index: Operand::Const(0),
-            init: Operand::Const(0),
-            limit: Operand::Const(0),
-            next: OpIdx::new(next),
-        }
-    }
-
-    fn next(head: usize) -> Op {
-        Op::Next {
-            head: OpIdx::new(head),
-        }
-    }
+    use crate::ir::test_ops::{for_, jmp, lbl, next, program};
 
     fn op_rule(p: &Program) -> Option<(usize, OpRule)> {
         match verify(p) {
@@ -245,14 +211,7 @@ mod tests {
     #[test]
     fn well_formed_loops_and_jumps_pass() {
         let ok = program(
-            vec![
-                for_(3),
-                Op::Jump(LabelId::new(0)),
-                Op::Label(LabelId::new(0)),
-                next(0),
-                Op::Jump(LabelId::new(1)),
-                Op::Label(LabelId::new(1)),
-            ],
+            vec![for_(3), jmp(0), lbl(0), next(0), jmp(1), lbl(1)],
             vec![2, 5],
         );
         assert_eq!(verify(&ok), Ok(()));
@@ -260,15 +219,7 @@ mod tests {
 
     #[test]
     fn a_jump_into_a_loop_is_rejected() {
-        let p = program(
-            vec![
-                Op::Jump(LabelId::new(0)),
-                for_(3),
-                Op::Label(LabelId::new(0)),
-                next(1),
-            ],
-            vec![2],
-        );
+        let p = program(vec![jmp(0), for_(3), lbl(0), next(1)], vec![2]);
         assert_eq!(op_rule(&p), Some((0, OpRule::JumpIntoLoop { head: 1 })));
     }
 
@@ -294,7 +245,7 @@ mod tests {
 
     #[test]
     fn references_are_checked() {
-        let p = program(vec![Op::Jump(LabelId::new(3))], vec![]);
+        let p = program(vec![jmp(3)], vec![]);
         assert_eq!(op_rule(&p), Some((0, OpRule::UnknownLabel)));
         let p = program(vec![Op::Call(crate::PouId::new(0))], vec![]);
         assert_eq!(op_rule(&p), Some((0, OpRule::BadCall)));
