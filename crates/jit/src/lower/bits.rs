@@ -12,7 +12,7 @@ use cranelift_codegen::ir::{
     condcodes::{FloatCC, IntCC},
     types::{F32, I16, I32},
 };
-use stljit_core::ir::{BitLoc, CmpOp, CmpType, Contact, Op, Operand};
+use stljit_core::ir::{BitLoc, CmpOp, CmpType, Contact, Operand};
 use stljit_core::layout::Sched;
 use stljit_core::{Area, ErrorCode, FatalCode, Width};
 
@@ -139,91 +139,80 @@ impl Lower<'_, '_> {
         B::Bit { v, pos: 0 }
     }
 
-    pub(crate) fn lower_bits(&mut self, op: &Op) {
-        match op {
-            Op::Load(c) => {
-                let (v, neg) = self.contact(c);
-                let v = if neg { v.not(&mut self.b) } else { v };
-                self.stack.push(v);
-            }
-            Op::And(c) => {
-                let (v, neg) = self.contact(c);
-                let top = self.stack.top();
-                let r = if neg {
-                    top.and_not(&mut self.b, v)
-                } else {
-                    top.and(&mut self.b, v)
-                };
-                let r = self.anchor(r);
-                self.stack.set_top(r);
-            }
-            Op::Or(c) => {
-                let (v, neg) = self.contact(c);
-                let top = self.stack.top();
-                let r = if neg {
-                    top.or_not(&mut self.b, v)
-                } else {
-                    top.or(&mut self.b, v)
-                };
-                let r = self.anchor(r);
-                self.stack.set_top(r);
-            }
-            Op::Not => {
-                let t = self.stack.top().not(&mut self.b);
-                self.stack.set_top(t);
-            }
-            Op::AndBlock | Op::OrBlock => {
-                let s0 = self.stack.pop();
-                let s1 = self.stack.top();
-                let r = if matches!(op, Op::AndBlock) {
-                    s0.and(&mut self.b, s1)
-                } else {
-                    s0.or(&mut self.b, s1)
-                };
-                let r = self.anchor(r);
-                self.stack.set_top(r);
-            }
-            Op::Dup => {
-                let t = self.stack.top();
-                self.stack.push(t);
-            }
-            Op::ReadSecond => {
-                let s1 = self.stack.level(1);
-                self.stack.set_top(s1);
-            }
-            Op::Pop => {
-                self.stack.pop();
-            }
-            Op::Pick(n) => {
-                let v = self.stack.level(usize::from(*n));
-                self.stack.push(v);
-            }
-            Op::AndEno => {
-                let a = self.sched(Sched::ENO);
-                let v = self.byte(a);
-                let t = self.stack.top().and(&mut self.b, B::Bit { v, pos: 0 });
-                self.stack.set_top(t);
-            }
-            Op::Edge { slot, falling } => self.edge(slot.0, *falling),
-            Op::Assign { bit, immediate } => {
-                let pf = self.pf();
-                let a = self.bit_byte(*bit);
-                self.write_bit_at(a, bit.bit, pf);
-                if *immediate
-                    && bit.area == Area::Q
-                    && bit.byte < self.env.layout.area_size(Area::Q)
-                {
-                    let a = Addr::img(self.env.layout.phys_out + bit.byte);
-                    self.write_bit_at(a, bit.bit, pf);
-                }
-            }
-            Op::SetRange {
-                start,
-                count,
-                value,
-                immediate,
-            } => self.set_range(*start, count, *value, *immediate),
-            _ => {}
+    /// `LD`/`LDN` (and the contact forms): pushes the contact.
+    pub(crate) fn load(&mut self, c: &Contact) {
+        let (v, neg) = self.contact(c);
+        let v = if neg { v.not(&mut self.b) } else { v };
+        self.stack.push(v);
+    }
+
+    /// `A`/`AN`/`O`/`ON` (and the contact forms): combines the contact into S0.
+    pub(crate) fn combine(&mut self, c: &Contact, and: bool) {
+        let (v, neg) = self.contact(c);
+        let top = self.stack.top();
+        let r = match (and, neg) {
+            (true, false) => top.and(&mut self.b, v),
+            (true, true) => top.and_not(&mut self.b, v),
+            (false, false) => top.or(&mut self.b, v),
+            (false, true) => top.or_not(&mut self.b, v),
+        };
+        let r = self.anchor(r);
+        self.stack.set_top(r);
+    }
+
+    /// `NOT`.
+    pub(crate) fn not(&mut self) {
+        let t = self.stack.top().not(&mut self.b);
+        self.stack.set_top(t);
+    }
+
+    /// `ALD`/`OLD`: pops S0 and combines it into the new S0.
+    pub(crate) fn combine_block(&mut self, and: bool) {
+        let s0 = self.stack.pop();
+        let s1 = self.stack.top();
+        let r = if and {
+            s0.and(&mut self.b, s1)
+        } else {
+            s0.or(&mut self.b, s1)
+        };
+        let r = self.anchor(r);
+        self.stack.set_top(r);
+    }
+
+    /// `LPS`.
+    pub(crate) fn dup(&mut self) {
+        let t = self.stack.top();
+        self.stack.push(t);
+    }
+
+    /// `LRD`.
+    pub(crate) fn read_second(&mut self) {
+        let s1 = self.stack.level(1);
+        self.stack.set_top(s1);
+    }
+
+    /// `LDS n`.
+    pub(crate) fn pick(&mut self, n: u8) {
+        let v = self.stack.level(usize::from(n));
+        self.stack.push(v);
+    }
+
+    /// `AENO`.
+    pub(crate) fn and_eno(&mut self) {
+        let a = self.sched(Sched::ENO);
+        let v = self.byte(a);
+        let t = self.stack.top().and(&mut self.b, B::Bit { v, pos: 0 });
+        self.stack.set_top(t);
+    }
+
+    /// `=`/`=I`: the coil writes PF.
+    pub(crate) fn assign(&mut self, bit: BitLoc, immediate: bool) {
+        let pf = self.pf();
+        let a = self.bit_byte(bit);
+        self.write_bit_at(a, bit.bit, pf);
+        if immediate && bit.area == Area::Q && bit.byte < self.env.layout.area_size(Area::Q) {
+            let a = Addr::img(self.env.layout.phys_out + bit.byte);
+            self.write_bit_at(a, bit.bit, pf);
         }
     }
 
@@ -273,7 +262,7 @@ impl Lower<'_, '_> {
     }
 
     /// `EU`/`ED` inline (spec §5.1, runtime `edge::execute`): out = edge AND NOT first scan.
-    fn edge(&mut self, slot: u16, falling: bool) {
+    pub(crate) fn edge(&mut self, slot: u16, falling: bool) {
         if slot >= self.env.layout.profile.profile().max_edges {
             self.stack.set_top(B::K(false));
             return;
@@ -302,7 +291,13 @@ impl Lower<'_, '_> {
     }
 
     /// `S`/`R`/`SI`/`RI`: inline when the count is a constant; otherwise the runtime does it.
-    fn set_range(&mut self, start: BitLoc, count: &Operand, value: bool, immediate: bool) {
+    pub(crate) fn set_range(
+        &mut self,
+        start: BitLoc,
+        count: &Operand,
+        value: bool,
+        immediate: bool,
+    ) {
         let pf = self.pf();
         if pf == B::K(false) {
             return;

@@ -1,8 +1,7 @@
 //! Control flow inside one op: two-armed diamonds and the frame every box instruction runs in.
 //!
-//! Both keep the byte cache across the op: the cache is flushed (made clean) before the branch,
-//! every arm starts from that clean copy and flushes its own writes, and the join keeps only the
-//! entries no arm replaced ([`Cache::meet`]). The logic stack and the gate are untouched by these
+//! Both keep the byte cache across the op: every arm starts from a copy of the cache at the
+//! branch, and the join keeps only the entries no arm replaced ([`Cache::meet`]). The logic stack and the gate are untouched by these
 //! ops, so their compile-time values stay valid after the join.
 
 use super::Lower;
@@ -12,9 +11,8 @@ use super::value::B;
 use cranelift_codegen::ir::{Block, InstBuilder, Value, types::I32};
 
 impl Lower<'_, '_> {
-    /// Ends the current arm: flush, remember its cache, jump to `join`.
+    /// Ends the current arm: remember its cache, jump to `join`.
     fn close_arm(&mut self, join: Block, arms: &mut Vec<Cache>) {
-        self.flush();
         arms.push(std::mem::take(&mut self.cache));
         self.b.ins().jump(join, &[]);
     }
@@ -26,7 +24,6 @@ impl Lower<'_, '_> {
         then: impl FnOnce(&mut Self),
         other: impl FnOnce(&mut Self),
     ) {
-        self.flush();
         let start = self.cache.clone();
         let (t, e, j) = (
             self.b.create_block(),
@@ -64,7 +61,6 @@ impl Lower<'_, '_> {
             self.boxed_free(pf, run);
             return;
         }
-        self.flush();
         let start = self.cache.clone();
         let (r, err, j) = (
             self.b.create_block(),

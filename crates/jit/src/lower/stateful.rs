@@ -7,7 +7,7 @@ use super::mem::OnFail;
 use super::value::{B, Stack};
 use crate::helpers::Helper;
 use cranelift_codegen::ir::{BlockArg, InstBuilder, Value, condcodes::IntCC, types::I32};
-use stljit_core::ir::{BitLoc, BoxOp, Op, Operand};
+use stljit_core::ir::{BitLoc, CounterKind, Operand, TimerKind};
 use stljit_core::layout::{COUNTER_STATE_SIZE, Sched, TIMER_STATE_SIZE};
 use stljit_core::{Area, ErrorCode, Width};
 use stljit_runtime::ffi::{CTL_GATE, FfiCode};
@@ -59,7 +59,6 @@ impl Lower<'_, '_> {
             return;
         }
         // A pointer preset: resolve first; the failure path records the error and skips.
-        self.flush();
         let start = self.cache.clone();
         let err = self.b.create_block();
         let code = self.b.append_block_param(err, I32);
@@ -67,14 +66,12 @@ impl Lower<'_, '_> {
         let v = self.read_operand(preset, Width::Word, OnFail::Branch(err));
         let v = self.sext(v, Width::Word);
         f(self, v);
-        self.flush();
         let ok_cache = std::mem::take(&mut self.cache);
         self.b.ins().jump(join, &[]);
         self.b.seal_block(err);
         self.b.switch_to_block(err);
         self.cache = start;
         self.record_error(code);
-        self.flush();
         let err_cache = std::mem::take(&mut self.cache);
         self.b.ins().jump(join, &[]);
         self.b.seal_block(join);
@@ -82,46 +79,28 @@ impl Lower<'_, '_> {
         self.cache = super::cache::Cache::meet(&[ok_cache, err_cache]);
     }
 
-    pub(crate) fn lower_stateful(&mut self, op: &Op) {
-        match op {
-            Op::Timer {
-                kind,
-                timer,
-                preset,
-            } => {
-                let (kind, n) = (*kind, timer.0);
-                self.with_preset(preset, |s, pv| {
-                    let input = s.stack.top().to01(&mut s.b);
-                    let ranges = s.timer_ranges(n);
-                    let calls = (Helper::timer_fast(kind), Helper::Timer);
-                    s.call_stateful(ranges, calls, (n, kind.code()), input, pv);
-                });
-            }
-            Op::Counter {
-                kind,
-                counter,
-                preset,
-            } => {
-                let (kind, n) = (*kind, counter.0);
-                self.with_preset(preset, |s, pv| {
-                    // `counter::execute` reads levels 0..=2 only; packing just those is cheaper.
-                    let levels = Stack {
-                        lv: (0..3).map(|i| s.stack.level(i)).collect(),
-                    };
-                    let stack = levels.to_reg(&mut s.b);
-                    let ranges = s.counter_ranges(n);
-                    let calls = (Helper::counter_fast(kind), Helper::Counter);
-                    s.call_stateful(ranges, calls, (n, kind.code()), stack, pv);
-                });
-            }
-            Op::ResetTimers { first, count } => {
-                self.reset_range(Helper::TimerReset, u32::from(first.0), count)
-            }
-            Op::ResetCounters { first, count } => {
-                self.reset_range(Helper::CounterReset, u32::from(first.0), count)
-            }
-            _ => {}
-        }
+    /// `TON`/`TONR`/`TOF Tn, PT`.
+    pub(crate) fn timer(&mut self, kind: TimerKind, n: u16, preset: &Operand) {
+        self.with_preset(preset, |s, pv| {
+            let input = s.stack.top().to01(&mut s.b);
+            let ranges = s.timer_ranges(n);
+            let calls = (Helper::timer_fast(kind), Helper::Timer);
+            s.call_stateful(ranges, calls, (n, kind.code()), input, pv);
+        });
+    }
+
+    /// `CTU`/`CTD`/`CTUD Cn, PV`.
+    pub(crate) fn counter(&mut self, kind: CounterKind, n: u16, preset: &Operand) {
+        self.with_preset(preset, |s, pv| {
+            // `counter::execute` reads levels 0..=2 only; packing just those is cheaper.
+            let levels = Stack {
+                lv: (0..3).map(|i| s.stack.level(i)).collect(),
+            };
+            let stack = levels.to_reg(&mut s.b);
+            let ranges = s.counter_ranges(n);
+            let calls = (Helper::counter_fast(kind), Helper::Counter);
+            s.call_stateful(ranges, calls, (n, kind.code()), stack, pv);
+        });
     }
 
     /// The `ctl` argument of the fast shims: `low` (bits 0–7: the inputs) | the SCR gate at
@@ -177,7 +156,8 @@ impl Lower<'_, '_> {
         })
     }
 
-    fn reset_range(&mut self, h: Helper, first: u32, count: &Operand) {
+    /// `R Tn, N` / `R Cn, N` through the runtime's reset (`h`).
+    pub(crate) fn reset_range(&mut self, h: Helper, first: u32, count: &Operand) {
         let pf = self.pf();
         let count = *count;
         self.guarded_failing(pf, move |s, fail| {
@@ -194,7 +174,6 @@ impl Lower<'_, '_> {
         if pf == B::K(false) {
             return;
         }
-        self.flush();
         let start = self.cache.clone();
         let (r, err, j) = (
             self.b.create_block(),
@@ -211,14 +190,12 @@ impl Lower<'_, '_> {
         self.b.switch_to_block(r);
         self.cache = start.clone();
         f(self, OnFail::Branch(err));
-        self.flush();
         arms.push(std::mem::take(&mut self.cache));
         self.b.ins().jump(j, &[]);
         self.b.seal_block(err);
         self.b.switch_to_block(err);
         self.cache = start.clone();
         self.record_error(code);
-        self.flush();
         arms.push(std::mem::take(&mut self.cache));
         self.b.ins().jump(j, &[]);
         self.b.switch_to_block(skip);
@@ -313,66 +290,65 @@ impl Lower<'_, '_> {
         }
     }
 
-    /// Block moves, FILL and SHRB (interpreter `exec_box` order of operand reads).
-    pub(crate) fn lower_block_box(&mut self, bx: &BoxOp) {
+    /// `BMB/BMW/BMD` (interpreter `exec_box` order of operand reads).
+    pub(crate) fn block_move(
+        &mut self,
+        width: Width,
+        src: &Operand,
+        dst: &Operand,
+        count: &Operand,
+    ) {
         let range = ErrorCode::OperandRange as u16;
-        match *bx {
-            BoxOp::BlockMove {
-                width,
-                ref src,
-                ref dst,
-                ref count,
-            } => self.boxed(|s, f| {
-                let n = s.count_value(count, f);
-                let Some((ss, se)) = s.span(src, width, false, f) else {
-                    s.fail_now(f, range);
-                    return B::K(false);
-                };
-                let Some((ds, de)) = s.span(dst, width, true, f) else {
-                    s.fail_now(f, range);
-                    return B::K(false);
-                };
-                let w = s.iconst(I32, i64::from(width.bytes()));
-                let st = s.call_helper(Helper::BlockMove, &[ss, se, ds, de, w, n]);
-                s.fail_on_status(st, f);
-                B::K(true)
-            }),
-            BoxOp::Fill {
-                ref src,
-                ref dst,
-                ref count,
-            } => self.boxed(|s, f| {
-                let v = s.read_operand(src, Width::Word, f);
-                let n = s.count_value(count, f);
-                let Some((ds, de)) = s.span(dst, Width::Word, true, f) else {
-                    s.fail_now(f, range);
-                    return B::K(false);
-                };
-                let st = s.call_helper(Helper::Fill, &[v, ds, de, n]);
-                s.fail_on_status(st, f);
-                B::K(true)
-            }),
-            BoxOp::ShiftRegister {
-                data,
-                start,
-                ref len,
-            } => self.boxed(|s, f| {
-                let d = s.read_bit(data).to01(&mut s.b);
-                let n = s.count_value(len, f);
-                let n = s.sext(n, Width::Byte);
-                let args = [
-                    d,
-                    s.iconst(I32, i64::from(start.area.ffi_code())),
-                    s.iconst(I32, i64::from(start.byte)),
-                    s.iconst(I32, i64::from(start.bit)),
-                    s.depth,
-                    n,
-                ];
-                let st = s.call_helper(Helper::ShiftRegister, &args);
-                s.fail_on_status(st, f);
-                B::K(true)
-            }),
-            _ => {}
-        }
+        self.boxed(|s, f| {
+            let n = s.count_value(count, f);
+            let Some((ss, se)) = s.span(src, width, false, f) else {
+                s.fail_now(f, range);
+                return B::K(false);
+            };
+            let Some((ds, de)) = s.span(dst, width, true, f) else {
+                s.fail_now(f, range);
+                return B::K(false);
+            };
+            let w = s.iconst(I32, i64::from(width.bytes()));
+            let st = s.call_helper(Helper::BlockMove, &[ss, se, ds, de, w, n]);
+            s.fail_on_status(st, f);
+            B::K(true)
+        })
+    }
+
+    /// `FILL` (interpreter `exec_box` order of operand reads).
+    pub(crate) fn fill(&mut self, src: &Operand, dst: &Operand, count: &Operand) {
+        let range = ErrorCode::OperandRange as u16;
+        self.boxed(|s, f| {
+            let v = s.read_operand(src, Width::Word, f);
+            let n = s.count_value(count, f);
+            let Some((ds, de)) = s.span(dst, Width::Word, true, f) else {
+                s.fail_now(f, range);
+                return B::K(false);
+            };
+            let st = s.call_helper(Helper::Fill, &[v, ds, de, n]);
+            s.fail_on_status(st, f);
+            B::K(true)
+        })
+    }
+
+    /// `SHRB` (interpreter `exec_box` order of operand reads).
+    pub(crate) fn shift_register(&mut self, data: BitLoc, start: BitLoc, len: &Operand) {
+        self.boxed(|s, f| {
+            let d = s.read_bit(data).to01(&mut s.b);
+            let n = s.count_value(len, f);
+            let n = s.sext(n, Width::Byte);
+            let args = [
+                d,
+                s.iconst(I32, i64::from(start.area.ffi_code())),
+                s.iconst(I32, i64::from(start.byte)),
+                s.iconst(I32, i64::from(start.bit)),
+                s.depth,
+                n,
+            ];
+            let st = s.call_helper(Helper::ShiftRegister, &args);
+            s.fail_on_status(st, f);
+            B::K(true)
+        })
     }
 }
