@@ -4,7 +4,9 @@
 //! * The first two arguments are `image: *mut u8` (the image's first byte, [`Layout::size`]
 //!   bytes) and `layout: *const Layout` (the layout those bytes follow).
 //! * Integers travel as `u32`/`i32`/`u64`; bools as `u32` 0/1 (any non-zero is true); timer and
-//!   counter kinds as their `code()` (1, 2, 3); widths as their byte count (1, 2, 4).
+//!   counter kinds as their `code()` (1, 2, 3); widths as their byte count (1, 2, 4); the gate
+//!   a timer or counter runs under, with the policy and the [`Rules`], as a gate word
+//!   ([`GATE_OPEN`], [`gate_word_fixed`], [`decode_gate_word`]).
 //! * Status returns are `u32`: [`RT_OK`] (0), an [`ErrorCode`] value (0x0006, 0x0008, 0x0091,
 //!   0x0092), [`RT_BAD_ARGUMENT`] for a null pointer or an impossible kind/width, [`RT_PANIC`] if
 //!   the runtime panicked (a bug; the panic never crosses the boundary).
@@ -54,6 +56,7 @@ pub use fast::*;
 pub use ops::*;
 pub use value::*;
 
+use crate::rules::{FirstScanEdges, Gate, GatePolicy, Rules};
 use crate::{counter, pointer, scan, timer};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use stljit_core::ir::{ArithOp, Conversion, CounterKind, RealFn, TimerKind};
@@ -62,6 +65,48 @@ use stljit_core::{Area, ErrorCode, ScanStatus, Width};
 
 /// Status: success.
 pub const RT_OK: u32 = 0;
+
+/// Gate word bit (the `gate` argument of the timer and counter shims, bits 8– of a fast shim's
+/// `ctl`): the gate is open.
+pub const GATE_OPEN: u32 = 1;
+/// Gate word bit: a closed gate follows [`GatePolicy::OmronInterlock`] (else
+/// [`GatePolicy::S7Scr`]).
+pub const GATE_OMRON_INTERLOCK: u32 = 1 << 1;
+/// Gate word bit: first-scan edges are detected ([`FirstScanEdges::Detect`]).
+pub const GATE_DETECT_FIRST_SCAN: u32 = 1 << 2;
+
+/// The bits of a gate word that do not depend on whether the gate is open: the policy a closed
+/// gate follows and the rules (0 for S7 SCR under [`Rules::IN_FORCE`]).
+pub fn gate_word_fixed(policy: GatePolicy, rules: Rules) -> u32 {
+    let omron = match policy {
+        GatePolicy::S7Scr => 0,
+        GatePolicy::OmronInterlock => GATE_OMRON_INTERLOCK,
+    };
+    let detect = match rules.first_scan_edges {
+        FirstScanEdges::Suppress => 0,
+        FirstScanEdges::Detect => GATE_DETECT_FIRST_SCAN,
+    };
+    omron | detect
+}
+
+/// The gate and rules a gate word encodes (other bits are ignored).
+#[inline]
+pub fn decode_gate_word(word: u32) -> (Gate, Rules) {
+    let policy = if word & GATE_OMRON_INTERLOCK != 0 {
+        GatePolicy::OmronInterlock
+    } else {
+        GatePolicy::S7Scr
+    };
+    let first_scan_edges = if word & GATE_DETECT_FIRST_SCAN != 0 {
+        FirstScanEdges::Detect
+    } else {
+        FirstScanEdges::Suppress
+    };
+    (
+        Gate::with(word & GATE_OPEN != 0, policy),
+        Rules { first_scan_edges },
+    )
+}
 /// Status: a null pointer, or a kind/width/code value outside its enum.
 pub const RT_BAD_ARGUMENT: u32 = 0xFFFF_FFFE;
 /// Status: the runtime panicked (a bug in the runtime, contained here).
@@ -203,13 +248,14 @@ pub unsafe extern "C" fn stljit_rt_timer(
     // SAFETY: forwarded caller contract.
     unsafe {
         with_image(image, layout, |b, l| {
+            let (gate, _) = decode_gate_word(gate);
             status(timer::execute(
                 b,
                 l,
                 n,
                 kind,
                 input != 0,
-                gate != 0,
+                gate,
                 preset as i16,
             ))
         })
@@ -258,14 +304,16 @@ pub unsafe extern "C" fn stljit_rt_counter(
     // SAFETY: forwarded caller contract.
     unsafe {
         with_image(image, layout, |b, l| {
+            let (gate, rules) = decode_gate_word(gate);
             status(counter::execute(
                 b,
                 l,
                 n,
                 kind,
                 stack as u16,
-                gate != 0,
+                gate,
                 preset as i16,
+                rules,
             ))
         })
         .unwrap_or_else(|e| e)

@@ -14,7 +14,9 @@ use cranelift_codegen::ir::{
 };
 use stljit_core::ir::{BitLoc, CmpOp, CmpType, Contact, Operand};
 use stljit_core::layout::Sched;
-use stljit_core::{Area, ErrorCode, FatalCode, Width};
+use stljit_core::{Area, FatalCode, Width};
+use stljit_runtime::block::set_range_run;
+use stljit_runtime::rules::{GatePolicy, SCR_POLICY};
 
 impl Lower<'_, '_> {
     /// The cached byte and bit of a bit location.
@@ -261,32 +263,55 @@ impl Lower<'_, '_> {
         }
     }
 
-    /// `EU`/`ED` inline (spec §5.1, runtime `edge::execute`): out = edge AND NOT first scan.
+    /// `EU`/`ED` inline with the runtime's rules (`edge::execute`): the gate policy of
+    /// [`SCR_POLICY`] and the first-scan switch of [`Rules`](stljit_runtime::rules::Rules).
     pub(crate) fn edge(&mut self, slot: u16, falling: bool) {
         if slot >= self.env.layout.profile.profile().max_edges {
             self.stack.set_top(B::K(false));
             return;
         }
-        // The power flow as a clean 0/1 first: the edge byte stores it, and at bit 0, where
-        // the edge byte and the first-scan flag are, it needs no further alignment.
-        let pf = self.pf();
-        let v01 = pf.to01(&mut self.b);
-        let v = match pf {
-            B::K(_) => pf,
+        let (v, frozen_unless) = match SCR_POLICY {
+            // A closed gate is an input of 0: `v = S0 AND gate`, the memory takes it.
+            GatePolicy::S7Scr => (self.pf(), None),
+            // A closed gate freezes the memory and outputs 0.
+            GatePolicy::OmronInterlock => match self.gate {
+                B::K(false) => {
+                    self.stack.set_top(B::K(false));
+                    return;
+                }
+                B::K(true) => (self.stack.top(), None),
+                g => (self.stack.top(), Some(g)),
+            },
+        };
+        // The input as a clean 0/1 first: the edge byte stores it, and at bit 0, where the
+        // edge byte and the first-scan flag are, it needs no further alignment.
+        let v01 = v.to01(&mut self.b);
+        let v = match v {
+            B::K(_) => v,
             _ => B::Bit { v: v01, pos: 0 },
         };
         let at = Addr::img(self.env.layout.edges + u32::from(slot));
         let mem = self.byte(at);
         let memb = B::Bit { v: mem, pos: 0 };
-        let out = if falling {
+        let mut out = if falling {
             memb.and_not(&mut self.b, v)
         } else {
             v.and_not(&mut self.b, memb)
         };
-        let fa = self.sched(Sched::FIRST_SCAN);
-        let first = self.byte(fa);
-        let out = out.and_not(&mut self.b, B::Bit { v: first, pos: 0 });
-        self.set_byte(at, v01);
+        if self.env.rules.first_scan_suppresses() {
+            let fa = self.sched(Sched::FIRST_SCAN);
+            let first = self.byte(fa);
+            out = out.and_not(&mut self.b, B::Bit { v: first, pos: 0 });
+        }
+        let new_mem = match frozen_unless {
+            None => v01,
+            Some(g) => {
+                out = out.and(&mut self.b, g);
+                let open = g.cond(&mut self.b);
+                self.b.ins().select(open, v01, mem)
+            }
+        };
+        self.set_byte(at, new_mem);
         self.stack.set_top(out);
     }
 
@@ -303,32 +328,18 @@ impl Lower<'_, '_> {
             return;
         }
         if let Operand::Const(k) = *count {
-            let n = k & 0xFF;
-            if n == 0 {
-                return;
-            }
-            let per_byte = matches!(start.area, Area::TimerBit | Area::CounterBit);
-            let size = self.env.layout.area_size(start.area);
-            let first = if per_byte {
-                start.byte
-            } else {
-                start.byte * 8 + u32::from(start.bit)
+            let run = match set_range_run(self.env.layout, start, k & Width::Byte.mask()) {
+                Ok(None) => return,
+                Ok(Some(run)) => run,
+                Err(e) => {
+                    self.guarded(pf, |s| s.record_error_k(e));
+                    return;
+                }
             };
-            let limit = if per_byte { size } else { size * 8 };
-            if first + n > limit {
-                self.guarded(pf, |s| s.record_error_k(ErrorCode::OperandRange));
-                return;
-            }
-            if n <= 64 {
-                let bits: Vec<(Addr, u8)> = (0..n)
-                    .map(|i| {
-                        if per_byte {
-                            (self.area_addr(start.area, start.byte + i), 0)
-                        } else {
-                            let b = first + i;
-                            (self.area_addr(start.area, b / 8), (b % 8) as u8)
-                        }
-                    })
+            if run.count <= 64 {
+                let bits: Vec<(Addr, u8)> = run
+                    .bits()
+                    .map(|(byte, bit)| (self.area_addr(start.area, byte), bit))
                     .collect();
                 let phys = immediate && start.area == Area::Q;
                 let out = self.env.layout.phys_out;

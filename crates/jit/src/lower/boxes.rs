@@ -22,6 +22,7 @@ use stljit_core::{Area, Width};
 use stljit_runtime::ffi::{
     OUTCOME_CLEAR_SHIFT, OUTCOME_HAS_VALUE_SHIFT, OUTCOME_SET_SHIFT, ValueOp,
 };
+use stljit_runtime::flags;
 
 impl Lower<'_, '_> {
     fn smb1(&self) -> Addr {
@@ -39,10 +40,19 @@ impl Lower<'_, '_> {
 
     /// SM1.0 and SM1.2 bits of a result (`r` sign-extended to i32 for the negative test).
     fn zn_bits(&mut self, r: Value) -> Value {
+        const {
+            assert!(
+                flags::ZERO == 1,
+                "the compare result is the zero flag as it is"
+            )
+        };
         let z = self.b.ins().icmp_imm_s(IntCC::Equal, r, 0);
         let z = self.b.ins().uextend(I32, z);
         let n = self.b.ins().ushr_imm_s(r, 31);
-        let n = self.b.ins().ishl_imm_s(n, 2);
+        let n = self
+            .b
+            .ins()
+            .ishl_imm_s(n, i64::from(flags::NEGATIVE.trailing_zeros()));
         self.b.ins().bor(z, n)
     }
 
@@ -305,11 +315,12 @@ impl Lower<'_, '_> {
     fn zero_flag(&mut self, r: Value) {
         let z = self.b.ins().icmp_imm_s(IntCC::Equal, r, 0);
         let z = self.b.ins().uextend(I32, z);
-        self.put_flags(1, z);
+        self.put_flags(i64::from(flags::ZERO), z);
     }
 
     /// Inline `+`/`-` (and INC/DEC of words and dwords) with the OK/OVF rules of
-    /// `arith::int_arith`: on overflow OUT keeps its value, SM1.1 = 1, SM1.0 = SM1.2 = 0.
+    /// `arith::int_arith`, over the runtime's flag bits: on overflow OUT keeps its value,
+    /// SM1.1 = 1, SM1.0 = SM1.2 = 0; otherwise SM1.0/SM1.2 from the result and SM1.1 = 0.
     fn add_sub(&mut self, add: bool, width: Width, p: Place, d: Value, a: Value) -> B {
         // `r` is the wrapped result sign-extended to i32, `ovf` the signed-overflow flag. Words
         // and dwords use the native overflow flag (`add` + `seto`) instead of recomputing the
@@ -345,9 +356,9 @@ impl Lower<'_, '_> {
             }
         };
         let zn = self.zn_bits(r);
-        let two = self.iconst(I32, 2);
-        let bits = self.b.ins().select(ovf, two, zn);
-        self.put_flags(7, bits);
+        let ovf_bits = self.iconst(I32, i64::from(flags::OVERFLOW));
+        let bits = self.b.ins().select(ovf, ovf_bits, zn);
+        self.put_flags(i64::from(flags::RESULT), bits);
         let masked = self.b.ins().band_imm_s(r, i64::from(width.mask()));
         let out = self.b.ins().select(ovf, d, masked);
         self.write_place(p, width, out);

@@ -36,6 +36,7 @@ use std::collections::HashMap;
 use stljit_core::ir::{Op, Program};
 use stljit_core::layout::{Layout, Sched};
 use stljit_core::{Area, ErrorCode, FatalCode, PouId, ScanStatus};
+use stljit_runtime::rules::Rules;
 use value::{B, Stack};
 
 /// What all POU functions of one program share.
@@ -53,6 +54,8 @@ pub(crate) struct Env<'a> {
     pub(crate) plans: Vec<Option<ChunkPlan>>,
     /// [`crate::JitOptions::hot_ops`].
     pub(crate) hot_ops: usize,
+    /// The semantic switches the inlined code follows (`Rules::IN_FORCE` but in tests).
+    pub(crate) rules: Rules,
 }
 
 /// Memory flags for every image access: the image is never null and every direct offset is in

@@ -8,9 +8,10 @@ use super::value::{B, Stack};
 use crate::helpers::Helper;
 use cranelift_codegen::ir::{BlockArg, InstBuilder, Value, condcodes::IntCC, types::I32};
 use stljit_core::ir::{BitLoc, CounterKind, Operand, TimerKind};
-use stljit_core::layout::{COUNTER_STATE_SIZE, Sched, TIMER_STATE_SIZE};
+use stljit_core::layout::Sched;
 use stljit_core::{Area, ErrorCode, Width};
-use stljit_runtime::ffi::{CTL_GATE, FfiCode};
+use stljit_runtime::ffi::{CTL_GATE, CTL_GATE_SHIFT, FfiCode, gate_word_fixed};
+use stljit_runtime::rules::SCR_POLICY;
 
 impl Lower<'_, '_> {
     /// Records a non-zero runtime status as a non-fatal error (a diamond, rarely taken).
@@ -37,7 +38,7 @@ impl Lower<'_, '_> {
                 self.call_touching(fast, &args, &r);
             }
             None => {
-                let gate = self.gate.to01(&mut self.b);
+                let gate = self.gate_word();
                 let nv = self.iconst(I32, i64::from(n));
                 let k = self.iconst(I32, i64::from(code));
                 let st = self.call_helper(general, &[nv, k, inputs, gate, pv]);
@@ -103,15 +104,40 @@ impl Lower<'_, '_> {
         });
     }
 
-    /// The `ctl` argument of the fast shims: `low` (bits 0–7: the inputs) | the SCR gate at
-    /// [`CTL_GATE`]. Outside SCR segments the gate is a constant: one `or` or nothing.
+    /// The bits of the gate word ([`stljit_runtime::ffi::decode_gate_word`]) that do not
+    /// depend on the gate's state: the SCR policy and the rules (0 for S7 under the rules in
+    /// force).
+    fn gate_word_fixed(&self) -> u32 {
+        gate_word_fixed(SCR_POLICY, self.env.rules)
+    }
+
+    /// The gate word of the general timer and counter shims: the gate at bit 0 and the fixed
+    /// bits.
+    fn gate_word(&mut self) -> Value {
+        let open = self.gate.to01(&mut self.b);
+        match self.gate_word_fixed() {
+            0 => open,
+            fixed => self.b.ins().bor_imm_s(open, i64::from(fixed)),
+        }
+    }
+
+    /// The `ctl` argument of the fast shims: `low` (bits 0–7: the inputs) | the gate word from
+    /// bit 8 (the gate itself at [`CTL_GATE`]). Outside SCR segments the gate is a constant:
+    /// one `or` or nothing.
     fn fast_ctl(&mut self, low: Value) -> Value {
+        let fixed = i64::from(self.gate_word_fixed() << CTL_GATE_SHIFT);
         match self.gate {
-            B::K(false) => low,
-            B::K(true) => self.b.ins().bor_imm_s(low, i64::from(CTL_GATE)),
+            B::K(false) if fixed == 0 => low,
+            B::K(false) => self.b.ins().bor_imm_s(low, fixed),
+            B::K(true) => self.b.ins().bor_imm_s(low, i64::from(CTL_GATE) | fixed),
             g => {
                 let at = g.at_bit(&mut self.b, CTL_GATE.trailing_zeros() as u8);
-                self.b.ins().bor(low, at)
+                let ctl = self.b.ins().bor(low, at);
+                if fixed == 0 {
+                    ctl
+                } else {
+                    self.b.ins().bor_imm_s(ctl, fixed)
+                }
             }
         }
     }
@@ -128,31 +154,25 @@ impl Lower<'_, '_> {
         [p[0], p[1], p[2], p[3], ctl, preset]
     }
 
-    /// The bytes `timer::execute` reads or writes for an existing timer `n`: its value, bit and
-    /// private state, and the scan's 100-ms delta (`None`: no such timer, the shim fails).
+    /// The bytes `timer::execute` reads or writes for an existing timer `n`: its own
+    /// ([`Layout::timer_bytes`](stljit_core::layout::Layout::timer_bytes)) and the scan's
+    /// 100-ms delta (`None`: no such timer, the shim fails).
     fn timer_ranges(&self, n: u16) -> Option<[(Addr, u32); 4]> {
         let l = self.env.layout;
         (u32::from(n) < l.area_size(Area::TimerBit)).then(|| {
-            [
-                (self.area_addr(Area::TimerValue, 2 * u32::from(n)), 2),
-                (self.area_addr(Area::TimerBit, u32::from(n)), 1),
-                (Addr::img(l.timer_state(n)), TIMER_STATE_SIZE),
-                (self.sched(Sched::D100), 4),
-            ]
+            let [v, b, s] = l.timer_bytes(n).map(|(off, len)| (Addr::img(off), len));
+            [v, b, s, (self.sched(Sched::D100), 4)]
         })
     }
 
-    /// The bytes `counter::execute` reads or writes for an existing counter `n`: its value, bit
-    /// and private state, and the first-scan flag.
+    /// The bytes `counter::execute` reads or writes for an existing counter `n`: its own
+    /// ([`Layout::counter_bytes`](stljit_core::layout::Layout::counter_bytes)) and the
+    /// first-scan flag.
     fn counter_ranges(&self, n: u16) -> Option<[(Addr, u32); 4]> {
         let l = self.env.layout;
         (u32::from(n) < l.area_size(Area::CounterBit)).then(|| {
-            [
-                (self.area_addr(Area::CounterValue, 2 * u32::from(n)), 2),
-                (self.area_addr(Area::CounterBit, u32::from(n)), 1),
-                (Addr::img(l.counter_state(n)), COUNTER_STATE_SIZE),
-                (self.sched(Sched::FIRST_SCAN), 1),
-            ]
+            let [v, b, s] = l.counter_bytes(n).map(|(off, len)| (Addr::img(off), len));
+            [v, b, s, (self.sched(Sched::FIRST_SCAN), 1)]
         })
     }
 

@@ -17,17 +17,19 @@
 //! at compile time, so each shim is the step function specialised to it, with no dispatch.
 //! `ctl` packs the small arguments so that every argument travels in a register on x86-64 and
 //! AArch64: bits 0–7 the input(s) (timer: `S0` 0/1; counter: logic-stack levels 0–2,
-//! `bit i = S_i`), bit 8 the SCR gate ([`CTL_GATE`]); other bits are ignored.
+//! `bit i = S_i`), bits 8– the gate word ([`super::decode_gate_word`]: bit 8 the gate is open,
+//! [`CTL_GATE`]; the policy and the rules above it); other bits are ignored.
 
-use super::RT_OK;
+use super::{GATE_OPEN, RT_OK, decode_gate_word};
 use crate::counter::Counter;
-use crate::edge;
 use crate::timer::{STATE_BYTES, Timer};
 use stljit_core::ir::{CounterKind, TimerKind};
 use stljit_core::layout::COUNTER_STATE_SIZE;
 
-/// `ctl` bit: the SCR gate is open.
-pub const CTL_GATE: u32 = 1 << 8;
+/// Where the gate word starts in `ctl`.
+pub const CTL_GATE_SHIFT: u32 = 8;
+/// `ctl` bit: the gate is open.
+pub const CTL_GATE: u32 = GATE_OPEN << CTL_GATE_SHIFT;
 
 /// [`Timer::step`] for `kind` on one timer's bytes: `value` (2 bytes, big-endian CV), `bit` (1),
 /// `state` ([`STATE_BYTES`]), `d100` (the scan's native-endian `u32` 100-ms delta).
@@ -58,10 +60,11 @@ unsafe fn timer_fast(
         )
     };
     let mut t = Timer::decode(value, *bit, state);
+    let (gate, _) = decode_gate_word(ctl >> CTL_GATE_SHIFT);
     t.step(
         kind,
         ctl & 1 != 0,
-        ctl & CTL_GATE != 0,
+        gate,
         preset as i16,
         u32::from_ne_bytes(d100),
     );
@@ -71,7 +74,7 @@ unsafe fn timer_fast(
 
 /// [`Counter::step`] for `kind` on one counter's bytes: `value` (2 bytes, big-endian CV), `bit`
 /// (1), `state` ([`COUNTER_STATE_SIZE`]), `first_scan` (the scan's first-scan flag byte, for
-/// [`edge::suppressed`]).
+/// [`crate::rules::Rules::edges_suppressed`]).
 ///
 /// # Safety
 /// As [`timer_fast`]: valid, disjoint ranges of the stated sizes, exclusively borrowed for the
@@ -96,15 +99,18 @@ unsafe fn counter_fast(
         )
     };
     let mut c = Counter::decode(*value, state);
+    let (gate, rules) = decode_gate_word(ctl >> CTL_GATE_SHIFT);
     let on = c.step(
         kind,
         (ctl & 0xFF) as u16,
-        ctl & CTL_GATE != 0,
+        gate,
         preset as i16,
-        edge::suppressed(first_scan),
+        rules.edges_suppressed(first_scan),
     );
     c.encode(value, state);
-    *bit = u8::from(on);
+    if let Some(on) = on {
+        *bit = u8::from(on);
+    }
     RT_OK
 }
 
