@@ -60,24 +60,19 @@ impl Lower<'_, '_> {
             return;
         }
         // A pointer preset: resolve first; the failure path records the error and skips.
-        let start = self.cache.clone();
         let err = self.b.create_block();
         let code = self.b.append_block_param(err, I32);
         let join = self.b.create_block();
+        let mut arms = self.fork(join);
         let v = self.read_operand(preset, Width::Word, OnFail::Branch(err));
         let v = self.sext(v, Width::Word);
         f(self, v);
-        let ok_cache = std::mem::take(&mut self.cache);
-        self.b.ins().jump(join, &[]);
+        self.end_arm(&mut arms);
         self.b.seal_block(err);
-        self.b.switch_to_block(err);
-        self.cache = start;
+        self.start_arm(&arms, err);
         self.record_error(code);
-        let err_cache = std::mem::take(&mut self.cache);
-        self.b.ins().jump(join, &[]);
-        self.b.seal_block(join);
-        self.b.switch_to_block(join);
-        self.cache = super::cache::Cache::meet(&[ok_cache, err_cache]);
+        self.end_arm(&mut arms);
+        self.join_arms(arms);
     }
 
     /// `TON`/`TONR`/`TOF Tn, PT`.
@@ -191,40 +186,9 @@ impl Lower<'_, '_> {
     /// Like [`Lower::guarded`], with a failure block for pointer operands that records the
     /// error (no ENO: these are not boxes).
     pub(crate) fn guarded_failing(&mut self, pf: B, f: impl FnOnce(&mut Self, OnFail)) {
-        if pf == B::K(false) {
-            return;
+        if pf != B::K(false) {
+            self.run_failing(pf, false, f);
         }
-        let start = self.cache.clone();
-        let (r, err, j) = (
-            self.b.create_block(),
-            self.b.create_block(),
-            self.b.create_block(),
-        );
-        let code = self.b.append_block_param(err, I32);
-        let skip = self.b.create_block();
-        let c = pf.cond(&mut self.b);
-        self.b.ins().brif(c, r, &[], skip, &[]);
-        self.b.seal_block(r);
-        self.b.seal_block(skip);
-        let mut arms = Vec::new();
-        self.b.switch_to_block(r);
-        self.cache = start.clone();
-        f(self, OnFail::Branch(err));
-        arms.push(std::mem::take(&mut self.cache));
-        self.b.ins().jump(j, &[]);
-        self.b.seal_block(err);
-        self.b.switch_to_block(err);
-        self.cache = start.clone();
-        self.record_error(code);
-        arms.push(std::mem::take(&mut self.cache));
-        self.b.ins().jump(j, &[]);
-        self.b.switch_to_block(skip);
-        self.cache = start;
-        arms.push(std::mem::take(&mut self.cache));
-        self.b.ins().jump(j, &[]);
-        self.b.seal_block(j);
-        self.b.switch_to_block(j);
-        self.cache = super::cache::Cache::meet(&arms);
     }
 
     /// `S`/`R` with a count only known at run time: the runtime's `set_range_imm`.
