@@ -10,7 +10,7 @@ use cranelift_codegen::ir::{BlockArg, InstBuilder, Value, condcodes::IntCC, type
 use stljit_core::ir::{BitLoc, CounterKind, Operand, TimerKind};
 use stljit_core::layout::Sched;
 use stljit_core::{Area, ErrorCode, Width};
-use stljit_runtime::ffi::{CTL_GATE, CTL_GATE_SHIFT, FfiCode, gate_word_fixed};
+use stljit_runtime::ffi::{CTL_GATE, FfiCode, fast_shims_apply, gate_word_fixed};
 use stljit_runtime::rules::SCR_POLICY;
 
 impl Lower<'_, '_> {
@@ -21,8 +21,9 @@ impl Lower<'_, '_> {
     }
 
     /// Executes timer or counter `n` (of kind `code`) with `inputs` (the `ctl` bits) and preset
-    /// `pv`. In range (`ranges` = its bytes): the kind's fast shim on those bytes only, which
-    /// cannot fail. Otherwise the general shim, whose error (no such object) is recorded.
+    /// `pv`. In range (`ranges` = its bytes) and under the rules the fast shims are specialised
+    /// to: the kind's fast shim on those bytes only, which cannot fail. Otherwise the general
+    /// shim, whose error (no such object) is recorded.
     fn call_stateful(
         &mut self,
         ranges: Option<[(Addr, u32); 4]>,
@@ -31,7 +32,7 @@ impl Lower<'_, '_> {
         inputs: Value,
         pv: Value,
     ) {
-        match ranges {
+        match ranges.filter(|_| fast_shims_apply(self.env.rules)) {
             Some(r) => {
                 let ctl = self.fast_ctl(inputs);
                 let args = self.fast_args(&r, ctl, pv);
@@ -116,23 +117,15 @@ impl Lower<'_, '_> {
         }
     }
 
-    /// The `ctl` argument of the fast shims: `low` (bits 0–7: the inputs) | the gate word from
-    /// bit 8 (the gate itself at [`CTL_GATE`]). Outside SCR segments the gate is a constant:
-    /// one `or` or nothing.
+    /// The `ctl` argument of the fast shims: `low` (bits 0–7: the inputs) | the SCR gate at
+    /// [`CTL_GATE`]. Outside SCR segments the gate is a constant: one `or` or nothing.
     fn fast_ctl(&mut self, low: Value) -> Value {
-        let fixed = i64::from(self.gate_word_fixed() << CTL_GATE_SHIFT);
         match self.gate {
-            B::K(false) if fixed == 0 => low,
-            B::K(false) => self.b.ins().bor_imm_s(low, fixed),
-            B::K(true) => self.b.ins().bor_imm_s(low, i64::from(CTL_GATE) | fixed),
+            B::K(false) => low,
+            B::K(true) => self.b.ins().bor_imm_s(low, i64::from(CTL_GATE)),
             g => {
                 let at = g.at_bit(&mut self.b, CTL_GATE.trailing_zeros() as u8);
-                let ctl = self.b.ins().bor(low, at);
-                if fixed == 0 {
-                    ctl
-                } else {
-                    self.b.ins().bor_imm_s(ctl, fixed)
-                }
+                self.b.ins().bor(low, at)
             }
         }
     }
