@@ -309,6 +309,29 @@ impl Layout {
             })
             .unwrap_or(Region::Padding)
     }
+
+    /// The image bytes `(offset, length)` one execution of timer `n` reads and writes: its
+    /// value (2 bytes, big-endian), its bit (1 byte) and its private state
+    /// ([`TIMER_STATE_SIZE`]). The runtime's timer rules and the JIT's cache invalidation both
+    /// use it.
+    pub fn timer_bytes(&self, n: u16) -> [(u32, u32); 3] {
+        [
+            (self.base(Area::TimerValue) + 2 * u32::from(n), 2),
+            (self.base(Area::TimerBit) + u32::from(n), 1),
+            (self.timer_state(n), TIMER_STATE_SIZE),
+        ]
+    }
+
+    /// The image bytes `(offset, length)` one execution of counter `n` reads and writes: its
+    /// value (2 bytes, big-endian), its bit (1 byte) and its private state
+    /// ([`COUNTER_STATE_SIZE`]).
+    pub fn counter_bytes(&self, n: u16) -> [(u32, u32); 3] {
+        [
+            (self.base(Area::CounterValue) + 2 * u32::from(n), 2),
+            (self.base(Area::CounterBit) + u32::from(n), 1),
+            (self.counter_state(n), COUNTER_STATE_SIZE),
+        ]
+    }
 }
 
 /// The blocks of the image after the PLC areas, in layout order.

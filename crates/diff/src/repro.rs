@@ -3,7 +3,7 @@
 //! ```text
 //! program.ir     the program in the IR text form (`stljit_core::text`); what is read back
 //! program.stl    the same program printed as S7 STL, for reading only (never read back)
-//! stimulus.csv   inputs, analog inputs and HMI writes per scan, in runtime::sim's CSV format
+//! stimulus.csv   inputs, analog inputs and HMI writes per scan, in stljit_sim's CSV format
 //! meta           key = value lines: profile, seed, engines, loop limit, the time of every scan
 //! README.txt     what failed: the scan, the first differing bytes with both values, the seed
 //! ```
@@ -75,7 +75,7 @@ fn name(a: &Address) -> String {
     stljit_front_s7::print_address(a)
 }
 
-/// The stimulus as runtime::sim CSV: one column per input byte, analog word or HMI address that
+/// The stimulus as stljit_sim CSV: one column per input byte, analog word or HMI address that
 /// is ever non-zero or written, one row per scan where something changes.
 pub fn stimulus_csv(profile: ProfileId, s: &Stimulus) -> String {
     let p = profile.profile();
@@ -276,7 +276,7 @@ pub fn parse_meta(text: &str) -> Result<(Meta, Vec<u64>), ReproError> {
     Ok((meta, times))
 }
 
-/// Builds a per-scan stimulus from runtime::sim CSV text and the scan times.
+/// Builds a per-scan stimulus from stljit_sim CSV text and the scan times.
 pub fn parse_stimulus(
     profile: ProfileId,
     csv: &str,

@@ -5,6 +5,7 @@ use crate::Interpreter;
 use stljit_core::ir::{Contact, Op, Operand, Program};
 use stljit_core::layout::{Layout, Sched};
 use stljit_core::{ErrorCode, FatalCode, ScanStatus, Width};
+use stljit_runtime::rules::{Gate, Rules};
 use stljit_runtime::{block, compare, counter, edge, mem, scan, timer};
 
 /// What the loop does after an op.
@@ -32,6 +33,7 @@ pub(crate) struct Machine<'a> {
     prog: &'a Program,
     mask: u16,
     max_depth: u32,
+    rules: Rules,
     pub(crate) img: &'a mut [u8],
     pub(crate) layout: &'a Layout,
 }
@@ -46,6 +48,7 @@ impl<'a> Machine<'a> {
             prog: &interp.program,
             mask: interp.stack_mask,
             max_depth: interp.max_call_depth,
+            rules: interp.rules,
             img,
             layout,
         }
@@ -61,6 +64,11 @@ impl<'a> Machine<'a> {
 
     fn gate(&self) -> bool {
         mem::sched_u8(self.img, self.layout, Sched::SCR_ENABLE) != 0
+    }
+
+    /// The gate timers, counters and edges run under: the SCR enable, with the S7 policy.
+    fn stateful_gate(&self) -> Gate {
+        Gate::scr(self.gate())
     }
 
     fn set_gate(&mut self, v: bool) {
@@ -157,8 +165,9 @@ impl<'a> Machine<'a> {
                 *st &= !1 | u16::from(eno);
             }
             Op::Edge { slot, falling } => {
-                let gate = self.gate();
-                let v = edge::execute(self.img, self.layout, slot.0, *st & 1 != 0, gate, *falling);
+                let (gate, rules) = (self.stateful_gate(), self.rules);
+                let s0 = *st & 1 != 0;
+                let v = edge::execute(self.img, self.layout, slot.0, s0, gate, *falling, rules);
                 *st = (*st & !1) | u16::from(v);
             }
             Op::Assign { bit, immediate } => {
@@ -210,7 +219,7 @@ impl<'a> Machine<'a> {
                 timer,
                 preset,
             } => {
-                let gate = self.gate();
+                let gate = self.stateful_gate();
                 let r = self.read(preset, Width::Word, frame).and_then(|pt| {
                     timer::execute(
                         self.img,
@@ -231,7 +240,7 @@ impl<'a> Machine<'a> {
                 counter,
                 preset,
             } => {
-                let gate = self.gate();
+                let gate = self.stateful_gate();
                 let r = self.read(preset, Width::Word, frame).and_then(|pv| {
                     counter::execute(
                         self.img,
@@ -241,6 +250,7 @@ impl<'a> Machine<'a> {
                         *st,
                         gate,
                         pv as u16 as i16,
+                        self.rules,
                     )
                 });
                 if let Err(e) = r {

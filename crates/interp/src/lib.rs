@@ -16,6 +16,7 @@ mod tests;
 
 use stljit_core::ScanStatus;
 use stljit_core::ir::{Program, VerifyError, verify};
+use stljit_runtime::rules::Rules;
 use stljit_runtime::{Engine, Image, scan};
 
 /// The interpreter for one program.
@@ -26,6 +27,8 @@ pub struct Interpreter {
     stack_mask: u16,
     /// Deepest CALL nesting allowed below the main program.
     max_call_depth: u32,
+    /// The semantic switches (`Rules::IN_FORCE` unless a test chose others).
+    rules: Rules,
 }
 
 impl Interpreter {
@@ -37,7 +40,15 @@ impl Interpreter {
             program: program.clone(),
             stack_mask: ((1u32 << program.logic_stack_depth) - 1) as u16,
             max_call_depth: u32::from(program.profile.profile().max_call_depth),
+            rules: Rules::IN_FORCE,
         })
+    }
+
+    /// The interpreter following `rules` instead of [`Rules::IN_FORCE`] (for tests that flip a
+    /// rule switch on both engines).
+    pub fn with_rules(mut self, rules: Rules) -> Interpreter {
+        self.rules = rules;
+        self
     }
 
     /// The program being interpreted.

@@ -21,6 +21,7 @@ use cranelift_module::{FuncId, Linkage, Module, default_libcall_names};
 use std::collections::HashMap;
 use stljit_core::ir::Program;
 use stljit_core::layout::Layout;
+use stljit_runtime::rules::Rules;
 
 fn cg(e: impl std::fmt::Display) -> JitError {
     JitError::Codegen(e.to_string())
@@ -114,9 +115,11 @@ pub(crate) enum Part {
 
 /// Declares and defines every function. `dump` receives each function's CLIF before it is
 /// compiled; with `define = false` nothing is compiled (for `dump-clif`).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn build(
     prog: &Program,
     opts: &JitOptions,
+    rules: Rules,
     layout: &Layout,
     layout_ptr: i64,
     op_counter: Option<i64>,
@@ -168,6 +171,7 @@ pub(crate) fn build(
         op_counter,
         plans,
         hot_ops: opts.hot_ops,
+        rules,
     };
     let mut ctx = module.make_context();
     let mut fbc = FunctionBuilderContext::new();

@@ -138,7 +138,16 @@ fn render(
         }
     };
     // The layout address is only baked into shim calls; a dump never runs, so 0 is fine.
-    let built = build::build(program, opts, &layout, 0, None, false, &mut sink)?;
+    let built = build::build(
+        program,
+        opts,
+        stljit_runtime::rules::Rules::IN_FORCE,
+        &layout,
+        0,
+        None,
+        false,
+        &mut sink,
+    )?;
     drop(built);
     match failure {
         Some(e) => Err(JitError::Codegen(e)),

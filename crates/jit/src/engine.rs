@@ -12,6 +12,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use stljit_core::ir::Program;
 use stljit_core::layout::Layout;
 use stljit_core::{PouId, ScanStatus};
+use stljit_runtime::rules::Rules;
 use stljit_runtime::{Engine, Image, scan};
 
 type PouFn = unsafe extern "C" fn(*mut u8, i32) -> i32;
@@ -32,13 +33,23 @@ pub struct JitProgram {
 impl JitProgram {
     /// Compiles `program` for the host CPU.
     pub fn compile(program: &Program, opts: &JitOptions) -> Result<JitProgram, JitError> {
-        Self::compile_with(program, opts, false)
+        Self::compile_with(program, opts, false, Rules::IN_FORCE)
+    }
+
+    /// Compiles `program` following `rules` instead of [`Rules::IN_FORCE`] (for tests that flip
+    /// a rule switch on both engines).
+    pub fn compile_with_rules(
+        program: &Program,
+        opts: &JitOptions,
+        rules: Rules,
+    ) -> Result<JitProgram, JitError> {
+        Self::compile_with(program, opts, false, rules)
     }
 
     /// Compiles an instrumented build that counts every executed op (slower; for `bench`'s
     /// per-instruction figures). Read the count with [`JitProgram::executed_ops`].
     pub fn compile_counting(program: &Program, opts: &JitOptions) -> Result<JitProgram, JitError> {
-        Self::compile_with(program, opts, true)
+        Self::compile_with(program, opts, true, Rules::IN_FORCE)
     }
 
     /// Ops executed so far by an instrumented build (`None` for a normal build).
@@ -50,6 +61,7 @@ impl JitProgram {
         program: &Program,
         opts: &JitOptions,
         count: bool,
+        rules: Rules,
     ) -> Result<JitProgram, JitError> {
         let layout = Box::new(Layout::of(program.profile));
         let layout_ptr = &*layout as *const Layout as i64;
@@ -60,6 +72,7 @@ impl JitProgram {
         let Built { mut module, run_id } = build::build(
             program,
             opts,
+            rules,
             &layout,
             layout_ptr,
             counter_ptr,

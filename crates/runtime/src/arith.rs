@@ -11,11 +11,9 @@
 //!   so they agree bit for bit on one host. (They use the host's libm: another host may differ in
 //!   the last bit, so conformance data should not pin such bits.)
 
-use crate::flags::{DIV_ZERO, NEGATIVE, OVERFLOW, Outcome, SmFlags, ZERO};
+use crate::flags::{DIV_ZERO, NEGATIVE, OVERFLOW, Outcome, RESULT, SmFlags, ZERO};
 use stljit_core::Width;
 use stljit_core::ir::{ArithOp, RealFn};
-
-const RESULT: u8 = ZERO | OVERFLOW | NEGATIVE;
 
 /// OK rule: SM1.0 = zero, SM1.1 = 0, SM1.2 = negative (plus SM1.3 = 0 for divisions).
 fn ok_flags(zero: bool, negative: bool, division: bool) -> SmFlags {

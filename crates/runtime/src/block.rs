@@ -47,12 +47,69 @@ impl Span {
     }
 }
 
+/// T/C bits: one 0/1 byte per element instead of eight bits per byte.
 fn is_element_area(area: Area) -> bool {
     matches!(area, Area::TimerBit | Area::CounterBit)
 }
 
-/// `S/R bit, N` and `SI/RI`: writes `value` into `count` consecutive bits from `start`; bit
-/// numbering continues into the next byte. On T/C bits each step is the next timer/counter's bit.
+/// The bits `S/R start, N` writes: `count` consecutive bits from `start`, bit numbering
+/// continuing into the next byte, or on T/C bits one element (a whole 0/1 byte) per step.
+/// Computed by [`set_range_run`]; [`set_range_imm`] writes it, and the JIT inlines it for a
+/// constant `N`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BitRun {
+    /// The first bit (bit index within the area; on T/C bits the element index).
+    pub first: u32,
+    /// How many bits (or elements).
+    pub count: u32,
+    /// T/C bits: each step is the next timer's or counter's bit byte.
+    pub per_element: bool,
+}
+
+impl BitRun {
+    /// `(byte within the area, bit)` of every bit of the run, in order (elements: bit 0).
+    pub fn bits(self) -> impl Iterator<Item = (u32, u8)> {
+        (self.first..self.first + self.count).map(move |i| {
+            if self.per_element {
+                (i, 0)
+            } else {
+                (i / 8, (i % 8) as u8)
+            }
+        })
+    }
+}
+
+/// The run `S/R start, count` writes in an area of `layout` (spec §4.1): `Ok(None)` for
+/// `count = 0` (a no-op, M12); a run past the area end is 0x0091 and writes nothing (M11).
+pub fn set_range_run(
+    layout: &Layout,
+    start: BitLoc,
+    count: u32,
+) -> Result<Option<BitRun>, ErrorCode> {
+    if count == 0 {
+        return Ok(None);
+    }
+    if start.bit > 7 {
+        return Err(ErrorCode::OperandRange);
+    }
+    let size = u64::from(layout.area_size(start.area));
+    let per_element = is_element_area(start.area);
+    let (first, limit) = if per_element {
+        (u64::from(start.byte), size)
+    } else {
+        (u64::from(start.byte) * 8 + u64::from(start.bit), size * 8)
+    };
+    if first + u64::from(count) > limit {
+        return Err(ErrorCode::OperandRange);
+    }
+    Ok(Some(BitRun {
+        first: first as u32,
+        count,
+        per_element,
+    }))
+}
+
+/// `S/R bit, N` and `SI/RI`: writes `value` into the [`BitRun`] of `start` and `count`.
 /// `immediate` also writes the physical output copy (Q only). N = 0 is a no-op (M12); a run past
 /// the area end writes nothing and is 0x0091 (M11).
 pub fn set_range(
@@ -79,30 +136,19 @@ pub fn set_range_imm(
     if count == 0 {
         return Ok(());
     }
-    let size = layout.area_size(start.area);
     let base = area_span(layout, start.area, 0, 0, frame).ok_or(ErrorCode::OperandRange)?;
-    if start.bit > 7 {
-        return Err(ErrorCode::OperandRange);
-    }
-    if is_element_area(start.area) {
-        if u64::from(start.byte) + u64::from(count) > u64::from(size) {
-            return Err(ErrorCode::OperandRange);
-        }
-        for i in 0..count {
-            mem::set_u8(img, base + start.byte + i, u8::from(value));
-        }
+    let Some(run) = set_range_run(layout, start, count)? else {
         return Ok(());
-    }
-    let first = u64::from(start.byte) * 8 + u64::from(start.bit);
-    if first + u64::from(count) > u64::from(size) * 8 {
-        return Err(ErrorCode::OperandRange);
-    }
+    };
     let phys = immediate && start.area == Area::Q;
-    for i in first..first + u64::from(count) {
-        let (byte, bit) = ((i / 8) as u32, (i % 8) as u8);
-        mem::set_bit(img, base + byte, bit, value);
-        if phys {
-            mem::set_bit(img, layout.phys_out + byte, bit, value);
+    for (byte, bit) in run.bits() {
+        if run.per_element {
+            mem::set_u8(img, base + byte, u8::from(value));
+        } else {
+            mem::set_bit(img, base + byte, bit, value);
+            if phys {
+                mem::set_bit(img, layout.phys_out + byte, bit, value);
+            }
         }
     }
     Ok(())

@@ -7,17 +7,19 @@
 //! interpreter reaches them through [`execute`] (layout lookups, range check), the JIT through
 //! [`crate::ffi::stljit_rt_counter_fast`] (offsets fixed at compile time).
 
-use crate::{edge, mem};
+use crate::mem;
+use crate::rules::{Gate, GatePolicy, Rules};
 use stljit_core::ir::CounterKind;
+use stljit_core::layout::Sched;
 use stljit_core::layout::{COUNTER_STATE_SIZE, CounterState, Layout};
 use stljit_core::{Area, ErrorCode};
 
 fn value_at(layout: &Layout, n: u16) -> u32 {
-    layout.base(Area::CounterValue) + 2 * u32::from(n)
+    layout.counter_bytes(n)[0].0
 }
 
 fn bit_at(layout: &Layout, n: u16) -> u32 {
-    layout.base(Area::CounterBit) + u32::from(n)
+    layout.counter_bytes(n)[1].0
 }
 
 /// The fields of one counter an execution reads: its current value and the edge memories of
@@ -34,7 +36,7 @@ pub struct Counter {
 }
 
 /// Rising edge of `input` against the memory `prev`, which takes the new input; no edge while
-/// `quiet` (first scan, [`edge::suppressed`]).
+/// `quiet` (first scan, [`Rules::edges_suppressed`]).
 #[inline]
 fn edge_of(prev: &mut u8, input: bool, quiet: bool) -> bool {
     let was = *prev != 0;
@@ -64,22 +66,30 @@ impl Counter {
         state[DOWN] = self.prev_down;
     }
 
-    /// Executes a counter instruction (spec §5.3) and returns the new counter bit. `stack` holds
-    /// the logic stack (`bit i = S_i`); each input is `S_k AND gate`. `quiet` suppresses edges
-    /// (the first-scan rule); the edge memories are updated even while R/LD is on (TC10).
-    /// Cannot panic: no indexing or division, increments are guarded or wrapping.
+    /// Executes a counter instruction (spec §5.3) under `gate` and returns the new counter bit,
+    /// or `None` when the bit keeps its value. `stack` holds the logic stack (`bit i = S_i`);
+    /// each input is `S_k`, or 0 under a gate closed by [`GatePolicy::S7Scr`]; a gate closed
+    /// by [`GatePolicy::OmronInterlock`] does not execute the counter (value, bit and edge
+    /// memories kept). `quiet` suppresses edges (the first-scan rule); the edge memories are
+    /// updated even while R/LD is on (TC10). Cannot panic: no indexing or division, increments
+    /// are guarded or wrapping.
     #[inline]
     pub fn step(
         &mut self,
         kind: CounterKind,
         stack: u16,
-        gate: bool,
+        gate: Gate,
         preset: i16,
         quiet: bool,
-    ) -> bool {
-        let s = |k: u16| gate && (stack >> k) & 1 != 0;
+    ) -> Option<bool> {
+        let stack = match gate {
+            Gate::Open => stack,
+            Gate::Closed(GatePolicy::S7Scr) => 0,
+            Gate::Closed(GatePolicy::OmronInterlock) => return None,
+        };
+        let s = |k: u16| (stack >> k) & 1 != 0;
         let c = self;
-        match kind {
+        Some(match kind {
             CounterKind::Up => {
                 let up = edge_of(&mut c.prev_up, s(1), quiet);
                 if s(0) {
@@ -120,43 +130,38 @@ impl Counter {
                     c.cv >= preset
                 }
             }
-        }
+        })
     }
 }
 
 /// Executes a counter instruction on counter `n` (spec §5.3): [`Counter::step`] on the image,
-/// with edges suppressed in the first scan ([`edge::edges_suppressed`]). Errors only for a
-/// counter the profile lacks.
+/// with edges suppressed in the first scan as `rules` say ([`Rules::edges_suppressed`]).
+/// Errors only for a counter the profile lacks.
+#[allow(clippy::too_many_arguments)]
 pub fn execute(
     img: &mut [u8],
     layout: &Layout,
     n: u16,
     kind: CounterKind,
     stack: u16,
-    gate: bool,
+    gate: Gate,
     preset: i16,
+    rules: Rules,
 ) -> Result<(), ErrorCode> {
     if u32::from(n) >= layout.area_size(Area::CounterBit) {
         return Err(ErrorCode::OperandRange);
     }
-    let (v, b, st) = (
-        value_at(layout, n),
-        bit_at(layout, n),
-        layout.counter_state(n),
-    );
+    let [(v, _), (b, _), (st, _)] = layout.counter_bytes(n);
     let (mut value, mut state) = (mem::get_array(img, v), mem::get_array(img, st));
     let mut c = Counter::decode(value, &state);
-    let bit = c.step(
-        kind,
-        stack,
-        gate,
-        preset,
-        edge::edges_suppressed(img, layout),
-    );
+    let quiet = rules.edges_suppressed(mem::sched_u8(img, layout, Sched::FIRST_SCAN));
+    let bit = c.step(kind, stack, gate, preset, quiet);
     c.encode(&mut value, &mut state);
     mem::set_array(img, st, state);
     mem::set_array(img, v, value);
-    mem::set_u8(img, b, u8::from(bit));
+    if let Some(bit) = bit {
+        mem::set_u8(img, b, u8::from(bit));
+    }
     Ok(())
 }
 

@@ -1,6 +1,7 @@
 //! Counter tables of spec §7 (T11, T12, T13) and the §5.3 / TC rules.
 
 use super::*;
+use crate::rules::{Gate, Rules};
 use crate::testutil::Rig;
 use CounterKind::{Down, Up, UpDown};
 
@@ -37,7 +38,17 @@ fn t11_ctu_with_reset() {
     for (k, (cu, r, q, v)) in rows.into_iter().enumerate() {
         let mut got = (false, 0);
         rig.scan(|b, l| {
-            execute(b, l, 0, Up, stack(&[cu, r]), true, 3).unwrap();
+            execute(
+                b,
+                l,
+                0,
+                Up,
+                stack(&[cu, r]),
+                Gate::scr(true),
+                3,
+                Rules::IN_FORCE,
+            )
+            .unwrap();
             got = state(b, l, 0);
         });
         assert_eq!(got, (q, v), "scan {k}");
@@ -60,7 +71,17 @@ fn t12_ctd_with_load() {
     for (k, (cd, ld, q, v)) in rows.into_iter().enumerate() {
         let mut got = (false, 0);
         rig.scan(|b, l| {
-            execute(b, l, 1, Down, stack(&[cd, ld]), true, 2).unwrap();
+            execute(
+                b,
+                l,
+                1,
+                Down,
+                stack(&[cd, ld]),
+                Gate::scr(true),
+                2,
+                Rules::IN_FORCE,
+            )
+            .unwrap();
             got = state(b, l, 1);
         });
         assert_eq!(got, (q, v), "scan {k}");
@@ -85,7 +106,17 @@ fn t13_ctud_wraps() {
             if k == 0 {
                 mem::set_i16_be(b, value_at(l, 2), 32766); // MOVW +32766, C2 on SM0.1
             }
-            execute(b, l, 2, UpDown, stack(&[cu, cd, r]), true, 10).unwrap();
+            execute(
+                b,
+                l,
+                2,
+                UpDown,
+                stack(&[cu, cd, r]),
+                Gate::scr(true),
+                10,
+                Rules::IN_FORCE,
+            )
+            .unwrap();
             got = state(b, l, 2);
         });
         assert_eq!(got, (q, v), "scan {k}");
@@ -98,7 +129,17 @@ fn first_scan_input_on_does_not_count() {
     let mut rig = Rig::new(10).counter(4, 1);
     let mut got = (true, 9);
     rig.scan(|b, l| {
-        execute(b, l, 4, Up, stack(&[1, 0]), true, 1).unwrap();
+        execute(
+            b,
+            l,
+            4,
+            Up,
+            stack(&[1, 0]),
+            Gate::scr(true),
+            1,
+            Rules::IN_FORCE,
+        )
+        .unwrap();
         got = state(b, l, 4);
     });
     assert_eq!(got, (false, 0));
@@ -108,10 +149,20 @@ fn first_scan_input_on_does_not_count() {
 fn ctud_up_and_down_in_one_execution_cancel() {
     // TC9.
     let mut rig = Rig::new(10).counter(5, 3);
-    rig.scan(|b, l| execute(b, l, 5, UpDown, 0, true, 1).unwrap());
+    rig.scan(|b, l| execute(b, l, 5, UpDown, 0, Gate::scr(true), 1, Rules::IN_FORCE).unwrap());
     let mut got = (true, 9);
     rig.scan(|b, l| {
-        execute(b, l, 5, UpDown, stack(&[1, 1, 0]), true, 1).unwrap();
+        execute(
+            b,
+            l,
+            5,
+            UpDown,
+            stack(&[1, 1, 0]),
+            Gate::scr(true),
+            1,
+            Rules::IN_FORCE,
+        )
+        .unwrap();
         got = state(b, l, 5);
     });
     assert_eq!(got, (false, 0));
@@ -124,7 +175,17 @@ fn ctd_negative_cv_does_not_decrement() {
     rig.scan(|b, l| mem::set_i16_be(b, value_at(l, 6), -3));
     let mut got = (true, 0);
     rig.scan(|b, l| {
-        execute(b, l, 6, Down, stack(&[1, 0]), true, 1).unwrap();
+        execute(
+            b,
+            l,
+            6,
+            Down,
+            stack(&[1, 0]),
+            Gate::scr(true),
+            1,
+            Rules::IN_FORCE,
+        )
+        .unwrap();
         got = state(b, l, 6);
     });
     assert_eq!(got, (false, -3));
@@ -135,11 +196,45 @@ fn closed_gate_sees_all_inputs_off_and_updates_memory() {
     // §3.6: counters in an inactive segment see 0 on every input; memories record 0, so the
     // input still being on when the gate opens counts as an edge.
     let mut rig = Rig::new(10).counter(7, 1);
-    rig.scan(|b, l| execute(b, l, 7, Up, stack(&[1, 0]), true, 5).unwrap());
-    rig.scan(|b, l| execute(b, l, 7, Up, stack(&[1, 1]), false, 5).unwrap());
+    rig.scan(|b, l| {
+        execute(
+            b,
+            l,
+            7,
+            Up,
+            stack(&[1, 0]),
+            Gate::scr(true),
+            5,
+            Rules::IN_FORCE,
+        )
+        .unwrap()
+    });
+    rig.scan(|b, l| {
+        execute(
+            b,
+            l,
+            7,
+            Up,
+            stack(&[1, 1]),
+            Gate::scr(false),
+            5,
+            Rules::IN_FORCE,
+        )
+        .unwrap()
+    });
     let mut got = (true, 0);
     rig.scan(|b, l| {
-        execute(b, l, 7, Up, stack(&[1, 0]), true, 5).unwrap();
+        execute(
+            b,
+            l,
+            7,
+            Up,
+            stack(&[1, 0]),
+            Gate::scr(true),
+            5,
+            Rules::IN_FORCE,
+        )
+        .unwrap();
         got = state(b, l, 7);
     });
     assert_eq!(got, (false, 1));
@@ -148,21 +243,41 @@ fn closed_gate_sees_all_inputs_off_and_updates_memory() {
 #[test]
 fn reset_keeps_edge_memory_and_checks_range() {
     let mut rig = Rig::new(10).counter(0, 1);
-    rig.scan(|b, l| execute(b, l, 0, Up, 0, true, 5).unwrap());
+    rig.scan(|b, l| execute(b, l, 0, Up, 0, Gate::scr(true), 5, Rules::IN_FORCE).unwrap());
     rig.scan(|b, l| {
-        execute(b, l, 0, Up, stack(&[1, 0]), true, 5).unwrap();
+        execute(
+            b,
+            l,
+            0,
+            Up,
+            stack(&[1, 0]),
+            Gate::scr(true),
+            5,
+            Rules::IN_FORCE,
+        )
+        .unwrap();
         reset_range(b, l, 0, 1).unwrap();
     });
     let mut got = (true, 9);
     rig.scan(|b, l| {
-        execute(b, l, 0, Up, stack(&[1, 0]), true, 5).unwrap();
+        execute(
+            b,
+            l,
+            0,
+            Up,
+            stack(&[1, 0]),
+            Gate::scr(true),
+            5,
+            Rules::IN_FORCE,
+        )
+        .unwrap();
         got = state(b, l, 0);
     });
     assert_eq!(got, (false, 0), "CU still high after R: no new edge");
     let (b, l) = rig.img.split_mut();
     assert_eq!(reset_range(b, l, 30, 3), Err(ErrorCode::OperandRange));
     assert_eq!(
-        execute(b, l, 32, Up, 0, true, 1),
+        execute(b, l, 32, Up, 0, Gate::scr(true), 1, Rules::IN_FORCE),
         Err(ErrorCode::OperandRange)
     );
 }

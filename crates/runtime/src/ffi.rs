@@ -4,7 +4,9 @@
 //! * The first two arguments are `image: *mut u8` (the image's first byte, [`Layout::size`]
 //!   bytes) and `layout: *const Layout` (the layout those bytes follow).
 //! * Integers travel as `u32`/`i32`/`u64`; bools as `u32` 0/1 (any non-zero is true); timer and
-//!   counter kinds as their `code()` (1, 2, 3); widths as their byte count (1, 2, 4).
+//!   counter kinds as their `code()` (1, 2, 3); widths as their byte count (1, 2, 4); the gate
+//!   a timer or counter runs under, with the policy and the [`Rules`], as a gate word
+//!   ([`GATE_OPEN`], [`gate_word_fixed`], [`decode_gate_word`]).
 //! * Status returns are `u32`: [`RT_OK`] (0), an [`ErrorCode`] value (0x0006, 0x0008, 0x0091,
 //!   0x0092), [`RT_BAD_ARGUMENT`] for a null pointer or an impossible kind/width, [`RT_PANIC`] if
 //!   the runtime panicked (a bug; the panic never crosses the boundary).
@@ -25,58 +27,86 @@
 //! | `stljit_rt_ctu_fast(value, bit, state, first_scan, ctl, preset: i32)` | [`crate::counter::Counter::step`] | [`RT_OK`] |
 //! | `stljit_rt_ctd_fast(value, bit, state, first_scan, ctl, preset: i32)` | [`crate::counter::Counter::step`] | [`RT_OK`] |
 //! | `stljit_rt_ctud_fast(value, bit, state, first_scan, ctl, preset: i32)` | [`crate::counter::Counter::step`] | [`RT_OK`] |
-//! | `stljit_rt_edge(img, l, slot, input, gate, falling)` | [`edge::execute`] | new S0 (0/1) |
 //! | `stljit_rt_pointer(img, l, ptr, width, write)` | [`pointer::resolve`] | u64: image offset |
-//! | `stljit_rt_error(img, l, code, pou, op)` | [`scan::record_error`] | `code` |
-//! | `stljit_rt_fatal(img, l, code, pou, op)` | [`scan::record_fatal`] | `ScanStatus::Fatal` (2) |
-//! | `stljit_rt_loop_tick(img, l)` | [`scan::loop_tick`] | 1 ok, 0 budget exhausted |
-//! | `stljit_rt_wdr(img, l)` | [`scan::watchdog_reset`] | 0 |
-//! | `stljit_rt_int_arith(img, l, op, width, out, in1)` | [`crate::arith::int_arith`] | u64 value |
-//! | `stljit_rt_mul_wide(img, l, out, in1)` | [`crate::arith::mul_wide`] | u64 value |
-//! | `stljit_rt_div_wide(img, l, out, in1)` | [`crate::arith::div_wide`] | u64 value |
-//! | `stljit_rt_step(img, l, width, up, x)` | [`crate::arith::step`] | u64 value |
-//! | `stljit_rt_real_arith(img, l, op, out, in1)` | [`crate::arith::real_arith`] | u64 value |
-//! | `stljit_rt_real_func(img, l, func, x)` | [`crate::arith::real_func`] | u64 value |
-//! | `stljit_rt_logic(img, l, op, width, out, in1)` | [`crate::bitops::logic`] | u64 value |
-//! | `stljit_rt_invert(img, l, width, x)` | [`crate::bitops::invert`] | u64 value |
-//! | `stljit_rt_shift(img, l, left, width, x, n)` | [`crate::bitops::shift`] | u64 value |
-//! | `stljit_rt_rotate(img, l, left, width, x, n)` | [`crate::bitops::rotate`] | u64 value |
-//! | `stljit_rt_convert(img, l, conv, x)` | [`crate::convert::convert`] | u64 value |
-//! | `stljit_rt_compare(img, l, ty, op, lhs, rhs)` | [`crate::compare::compare`] | u64: 0/1, or FatalCode |
 //! | `stljit_rt_set_range(img, l, area, byte, bit, frame, count, value, immediate)` | [`crate::block::set_range_imm`] | status |
 //! | `stljit_rt_block_move(img, l, src, src_end, dst, dst_end, width, count)` | [`crate::block::block_move`] | status |
 //! | `stljit_rt_fill(img, l, value, dst, dst_end, count)` | [`crate::block::fill`] | status |
 //! | `stljit_rt_shift_register(img, l, data, area, byte, bit, frame, len: i32)` | [`crate::block::shift_register`] | status |
 //! | `stljit_rt_pointer_end(img, l, ptr)` | end of a pointer's [`crate::block::Span`] | image offset (0 = bad) |
+//! | `stljit_rt_value(op, sub, out, in1)` | [`ValueOp::outcome`] | u64: packed [`crate::flags::Outcome`] |
 //!
-//! **Value shims** (`u64 value` above) take the operands' raw bits, apply the SMB1 effect to the
-//! image themselves, and return bit 32 set with the value to write when the instruction writes
-//! OUT (ENO = 1), or 0 when it does not (ENO = 0; no error code is involved). Enum arguments
-//! (`op`, `func`, `conv`, `ty`, `area`) are [`FfiCode`]s: the position in the enum's declaration
-//! order (`ArithOp`: Add 0, Sub 1, Mul 2, Div 3; `Area`: its position in `Area::ALL`).
+//! Enum arguments (`area`, and inside [`ValueOp`]'s encoding `op`, `func`, `conv`) are
+//! [`FfiCode`]s: the position in the enum's declaration order (`ArithOp`: Add 0, Sub 1, Mul 2,
+//! Div 3; `Area`: its position in `Area::ALL`).
 //!
-//! The six `_fast` shims (`ffi/fast.rs`) break the first convention on purpose: they take pointers to
-//! the few bytes one timer or counter execution touches, computed by the JIT from the layout at
-//! compile time, and they cannot panic, so they skip the layout, the slice and `catch_unwind`.
+//! Two kinds of shim break the first convention on purpose. The six `_fast` shims
+//! (`ffi/fast.rs`) take pointers to the few bytes one timer or counter execution touches,
+//! computed by the JIT from the layout at compile time, and they cannot panic, so they skip the
+//! layout, the slice and `catch_unwind`. The value shim (`ffi/value.rs`) takes no image at all:
+//! it returns the value and the SMB1 masks of one box computation for compiled code to apply.
 //!
-//! [`symbols`] lists every shim for `cranelift_jit::JITBuilder::symbol`.
+//! These are exactly the shims compiled code links (the JIT's helper table names each one);
+//! the rest of the scan cycle's rules the JIT inlines from the same constants.
 #![allow(unsafe_code)]
 
 mod fast;
 mod ops;
+mod value;
 pub use fast::*;
 pub use ops::*;
+pub use value::*;
 
-use crate::{counter, edge, pointer, scan, timer};
+use crate::rules::{FirstScanEdges, Gate, GatePolicy, Rules};
+use crate::{counter, pointer, scan, timer};
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use stljit_core::ir::{
-    ArithOp, CmpOp, CmpType, Conversion, CounterKind, LogicOp, RealFn, TimerKind,
-};
+use stljit_core::ir::{ArithOp, Conversion, CounterKind, RealFn, TimerKind};
 use stljit_core::layout::Layout;
-use stljit_core::{Area, ErrorCode, FatalCode, ScanStatus, Width};
+use stljit_core::{Area, ErrorCode, ScanStatus, Width};
 
 /// Status: success.
 pub const RT_OK: u32 = 0;
+
+/// Gate word bit (the `gate` argument of the timer and counter shims, bits 8– of a fast shim's
+/// `ctl`): the gate is open.
+pub const GATE_OPEN: u32 = 1;
+/// Gate word bit: a closed gate follows [`GatePolicy::OmronInterlock`] (else
+/// [`GatePolicy::S7Scr`]).
+pub const GATE_OMRON_INTERLOCK: u32 = 1 << 1;
+/// Gate word bit: first-scan edges are detected ([`FirstScanEdges::Detect`]).
+pub const GATE_DETECT_FIRST_SCAN: u32 = 1 << 2;
+
+/// The bits of a gate word that do not depend on whether the gate is open: the policy a closed
+/// gate follows and the rules (0 for S7 SCR under [`Rules::IN_FORCE`]).
+pub fn gate_word_fixed(policy: GatePolicy, rules: Rules) -> u32 {
+    let omron = match policy {
+        GatePolicy::S7Scr => 0,
+        GatePolicy::OmronInterlock => GATE_OMRON_INTERLOCK,
+    };
+    let detect = match rules.first_scan_edges {
+        FirstScanEdges::Suppress => 0,
+        FirstScanEdges::Detect => GATE_DETECT_FIRST_SCAN,
+    };
+    omron | detect
+}
+
+/// The gate and rules a gate word encodes (other bits are ignored).
+#[inline]
+pub fn decode_gate_word(word: u32) -> (Gate, Rules) {
+    let policy = if word & GATE_OMRON_INTERLOCK != 0 {
+        GatePolicy::OmronInterlock
+    } else {
+        GatePolicy::S7Scr
+    };
+    let first_scan_edges = if word & GATE_DETECT_FIRST_SCAN != 0 {
+        FirstScanEdges::Detect
+    } else {
+        FirstScanEdges::Suppress
+    };
+    (
+        Gate::with(word & GATE_OPEN != 0, policy),
+        Rules { first_scan_edges },
+    )
+}
 /// Status: a null pointer, or a kind/width/code value outside its enum.
 pub const RT_BAD_ARGUMENT: u32 = 0xFFFF_FFFE;
 /// Status: the runtime panicked (a bug in the runtime, contained here).
@@ -152,7 +182,7 @@ macro_rules! ffi_code_from_core {
         }
     )+};
 }
-ffi_code_from_core!(ArithOp, LogicOp, RealFn, Conversion, CmpType, CmpOp);
+ffi_code_from_core!(ArithOp, RealFn, Conversion);
 
 impl FfiCode for Area {
     const ALL: &'static [Self] = &Area::ALL;
@@ -218,13 +248,14 @@ pub unsafe extern "C" fn stljit_rt_timer(
     // SAFETY: forwarded caller contract.
     unsafe {
         with_image(image, layout, |b, l| {
+            let (gate, _) = decode_gate_word(gate);
             status(timer::execute(
                 b,
                 l,
                 n,
                 kind,
                 input != 0,
-                gate != 0,
+                gate,
                 preset as i16,
             ))
         })
@@ -273,14 +304,16 @@ pub unsafe extern "C" fn stljit_rt_counter(
     // SAFETY: forwarded caller contract.
     unsafe {
         with_image(image, layout, |b, l| {
+            let (gate, rules) = decode_gate_word(gate);
             status(counter::execute(
                 b,
                 l,
                 n,
                 kind,
                 stack as u16,
-                gate != 0,
+                gate,
                 preset as i16,
+                rules,
             ))
         })
         .unwrap_or_else(|e| e)
@@ -309,37 +342,6 @@ pub unsafe extern "C" fn stljit_rt_counter_reset(
     }
 }
 
-/// [`edge::execute`]: the new S0 (0/1).
-///
-/// # Safety
-/// See the module conventions.
-pub unsafe extern "C" fn stljit_rt_edge(
-    image: *mut u8,
-    layout: *const Layout,
-    slot: u32,
-    input: u32,
-    gate: u32,
-    falling: u32,
-) -> u32 {
-    let Ok(slot) = u16::try_from(slot) else {
-        return 0;
-    };
-    // SAFETY: forwarded caller contract.
-    unsafe {
-        with_image(image, layout, |b, l| {
-            u32::from(edge::execute(
-                b,
-                l,
-                slot,
-                input != 0,
-                gate != 0,
-                falling != 0,
-            ))
-        })
-        .unwrap_or(0)
-    }
-}
-
 /// [`pointer::resolve`]: u64 result, the image offset of the access on success.
 ///
 /// # Safety
@@ -361,129 +363,6 @@ pub unsafe extern "C" fn stljit_rt_pointer(
         })
         .unwrap_or_else(|e| pack(Err(e)))
     }
-}
-
-/// [`scan::record_error`]; returns `code` so the caller can chain it.
-///
-/// # Safety
-/// See the module conventions.
-pub unsafe extern "C" fn stljit_rt_error(
-    image: *mut u8,
-    layout: *const Layout,
-    code: u32,
-    pou: u32,
-    op: u32,
-) -> u32 {
-    let Some(e) = u16::try_from(code)
-        .ok()
-        .and_then(|c| ErrorCode::try_from(c).ok())
-    else {
-        return RT_BAD_ARGUMENT;
-    };
-    // SAFETY: forwarded caller contract.
-    unsafe {
-        with_image(image, layout, |b, l| {
-            scan::record_error(b, l, e, pou, op);
-            code
-        })
-        .unwrap_or_else(|e| e)
-    }
-}
-
-/// [`scan::record_fatal`]; returns `ScanStatus::Fatal` (2) for the scan function to return.
-///
-/// # Safety
-/// See the module conventions.
-pub unsafe extern "C" fn stljit_rt_fatal(
-    image: *mut u8,
-    layout: *const Layout,
-    code: u32,
-    pou: u32,
-    op: u32,
-) -> u32 {
-    let f = u16::try_from(code)
-        .ok()
-        .and_then(|c| FatalCode::try_from(c).ok())
-        .unwrap_or(FatalCode::Watchdog);
-    // SAFETY: forwarded caller contract.
-    unsafe {
-        with_image(image, layout, |b, l| {
-            scan::record_fatal(b, l, f, pou, op);
-            ScanStatus::Fatal as u32
-        })
-        .unwrap_or(ScanStatus::Fatal as u32)
-    }
-}
-
-/// [`scan::loop_tick`]: 1 while within budget, 0 when exhausted (raise Watchdog).
-///
-/// # Safety
-/// See the module conventions.
-pub unsafe extern "C" fn stljit_rt_loop_tick(image: *mut u8, layout: *const Layout) -> u32 {
-    // SAFETY: forwarded caller contract.
-    unsafe { with_image(image, layout, |b, l| u32::from(scan::loop_tick(b, l))).unwrap_or(0) }
-}
-
-/// [`scan::watchdog_reset`].
-///
-/// # Safety
-/// See the module conventions.
-pub unsafe extern "C" fn stljit_rt_wdr(image: *mut u8, layout: *const Layout) -> u32 {
-    // SAFETY: forwarded caller contract.
-    unsafe {
-        with_image(image, layout, |b, l| {
-            scan::watchdog_reset(b, l);
-            RT_OK
-        })
-        .unwrap_or_else(|e| e)
-    }
-}
-
-/// Every shim with its name, for `cranelift_jit::JITBuilder::symbol(name, ptr)`.
-pub fn symbols() -> Vec<(&'static str, *const u8)> {
-    vec![
-        ("stljit_rt_scan_begin", stljit_rt_scan_begin as *const u8),
-        ("stljit_rt_scan_end", stljit_rt_scan_end as *const u8),
-        ("stljit_rt_timer", stljit_rt_timer as *const u8),
-        ("stljit_rt_timer_reset", stljit_rt_timer_reset as *const u8),
-        ("stljit_rt_counter", stljit_rt_counter as *const u8),
-        (
-            "stljit_rt_counter_reset",
-            stljit_rt_counter_reset as *const u8,
-        ),
-        ("stljit_rt_ton_fast", stljit_rt_ton_fast as *const u8),
-        ("stljit_rt_tonr_fast", stljit_rt_tonr_fast as *const u8),
-        ("stljit_rt_tof_fast", stljit_rt_tof_fast as *const u8),
-        ("stljit_rt_ctu_fast", stljit_rt_ctu_fast as *const u8),
-        ("stljit_rt_ctd_fast", stljit_rt_ctd_fast as *const u8),
-        ("stljit_rt_ctud_fast", stljit_rt_ctud_fast as *const u8),
-        ("stljit_rt_edge", stljit_rt_edge as *const u8),
-        ("stljit_rt_pointer", stljit_rt_pointer as *const u8),
-        ("stljit_rt_error", stljit_rt_error as *const u8),
-        ("stljit_rt_fatal", stljit_rt_fatal as *const u8),
-        ("stljit_rt_loop_tick", stljit_rt_loop_tick as *const u8),
-        ("stljit_rt_wdr", stljit_rt_wdr as *const u8),
-        ("stljit_rt_int_arith", stljit_rt_int_arith as *const u8),
-        ("stljit_rt_mul_wide", stljit_rt_mul_wide as *const u8),
-        ("stljit_rt_div_wide", stljit_rt_div_wide as *const u8),
-        ("stljit_rt_step", stljit_rt_step as *const u8),
-        ("stljit_rt_real_arith", stljit_rt_real_arith as *const u8),
-        ("stljit_rt_real_func", stljit_rt_real_func as *const u8),
-        ("stljit_rt_logic", stljit_rt_logic as *const u8),
-        ("stljit_rt_invert", stljit_rt_invert as *const u8),
-        ("stljit_rt_shift", stljit_rt_shift as *const u8),
-        ("stljit_rt_rotate", stljit_rt_rotate as *const u8),
-        ("stljit_rt_convert", stljit_rt_convert as *const u8),
-        ("stljit_rt_compare", stljit_rt_compare as *const u8),
-        ("stljit_rt_set_range", stljit_rt_set_range as *const u8),
-        ("stljit_rt_block_move", stljit_rt_block_move as *const u8),
-        ("stljit_rt_fill", stljit_rt_fill as *const u8),
-        (
-            "stljit_rt_shift_register",
-            stljit_rt_shift_register as *const u8,
-        ),
-        ("stljit_rt_pointer_end", stljit_rt_pointer_end as *const u8),
-    ]
 }
 
 #[cfg(test)]

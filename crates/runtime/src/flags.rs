@@ -19,6 +19,9 @@ pub const NEGATIVE: u8 = 1 << 2;
 pub const DIV_ZERO: u8 = 1 << 3;
 /// SM1.6: not a BCD value.
 pub const BCD: u8 = 1 << 6;
+/// The bits every integer and real result assigns (OK and OVF rules of spec §4.8): SM1.0,
+/// SM1.1, SM1.2.
+pub const RESULT: u8 = ZERO | OVERFLOW | NEGATIVE;
 
 /// An effect on SMB1: bits in `set` become 1, bits in `clear` become 0, the rest keep their value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

@@ -1,7 +1,8 @@
 //! The runtime every stljit engine shares: the memory [`Image`], the scan cycle around the
 //! program body ([`scan`]), timers, counters and edge detectors ([`timer`], [`counter`],
 //! [`edge`]), pointer resolution ([`pointer`]), the intricate instructions ([`arith`], [`bitops`],
-//! [`block`], [`compare`], [`convert`], with the SMB1 rules in [`flags`]) and the [`Engine`] trait.
+//! [`block`], [`compare`], [`convert`], with the SMB1 rules in [`flags`]), the semantic switches
+//! and the gate policy ([`rules`]) and the [`Engine`] trait.
 //!
 //! Everything is a function on the image bytes (`&mut [u8]` plus its [`Layout`]), so the
 //! interpreter calls it directly and the Cranelift JIT calls the same code through the
@@ -22,6 +23,7 @@ pub mod flags;
 pub mod image;
 pub mod mem;
 pub mod pointer;
+pub mod rules;
 pub mod scan;
 pub mod timer;
 

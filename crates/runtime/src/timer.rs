@@ -13,6 +13,7 @@
 //! same rules on the same bytes.
 
 use crate::mem;
+use crate::rules::{Gate, GatePolicy};
 use stljit_core::ir::TimerKind;
 use stljit_core::layout::{Layout, Sched, TIMER_STATE_SIZE, TimerState};
 use stljit_core::{Area, ErrorCode};
@@ -102,13 +103,10 @@ impl Timer {
         [state[PT], state[PT + 1]] = self.pt_cache.to_ne_bytes();
     }
 
-    /// Offsets of timer `n`'s value, bit and private state.
+    /// Offsets of timer `n`'s value, bit and private state ([`Layout::timer_bytes`]).
     fn offsets(layout: &Layout, n: u16) -> (u32, u32, u32) {
-        (
-            layout.base(Area::TimerValue) + 2 * u32::from(n),
-            layout.base(Area::TimerBit) + u32::from(n),
-            layout.timer_state(n),
-        )
+        let [(v, _), (b, _), (s, _)] = layout.timer_bytes(n);
+        (v, b, s)
     }
 
     fn load(img: &[u8], layout: &Layout, n: u16) -> Timer {
@@ -127,15 +125,27 @@ impl Timer {
         mem::set_array(img, s, state);
     }
 
-    /// Executes `TON`/`TONR`/`TOF` on this timer (spec §5.2): `IN = input AND gate`, and a TOF
-    /// with a closed gate is forced idle (inactive SCR rule). `d100` is the scan's 100-ms delta,
-    /// credited only by a 100-ms timer. Cannot panic: no indexing, no division, and the only
-    /// arithmetic is [`sat_add`].
+    /// Executes `TON`/`TONR`/`TOF` on this timer (spec §5.2) under `gate`. Open: `IN = input`.
+    /// Closed under [`GatePolicy::S7Scr`]: `IN = 0`, and a TOF is forced idle (inactive SCR
+    /// rule). Closed under [`GatePolicy::OmronInterlock`]: TON resets, TONR and TOF are not
+    /// executed. `d100` is the scan's 100-ms delta, credited only by a 100-ms timer. Cannot
+    /// panic: no indexing, no division, and the only arithmetic is [`sat_add`].
     #[inline]
-    pub fn step(&mut self, kind: TimerKind, input: bool, gate: bool, preset: i16, d100: u32) {
+    pub fn step(&mut self, kind: TimerKind, input: bool, gate: Gate, preset: i16, d100: u32) {
         let t = self;
         let d100 = if t.res == 100 { d100 } else { 0 };
-        let on = input && gate;
+        let (on, gate) = match gate {
+            Gate::Open => (input, true),
+            Gate::Closed(GatePolicy::S7Scr) => (false, false),
+            Gate::Closed(GatePolicy::OmronInterlock) => {
+                if kind == TimerKind::On {
+                    t.run = false;
+                    t.cv = 0;
+                    t.bit = false;
+                }
+                return;
+            }
+        };
         match kind {
             TimerKind::On | TimerKind::Retentive => {
                 if on {
@@ -195,14 +205,15 @@ fn check(layout: &Layout, n: u16) -> Result<(), ErrorCode> {
 }
 
 /// Executes `TON`/`TONR`/`TOF Tn, PT` (spec §5.2) on the image: [`Timer::step`] with the scan's
-/// `d100`. `input` is `S0`; `gate` is the SCR enable. Errors only for a timer the profile lacks.
+/// `d100`. `input` is `S0`; `gate` the gate it runs under. Errors only for a timer the profile
+/// lacks.
 pub fn execute(
     img: &mut [u8],
     layout: &Layout,
     n: u16,
     kind: TimerKind,
     input: bool,
-    gate: bool,
+    gate: Gate,
     preset: i16,
 ) -> Result<(), ErrorCode> {
     check(layout, n)?;

@@ -2,6 +2,7 @@
 //! functions directly.
 
 use super::*;
+use crate::rules::Gate;
 use crate::testutil::Rig;
 use TimerKind::{Off, On, Retentive};
 
@@ -21,7 +22,7 @@ fn t08_ton_t37() {
         let input = (1..=12).contains(&k);
         let mut got = (false, 0);
         rig.scan(|b, l| {
-            execute(b, l, 37, On, input, true, 100).unwrap();
+            execute(b, l, 37, On, input, Gate::scr(true), 100).unwrap();
             got = state(b, l, 37);
         });
         assert_eq!(got, w, "scan {k}");
@@ -48,7 +49,7 @@ fn t09_tonr_t3_with_reset() {
     for (k, (i0, i1, q, vw)) in rows.into_iter().enumerate() {
         let mut got = (false, 0);
         rig.scan(|b, l| {
-            execute(b, l, 3, Retentive, i0 == 1, true, 100).unwrap();
+            execute(b, l, 3, Retentive, i0 == 1, Gate::scr(true), 100).unwrap();
             got.0 = state(b, l, 3).0;
             if i1 == 1 {
                 reset(b, l, 3).unwrap();
@@ -80,7 +81,7 @@ fn t10_tof_t2() {
     for (k, (i0, q, vw)) in rows.into_iter().enumerate() {
         let mut got = (false, 0);
         rig.scan(|b, l| {
-            execute(b, l, 2, Off, i0 == 1, true, 20).unwrap();
+            execute(b, l, 2, Off, i0 == 1, Gate::scr(true), 20).unwrap();
             got = state(b, l, 2);
         });
         assert_eq!(got, (q, vw), "scan {k}");
@@ -94,8 +95,8 @@ fn x3_100ms_timer_twice_per_scan_gains_time_10ms_does_not() {
         for (k, w) in want.into_iter().enumerate() {
             let mut got = 0;
             rig.scan(|b, l| {
-                execute(b, l, n, On, true, true, 1000).unwrap();
-                execute(b, l, n, On, true, true, 1000).unwrap();
+                execute(b, l, n, On, true, Gate::scr(true), 1000).unwrap();
+                execute(b, l, n, On, true, Gate::scr(true), 1000).unwrap();
                 got = state(b, l, n).1;
             });
             assert_eq!(got, w, "T{n} scan {k}");
@@ -112,7 +113,7 @@ fn x4_skipped_100ms_timer_loses_time() {
         let mut got = 0;
         rig.scan(|b, l| {
             if inputs[k] == 0 {
-                execute(b, l, 40, On, true, true, 1000).unwrap();
+                execute(b, l, 40, On, true, Gate::scr(true), 1000).unwrap();
             }
             got = state(b, l, 40).1;
         });
@@ -124,7 +125,7 @@ fn x4_skipped_100ms_timer_loses_time() {
 fn skipped_10ms_timer_keeps_timing() {
     // §5.2: a 10-ms timer, once enabled, is refreshed at scan start even when not executed.
     let mut rig = Rig::new(100).timer(10, 1, 10);
-    rig.scan(|b, l| execute(b, l, 10, On, true, true, 25).unwrap());
+    rig.scan(|b, l| execute(b, l, 10, On, true, Gate::scr(true), 25).unwrap());
     for k in 1..=3 {
         let mut got = (false, 0);
         rig.scan(|b, l| got = state(b, l, 10));
@@ -136,9 +137,9 @@ fn skipped_10ms_timer_keeps_timing() {
 fn saturates_at_32767_and_keeps_bit() {
     // TC5.
     let mut rig = Rig::new(1000).timer(1, 1, 1);
-    rig.scan(|b, l| execute(b, l, 1, On, true, true, 5).unwrap());
+    rig.scan(|b, l| execute(b, l, 1, On, true, Gate::scr(true), 5).unwrap());
     for _ in 0..40 {
-        rig.scan(|b, l| execute(b, l, 1, On, true, true, 5).unwrap());
+        rig.scan(|b, l| execute(b, l, 1, On, true, Gate::scr(true), 5).unwrap());
     }
     let (b, l) = rig.img.split_mut();
     assert_eq!(state(b, l, 1), (true, 32767));
@@ -150,7 +151,7 @@ fn negative_preset_turns_ton_on_at_once() {
     let mut rig = Rig::new(10).timer(30, 1, 100);
     let mut got = (false, 0);
     rig.scan(|b, l| {
-        execute(b, l, 30, On, true, true, -1).unwrap();
+        execute(b, l, 30, On, true, Gate::scr(true), -1).unwrap();
         got = state(b, l, 30);
     });
     assert_eq!(got, (true, 0));
@@ -165,17 +166,17 @@ fn inactive_scr_gate_rules() {
         .timer(22, 3, 100);
     for i in 0..3 {
         rig.scan(|b, l| {
-            execute(b, l, 20, On, true, true, 1).unwrap();
-            execute(b, l, 21, Retentive, true, true, 1).unwrap();
-            execute(b, l, 22, Off, i == 0, true, 100).unwrap();
+            execute(b, l, 20, On, true, Gate::scr(true), 1).unwrap();
+            execute(b, l, 21, Retentive, true, Gate::scr(true), 1).unwrap();
+            execute(b, l, 22, Off, i == 0, Gate::scr(true), 100).unwrap();
         });
     }
     let mut got = [(false, 0); 3];
     rig.scan(|b, l| {
         assert!(state(b, l, 22).0, "TOF still timing before the gate closes");
-        execute(b, l, 20, On, true, false, 1).unwrap();
-        execute(b, l, 21, Retentive, true, false, 1).unwrap();
-        execute(b, l, 22, Off, true, false, 100).unwrap();
+        execute(b, l, 20, On, true, Gate::scr(false), 1).unwrap();
+        execute(b, l, 21, Retentive, true, Gate::scr(false), 1).unwrap();
+        execute(b, l, 22, Off, true, Gate::scr(false), 100).unwrap();
         got = [state(b, l, 20), state(b, l, 21), state(b, l, 22)];
     });
     assert_eq!(got, [(false, 0), (true, 2), (false, 0)]);
@@ -186,12 +187,12 @@ fn inactive_scr_gate_rules() {
 #[test]
 fn tof_after_reset_needs_a_fresh_transition() {
     let mut rig = Rig::new(10).timer(4, 3, 10);
-    rig.scan(|b, l| execute(b, l, 4, Off, true, true, 5).unwrap());
+    rig.scan(|b, l| execute(b, l, 4, Off, true, Gate::scr(true), 5).unwrap());
     rig.scan(|b, l| reset_range(b, l, 4, 1).unwrap());
     for _ in 0..3 {
         let mut got = (true, 1);
         rig.scan(|b, l| {
-            execute(b, l, 4, Off, false, true, 5).unwrap();
+            execute(b, l, 4, Off, false, Gate::scr(true), 5).unwrap();
             got = state(b, l, 4);
         });
         assert_eq!(got, (false, 0));
@@ -206,7 +207,7 @@ fn reset_range_checks_the_end() {
     assert_eq!(reset_range(b, l, 60, 4), Ok(()));
     assert_eq!(reset_range(b, l, 63, 0), Ok(()));
     assert_eq!(
-        execute(b, l, 64, On, true, true, 1),
+        execute(b, l, 64, On, true, Gate::scr(true), 1),
         Err(ErrorCode::OperandRange)
     );
 }

@@ -12,9 +12,11 @@ use cranelift_codegen::ir::{
     condcodes::{FloatCC, IntCC},
     types::{F32, I16, I32},
 };
-use stljit_core::ir::{BitLoc, CmpOp, CmpType, Contact, Op, Operand};
+use stljit_core::ir::{BitLoc, CmpOp, CmpType, Contact, Operand};
 use stljit_core::layout::Sched;
-use stljit_core::{Area, ErrorCode, FatalCode, Width};
+use stljit_core::{Area, FatalCode, Width};
+use stljit_runtime::block::set_range_run;
+use stljit_runtime::rules::{GatePolicy, SCR_POLICY};
 
 impl Lower<'_, '_> {
     /// The cached byte and bit of a bit location.
@@ -139,91 +141,80 @@ impl Lower<'_, '_> {
         B::Bit { v, pos: 0 }
     }
 
-    pub(crate) fn lower_bits(&mut self, op: &Op) {
-        match op {
-            Op::Load(c) => {
-                let (v, neg) = self.contact(c);
-                let v = if neg { v.not(&mut self.b) } else { v };
-                self.stack.push(v);
-            }
-            Op::And(c) => {
-                let (v, neg) = self.contact(c);
-                let top = self.stack.top();
-                let r = if neg {
-                    top.and_not(&mut self.b, v)
-                } else {
-                    top.and(&mut self.b, v)
-                };
-                let r = self.anchor(r);
-                self.stack.set_top(r);
-            }
-            Op::Or(c) => {
-                let (v, neg) = self.contact(c);
-                let top = self.stack.top();
-                let r = if neg {
-                    top.or_not(&mut self.b, v)
-                } else {
-                    top.or(&mut self.b, v)
-                };
-                let r = self.anchor(r);
-                self.stack.set_top(r);
-            }
-            Op::Not => {
-                let t = self.stack.top().not(&mut self.b);
-                self.stack.set_top(t);
-            }
-            Op::AndBlock | Op::OrBlock => {
-                let s0 = self.stack.pop();
-                let s1 = self.stack.top();
-                let r = if matches!(op, Op::AndBlock) {
-                    s0.and(&mut self.b, s1)
-                } else {
-                    s0.or(&mut self.b, s1)
-                };
-                let r = self.anchor(r);
-                self.stack.set_top(r);
-            }
-            Op::Dup => {
-                let t = self.stack.top();
-                self.stack.push(t);
-            }
-            Op::ReadSecond => {
-                let s1 = self.stack.level(1);
-                self.stack.set_top(s1);
-            }
-            Op::Pop => {
-                self.stack.pop();
-            }
-            Op::Pick(n) => {
-                let v = self.stack.level(usize::from(*n));
-                self.stack.push(v);
-            }
-            Op::AndEno => {
-                let a = self.sched(Sched::ENO);
-                let v = self.byte(a);
-                let t = self.stack.top().and(&mut self.b, B::Bit { v, pos: 0 });
-                self.stack.set_top(t);
-            }
-            Op::Edge { slot, falling } => self.edge(slot.0, *falling),
-            Op::Assign { bit, immediate } => {
-                let pf = self.pf();
-                let a = self.bit_byte(*bit);
-                self.write_bit_at(a, bit.bit, pf);
-                if *immediate
-                    && bit.area == Area::Q
-                    && bit.byte < self.env.layout.area_size(Area::Q)
-                {
-                    let a = Addr::img(self.env.layout.phys_out + bit.byte);
-                    self.write_bit_at(a, bit.bit, pf);
-                }
-            }
-            Op::SetRange {
-                start,
-                count,
-                value,
-                immediate,
-            } => self.set_range(*start, count, *value, *immediate),
-            _ => {}
+    /// `LD`/`LDN` (and the contact forms): pushes the contact.
+    pub(crate) fn load(&mut self, c: &Contact) {
+        let (v, neg) = self.contact(c);
+        let v = if neg { v.not(&mut self.b) } else { v };
+        self.stack.push(v);
+    }
+
+    /// `A`/`AN`/`O`/`ON` (and the contact forms): combines the contact into S0.
+    pub(crate) fn combine(&mut self, c: &Contact, and: bool) {
+        let (v, neg) = self.contact(c);
+        let top = self.stack.top();
+        let r = match (and, neg) {
+            (true, false) => top.and(&mut self.b, v),
+            (true, true) => top.and_not(&mut self.b, v),
+            (false, false) => top.or(&mut self.b, v),
+            (false, true) => top.or_not(&mut self.b, v),
+        };
+        let r = self.anchor(r);
+        self.stack.set_top(r);
+    }
+
+    /// `NOT`.
+    pub(crate) fn not(&mut self) {
+        let t = self.stack.top().not(&mut self.b);
+        self.stack.set_top(t);
+    }
+
+    /// `ALD`/`OLD`: pops S0 and combines it into the new S0.
+    pub(crate) fn combine_block(&mut self, and: bool) {
+        let s0 = self.stack.pop();
+        let s1 = self.stack.top();
+        let r = if and {
+            s0.and(&mut self.b, s1)
+        } else {
+            s0.or(&mut self.b, s1)
+        };
+        let r = self.anchor(r);
+        self.stack.set_top(r);
+    }
+
+    /// `LPS`.
+    pub(crate) fn dup(&mut self) {
+        let t = self.stack.top();
+        self.stack.push(t);
+    }
+
+    /// `LRD`.
+    pub(crate) fn read_second(&mut self) {
+        let s1 = self.stack.level(1);
+        self.stack.set_top(s1);
+    }
+
+    /// `LDS n`.
+    pub(crate) fn pick(&mut self, n: u8) {
+        let v = self.stack.level(usize::from(n));
+        self.stack.push(v);
+    }
+
+    /// `AENO`.
+    pub(crate) fn and_eno(&mut self) {
+        let a = self.sched(Sched::ENO);
+        let v = self.byte(a);
+        let t = self.stack.top().and(&mut self.b, B::Bit { v, pos: 0 });
+        self.stack.set_top(t);
+    }
+
+    /// `=`/`=I`: the coil writes PF.
+    pub(crate) fn assign(&mut self, bit: BitLoc, immediate: bool) {
+        let pf = self.pf();
+        let a = self.bit_byte(bit);
+        self.write_bit_at(a, bit.bit, pf);
+        if immediate && bit.area == Area::Q && bit.byte < self.env.layout.area_size(Area::Q) {
+            let a = Addr::img(self.env.layout.phys_out + bit.byte);
+            self.write_bit_at(a, bit.bit, pf);
         }
     }
 
@@ -272,68 +263,83 @@ impl Lower<'_, '_> {
         }
     }
 
-    /// `EU`/`ED` inline (spec §5.1, runtime `edge::execute`): out = edge AND NOT first scan.
-    fn edge(&mut self, slot: u16, falling: bool) {
+    /// `EU`/`ED` inline with the runtime's rules (`edge::execute`): the gate policy of
+    /// [`SCR_POLICY`] and the first-scan switch of [`Rules`](stljit_runtime::rules::Rules).
+    pub(crate) fn edge(&mut self, slot: u16, falling: bool) {
         if slot >= self.env.layout.profile.profile().max_edges {
             self.stack.set_top(B::K(false));
             return;
         }
-        // The power flow as a clean 0/1 first: the edge byte stores it, and at bit 0, where
-        // the edge byte and the first-scan flag are, it needs no further alignment.
-        let pf = self.pf();
-        let v01 = pf.to01(&mut self.b);
-        let v = match pf {
-            B::K(_) => pf,
+        let (v, frozen_unless) = match SCR_POLICY {
+            // A closed gate is an input of 0: `v = S0 AND gate`, the memory takes it.
+            GatePolicy::S7Scr => (self.pf(), None),
+            // A closed gate freezes the memory and outputs 0.
+            GatePolicy::OmronInterlock => match self.gate {
+                B::K(false) => {
+                    self.stack.set_top(B::K(false));
+                    return;
+                }
+                B::K(true) => (self.stack.top(), None),
+                g => (self.stack.top(), Some(g)),
+            },
+        };
+        // The input as a clean 0/1 first: the edge byte stores it, and at bit 0, where the
+        // edge byte and the first-scan flag are, it needs no further alignment.
+        let v01 = v.to01(&mut self.b);
+        let v = match v {
+            B::K(_) => v,
             _ => B::Bit { v: v01, pos: 0 },
         };
         let at = Addr::img(self.env.layout.edges + u32::from(slot));
         let mem = self.byte(at);
         let memb = B::Bit { v: mem, pos: 0 };
-        let out = if falling {
+        let mut out = if falling {
             memb.and_not(&mut self.b, v)
         } else {
             v.and_not(&mut self.b, memb)
         };
-        let fa = self.sched(Sched::FIRST_SCAN);
-        let first = self.byte(fa);
-        let out = out.and_not(&mut self.b, B::Bit { v: first, pos: 0 });
-        self.set_byte(at, v01);
+        if self.env.rules.first_scan_suppresses() {
+            let fa = self.sched(Sched::FIRST_SCAN);
+            let first = self.byte(fa);
+            out = out.and_not(&mut self.b, B::Bit { v: first, pos: 0 });
+        }
+        let new_mem = match frozen_unless {
+            None => v01,
+            Some(g) => {
+                out = out.and(&mut self.b, g);
+                let open = g.cond(&mut self.b);
+                self.b.ins().select(open, v01, mem)
+            }
+        };
+        self.set_byte(at, new_mem);
         self.stack.set_top(out);
     }
 
     /// `S`/`R`/`SI`/`RI`: inline when the count is a constant; otherwise the runtime does it.
-    fn set_range(&mut self, start: BitLoc, count: &Operand, value: bool, immediate: bool) {
+    pub(crate) fn set_range(
+        &mut self,
+        start: BitLoc,
+        count: &Operand,
+        value: bool,
+        immediate: bool,
+    ) {
         let pf = self.pf();
         if pf == B::K(false) {
             return;
         }
         if let Operand::Const(k) = *count {
-            let n = k & 0xFF;
-            if n == 0 {
-                return;
-            }
-            let per_byte = matches!(start.area, Area::TimerBit | Area::CounterBit);
-            let size = self.env.layout.area_size(start.area);
-            let first = if per_byte {
-                start.byte
-            } else {
-                start.byte * 8 + u32::from(start.bit)
+            let run = match set_range_run(self.env.layout, start, k & Width::Byte.mask()) {
+                Ok(None) => return,
+                Ok(Some(run)) => run,
+                Err(e) => {
+                    self.guarded(pf, |s| s.record_error_k(e));
+                    return;
+                }
             };
-            let limit = if per_byte { size } else { size * 8 };
-            if first + n > limit {
-                self.guarded(pf, |s| s.record_error_k(ErrorCode::OperandRange));
-                return;
-            }
-            if n <= 64 {
-                let bits: Vec<(Addr, u8)> = (0..n)
-                    .map(|i| {
-                        if per_byte {
-                            (self.area_addr(start.area, start.byte + i), 0)
-                        } else {
-                            let b = first + i;
-                            (self.area_addr(start.area, b / 8), (b % 8) as u8)
-                        }
-                    })
+            if run.count <= 64 {
+                let bits: Vec<(Addr, u8)> = run
+                    .bits()
+                    .map(|(byte, bit)| (self.area_addr(start.area, byte), bit))
                     .collect();
                 let phys = immediate && start.area == Area::Q;
                 let out = self.env.layout.phys_out;

@@ -4,14 +4,14 @@
 //! INV with their SMB1 rules (copied from `stljit_runtime::arith`/`bitops`, and checked against
 //! them by the differential tests). Everything with an intricate rule (multiplication, division,
 //! reals, shifts, rotates, conversions) calls the runtime's own computation through the value
-//! shim [`Helper::Value`] and applies the outcome it returns. Writes that the flag rule forbids
+//! shim [`Helper::Value`] (a `stljit_runtime::ffi::ValueOp`) and applies the outcome it returns. Writes that the flag rule forbids
 //! are done as a write of the old value (`select`), which leaves the same bytes without a branch.
 
 use super::Lower;
 use super::cache::Addr;
 use super::mem::{OnFail, Place};
 use super::value::B;
-use crate::helpers::{self, Helper, ValueOp};
+use crate::helpers::Helper;
 use cranelift_codegen::ir::{
     InstBuilder, Value,
     condcodes::IntCC,
@@ -19,6 +19,10 @@ use cranelift_codegen::ir::{
 };
 use stljit_core::ir::{ArithOp, BoxOp, LogicOp, Operand};
 use stljit_core::{Area, Width};
+use stljit_runtime::ffi::{
+    OUTCOME_CLEAR_SHIFT, OUTCOME_HAS_VALUE_SHIFT, OUTCOME_SET_SHIFT, ValueOp,
+};
+use stljit_runtime::flags;
 
 impl Lower<'_, '_> {
     fn smb1(&self) -> Addr {
@@ -36,10 +40,19 @@ impl Lower<'_, '_> {
 
     /// SM1.0 and SM1.2 bits of a result (`r` sign-extended to i32 for the negative test).
     fn zn_bits(&mut self, r: Value) -> Value {
+        const {
+            assert!(
+                flags::ZERO == 1,
+                "the compare result is the zero flag as it is"
+            )
+        };
         let z = self.b.ins().icmp_imm_s(IntCC::Equal, r, 0);
         let z = self.b.ins().uextend(I32, z);
         let n = self.b.ins().ushr_imm_s(r, 31);
-        let n = self.b.ins().ishl_imm_s(n, 2);
+        let n = self
+            .b
+            .ins()
+            .ishl_imm_s(n, i64::from(flags::NEGATIVE.trailing_zeros()));
         self.b.ins().bor(z, n)
     }
 
@@ -169,17 +182,18 @@ impl Lower<'_, '_> {
                 width,
                 ref src,
                 ref dst,
-            } => {
-                let sub = helpers::sub_code(width, helpers::arith_code(op));
-                self.value_box(ValueOp::IntArith, sub, Some((src, width)), dst, width, true)
-            }
+            } => self.value_box(
+                ValueOp::IntArith(op, width),
+                Some((src, width)),
+                dst,
+                width,
+                true,
+            ),
             BoxOp::Step { width, up, ref dst } => {
-                let sub = helpers::sub_code(width, u32::from(up));
-                self.value_box(ValueOp::Step, sub, None, dst, width, true)
+                self.value_box(ValueOp::Step { width, up }, None, dst, width, true)
             }
             BoxOp::MulWide { ref src, ref dst } => self.value_box(
                 ValueOp::MulWide,
-                4,
                 Some((src, Width::Word)),
                 dst,
                 Width::DWord,
@@ -187,7 +201,6 @@ impl Lower<'_, '_> {
             ),
             BoxOp::DivWide { ref src, ref dst } => self.value_box(
                 ValueOp::DivWide,
-                4,
                 Some((src, Width::Word)),
                 dst,
                 Width::DWord,
@@ -197,64 +210,55 @@ impl Lower<'_, '_> {
                 op,
                 ref src,
                 ref dst,
-            } => {
-                let sub = helpers::sub_code(Width::DWord, helpers::arith_code(op));
-                self.value_box(
-                    ValueOp::RealArith,
-                    sub,
-                    Some((src, Width::DWord)),
-                    dst,
-                    Width::DWord,
-                    true,
-                )
-            }
+            } => self.value_box(
+                ValueOp::RealArith(op),
+                Some((src, Width::DWord)),
+                dst,
+                Width::DWord,
+                true,
+            ),
             BoxOp::RealFunc {
                 func,
                 ref src,
                 ref dst,
-            } => {
-                let sub = helpers::sub_code(Width::DWord, helpers::real_fn_code(func));
-                self.value_box(
-                    ValueOp::RealFunc,
-                    sub,
-                    Some((src, Width::DWord)),
-                    dst,
-                    Width::DWord,
-                    false,
-                )
-            }
+            } => self.value_box(
+                ValueOp::RealFunc(func),
+                Some((src, Width::DWord)),
+                dst,
+                Width::DWord,
+                false,
+            ),
             BoxOp::Shift {
                 left,
                 width,
                 ref dst,
                 ref count,
-            } => {
-                let op = if left {
-                    ValueOp::ShiftL
-                } else {
-                    ValueOp::ShiftR
-                };
-                let sub = helpers::sub_code(width, 0);
-                self.value_box(op, sub, Some((count, Width::Byte)), dst, width, true)
-            }
+            } => self.value_box(
+                ValueOp::Shift { left, width },
+                Some((count, Width::Byte)),
+                dst,
+                width,
+                true,
+            ),
             BoxOp::Rotate {
                 left,
                 width,
                 ref dst,
                 ref count,
-            } => {
-                let op = if left { ValueOp::RotL } else { ValueOp::RotR };
-                let sub = helpers::sub_code(width, 0);
-                self.value_box(op, sub, Some((count, Width::Byte)), dst, width, true)
-            }
+            } => self.value_box(
+                ValueOp::Rotate { left, width },
+                Some((count, Width::Byte)),
+                dst,
+                width,
+                true,
+            ),
             BoxOp::Convert {
                 conv,
                 ref src,
                 ref dst,
             } => {
                 let (sw, dw) = stljit_runtime::convert::widths(conv);
-                let sub = helpers::sub_code(dw, helpers::conv_code(conv));
-                self.value_box(ValueOp::Convert, sub, Some((src, sw)), dst, dw, false)
+                self.value_box(ValueOp::Convert(conv), Some((src, sw)), dst, dw, false)
             }
             BoxOp::ImmediateRead { input, .. } | BoxOp::ImmediateWrite { output: input, .. }
                 if input >= self.io_limit(bx) =>
@@ -279,9 +283,22 @@ impl Lower<'_, '_> {
                 s.write_static(o, Width::Byte, v);
                 B::K(true)
             }),
-            BoxOp::BlockMove { .. } | BoxOp::Fill { .. } | BoxOp::ShiftRegister { .. } => {
-                self.lower_block_box(bx)
-            }
+            BoxOp::BlockMove {
+                width,
+                ref src,
+                ref dst,
+                ref count,
+            } => self.block_move(width, src, dst, count),
+            BoxOp::Fill {
+                ref src,
+                ref dst,
+                ref count,
+            } => self.fill(src, dst, count),
+            BoxOp::ShiftRegister {
+                data,
+                start,
+                ref len,
+            } => self.shift_register(data, start, len),
         }
     }
 
@@ -298,11 +315,12 @@ impl Lower<'_, '_> {
     fn zero_flag(&mut self, r: Value) {
         let z = self.b.ins().icmp_imm_s(IntCC::Equal, r, 0);
         let z = self.b.ins().uextend(I32, z);
-        self.put_flags(1, z);
+        self.put_flags(i64::from(flags::ZERO), z);
     }
 
     /// Inline `+`/`-` (and INC/DEC of words and dwords) with the OK/OVF rules of
-    /// `arith::int_arith`: on overflow OUT keeps its value, SM1.1 = 1, SM1.0 = SM1.2 = 0.
+    /// `arith::int_arith`, over the runtime's flag bits: on overflow OUT keeps its value,
+    /// SM1.1 = 1, SM1.0 = SM1.2 = 0; otherwise SM1.0/SM1.2 from the result and SM1.1 = 0.
     fn add_sub(&mut self, add: bool, width: Width, p: Place, d: Value, a: Value) -> B {
         // `r` is the wrapped result sign-extended to i32, `ovf` the signed-overflow flag. Words
         // and dwords use the native overflow flag (`add` + `seto`) instead of recomputing the
@@ -338,9 +356,9 @@ impl Lower<'_, '_> {
             }
         };
         let zn = self.zn_bits(r);
-        let two = self.iconst(I32, 2);
-        let bits = self.b.ins().select(ovf, two, zn);
-        self.put_flags(7, bits);
+        let ovf_bits = self.iconst(I32, i64::from(flags::OVERFLOW));
+        let bits = self.b.ins().select(ovf, ovf_bits, zn);
+        self.put_flags(i64::from(flags::RESULT), bits);
         let masked = self.b.ins().band_imm_s(r, i64::from(width.mask()));
         let out = self.b.ins().select(ovf, d, masked);
         self.write_place(p, width, out);
@@ -355,7 +373,6 @@ impl Lower<'_, '_> {
     fn value_box(
         &mut self,
         vop: ValueOp,
-        sub: u32,
         src: Option<(&Operand, Width)>,
         dst: &Operand,
         dw: Width,
@@ -369,13 +386,14 @@ impl Lower<'_, '_> {
             let p = s.dst_place(dst, dw, f);
             let old = s.read_place(p, dw);
             let out = if read_out { old } else { s.iconst(I32, 0) };
-            let opc = s.iconst(I32, vop as i64);
+            let (opc, sub) = vop.encode();
+            let opc = s.iconst(I32, i64::from(opc));
             let subv = s.iconst(I32, i64::from(sub));
             let r = s.call_pure(Helper::Value, &[opc, subv, out, in1]);
-            let setm = s.b.ins().ushr_imm_s(r, 40);
+            let setm = s.b.ins().ushr_imm_s(r, i64::from(OUTCOME_SET_SHIFT));
             let setm = s.b.ins().ireduce(I32, setm);
             let setm = s.b.ins().band_imm_s(setm, 0xFF);
-            let clr = s.b.ins().ushr_imm_s(r, 48);
+            let clr = s.b.ins().ushr_imm_s(r, i64::from(OUTCOME_CLEAR_SHIFT));
             let clr = s.b.ins().ireduce(I32, clr);
             let clr = s.b.ins().band_imm_s(clr, 0xFF);
             let a = s.smb1();
@@ -383,7 +401,7 @@ impl Lower<'_, '_> {
             let kept = s.b.ins().band_not(sm, clr);
             let nsm = s.b.ins().bor(kept, setm);
             s.set_byte_pred(a, nsm);
-            let has = s.b.ins().ushr_imm_s(r, 32);
+            let has = s.b.ins().ushr_imm_s(r, i64::from(OUTCOME_HAS_VALUE_SHIFT));
             let has = s.b.ins().ireduce(I32, has);
             let has = s.b.ins().band_imm_s(has, 1);
             let val = s.b.ins().ireduce(I32, r);

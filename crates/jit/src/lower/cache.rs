@@ -4,14 +4,13 @@
 //! shift, a mask and a read-modify-write store per instruction. A byte read or written within
 //! the last few ops is reused from its SSA value instead of loaded again; every write is stored
 //! at once (keeping writes in registers to the block's end cost spills), so the cache holds
-//! clean values. (The dirty-entry machinery, which stored deferred writes at the end of the
-//! block, before accesses whose address is only known at run time, before helper calls and
-//! before exits, is still in place but no lowering creates a dirty entry any more.) The cache maps a static address (image-relative, or relative to the current
-//! POU's L frame) to its value. [`StoreLog`] remembers where stores happened, for the wide
-//! loads of bit tests.
+//! only values equal to memory and nothing ever needs to be written back: helper calls, exits
+//! and pointer accesses at most forget entries. The cache maps a static address
+//! (image-relative, or relative to the current POU's L frame) to its value. [`StoreLog`]
+//! remembers where stores happened, for the wide loads of bit tests.
 //!
 //! Inside one op that branches (a box that may fail, a conditional call) the arms start from a
-//! clean copy of the cache and [`Cache::meet`] keeps only the entries no arm changed.
+//! copy of the cache and [`Cache::meet`] keeps only the entries no arm changed.
 
 use cranelift_codegen::ir::Value;
 use std::collections::BTreeMap;
@@ -44,7 +43,6 @@ impl Addr {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Entry {
     pub(crate) v: Value,
-    pub(crate) dirty: bool,
     pub(crate) at: usize,
 }
 
@@ -53,7 +51,8 @@ pub(crate) struct Entry {
 /// which costs more than loading the byte again.
 const WINDOW: usize = 12;
 
-/// The cache itself; a `BTreeMap` so that flushes store in address order (deterministic CLIF).
+/// The cache itself; a `BTreeMap` so that [`Cache::meet`] visits entries in address order
+/// (deterministic CLIF).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Cache {
     pub(crate) map: BTreeMap<Addr, Entry>,
@@ -62,25 +61,18 @@ pub(crate) struct Cache {
 }
 
 impl Cache {
-    /// The cached value of a byte, if recent enough (dirty entries never expire).
+    /// The cached value of a byte, if recent enough.
     pub(crate) fn get(&self, a: Addr) -> Option<Value> {
         self.map
             .get(&a)
-            .filter(|e| e.dirty || self.now.saturating_sub(e.at) <= WINDOW)
+            .filter(|e| self.now.saturating_sub(e.at) <= WINDOW)
             .map(|e| e.v)
     }
 
     /// Records a value just loaded from memory (or just stored to it).
     pub(crate) fn put_clean(&mut self, a: Addr, v: Value) {
         let at = self.now;
-        self.map.insert(
-            a,
-            Entry {
-                v,
-                dirty: false,
-                at,
-            },
-        );
+        self.map.insert(a, Entry { v, at });
     }
 
     /// Forgets everything (memory may have changed anywhere); keeps the op counter.
@@ -94,33 +86,7 @@ impl Cache {
         }
     }
 
-    /// The dirty entries among `len` bytes from `a`, marking them clean (the caller stores them).
-    pub(crate) fn take_dirty_in(&mut self, a: Addr, len: u32) -> Vec<(Addr, Value)> {
-        let mut out = Vec::new();
-        for i in 0..len {
-            if let Some(e) = self.map.get_mut(&a.plus(i))
-                && e.dirty
-            {
-                e.dirty = false;
-                out.push((a.plus(i), e.v));
-            }
-        }
-        out
-    }
-
-    /// Every dirty entry, marking them clean (the caller stores them).
-    pub(crate) fn take_all_dirty(&mut self) -> Vec<(Addr, Value)> {
-        let mut out = Vec::new();
-        for (a, e) in self.map.iter_mut() {
-            if e.dirty {
-                e.dirty = false;
-                out.push((*a, e.v));
-            }
-        }
-        out
-    }
-
-    /// The entries every arm left untouched; all arms must have flushed, so they are clean.
+    /// The entries every arm left untouched.
     pub(crate) fn meet(arms: &[Cache]) -> Cache {
         let Some((first, rest)) = arms.split_first() else {
             return Cache::default();
@@ -128,7 +94,7 @@ impl Cache {
         let map = first
             .map
             .iter()
-            .filter(|(a, e)| !e.dirty && rest.iter().all(|c| c.map.get(a) == Some(e)))
+            .filter(|(a, e)| rest.iter().all(|c| c.map.get(a) == Some(e)))
             .map(|(a, e)| (*a, *e))
             .collect();
         Cache {

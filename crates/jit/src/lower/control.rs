@@ -13,9 +13,9 @@ use cranelift_codegen::ir::{
     types::{I16, I32},
 };
 use cranelift_module::Module;
-use stljit_core::ir::{Op, Operand};
+use stljit_core::ir::{BitLoc, Op, Operand};
 use stljit_core::layout::Sched;
-use stljit_core::{ErrorCode, FatalCode, PouId, Width};
+use stljit_core::{ErrorCode, FatalCode, LabelId, PouId, Width};
 
 impl Lower<'_, '_> {
     /// One loop-budget event; takes the Watchdog fatal exit when the budget is exhausted.
@@ -87,8 +87,8 @@ impl Lower<'_, '_> {
     }
 
     /// A failure block for FOR/NEXT operands: records the error and continues at `past`.
-    /// The cache must be clean when the checks start (they only branch here before any
-    /// cached write), so the block starts from an empty cache.
+    /// The block starts from an empty cache (it is entered from several points of the
+    /// checks, each with its own cache).
     fn loop_fail_block(&mut self, past: usize) -> Block {
         let err = self.b.create_block();
         let code = self.b.append_block_param(err, I32);
@@ -115,7 +115,6 @@ impl Lower<'_, '_> {
         if !self.live {
             return;
         }
-        self.flush();
         let err = self.loop_fail_block(past);
         let fail = OnFail::Branch(err);
         // Spec §4.14 order (as the interpreter's `exec_for`): INDX := INIT, then FINAL is read.
@@ -139,7 +138,6 @@ impl Lower<'_, '_> {
     /// budget) while INDX <= FINAL; an operand error records it and leaves the loop.
     fn lower_next(&mut self, index: &Operand, limit: &Operand, body: usize) {
         self.stack.set_top(B::K(true));
-        self.flush();
         let past = self.op + 1;
         let err = self.loop_fail_block(past);
         let fail = OnFail::Branch(err);
@@ -158,87 +156,102 @@ impl Lower<'_, '_> {
         self.branch_if(B::Bit { v: again, pos: 0 }, body, true);
     }
 
-    pub(crate) fn lower_control(&mut self, op: &Op) {
-        let pou = self.env.prog.pou(self.pou);
-        match op {
-            Op::Jump(l) => {
-                let target = pou.label_target(*l).index();
-                let pf = self.pf();
-                self.branch_if(pf, target, target <= self.op);
-            }
-            Op::Label(_) | Op::Nop => {}
-            Op::Call(callee) => self.call(*callee),
-            Op::Return { conditional } | Op::End { conditional } => {
-                let pf = if *conditional { self.pf() } else { B::K(true) };
-                self.return_if(pf);
-            }
-            Op::Stop => {
-                let pf = self.pf();
-                if pf != B::K(false) {
-                    let a = self.sched(Sched::STOP_REQ);
-                    let old = self.byte(a);
-                    let p = pf.to01(&mut self.b);
-                    let new = self.b.ins().bor(old, p);
-                    self.set_byte(a, new);
-                }
-            }
-            Op::Wdr => {
-                let pf = self.pf();
-                self.guarded(pf, |s| {
-                    let z = s.iconst(I32, 0);
-                    let a = s.sched(Sched::LOOP_COUNT);
-                    s.store_ne(a, z);
-                });
-            }
-            Op::For {
-                index,
-                init,
-                limit,
-                next,
-            } => self.lower_for(index, init, limit, next.index() + 1),
-            Op::Next { head } => {
-                if let Some(Op::For { index, limit, .. }) = pou.ops.get(head.index()) {
-                    self.lower_next(index, limit, head.index() + 1)
-                }
-            }
-            Op::ScrBegin { bit } => {
-                let v = self.read_bit(*bit);
-                let a = self.sched(Sched::SCR_ENABLE);
-                let v01 = v.to01(&mut self.b);
-                self.set_byte(a, v01);
-                self.gate = v;
-                self.stack.push(v);
-            }
-            Op::ScrTransition { to, from } => {
-                let pf = self.pf();
-                let (ta, fa) = (self.bit_byte(*to), self.bit_byte(*from));
-                // Conditional set then reset, as straight-line read-modify-writes.
-                let old = self.byte(ta);
-                let m = pf.at_bit(&mut self.b, to.bit);
-                let new = self.b.ins().bor(old, m);
-                self.set_byte(ta, new);
-                let old = self.byte(fa);
-                let m = pf.at_bit(&mut self.b, from.bit);
-                let new = self.b.ins().band_not(old, m);
-                self.set_byte(fa, new);
-            }
-            Op::ScrCondEnd { end } => {
-                let pf = self.pf();
-                self.branch_if(pf, end.index(), false);
-            }
-            Op::ScrEnd => {
-                let a = self.sched(Sched::SCR_ENABLE);
-                let one = self.iconst(I32, 1);
-                self.set_byte(a, one);
-                self.gate = B::K(true);
-            }
-            _ => {}
+    /// `JMP n`: to the label's op if PF (a backward jump counts a loop event).
+    pub(crate) fn jump(&mut self, l: LabelId) {
+        let target = self.env.prog.pou(self.pou).label_target(l).index();
+        let pf = self.pf();
+        self.branch_if(pf, target, target <= self.op);
+    }
+
+    /// `RET`/`CRET`/`END`/`MEND`.
+    pub(crate) fn ret(&mut self, conditional: bool) {
+        let pf = if conditional { self.pf() } else { B::K(true) };
+        self.return_if(pf);
+    }
+
+    /// `STOP`: requests STOP if PF.
+    pub(crate) fn stop(&mut self) {
+        let pf = self.pf();
+        if pf != B::K(false) {
+            let a = self.sched(Sched::STOP_REQ);
+            let old = self.byte(a);
+            let p = pf.to01(&mut self.b);
+            let new = self.b.ins().bor(old, p);
+            self.set_byte(a, new);
         }
+    }
+
+    /// `WDR`: restarts the loop budget if PF.
+    pub(crate) fn wdr(&mut self) {
+        let pf = self.pf();
+        self.guarded(pf, |s| {
+            let z = s.iconst(I32, 0);
+            let a = s.sched(Sched::LOOP_COUNT);
+            s.store_ne(a, z);
+        });
+    }
+
+    /// `FOR`, whose `NEXT` is op `next`.
+    pub(crate) fn for_loop(
+        &mut self,
+        index: &Operand,
+        init: &Operand,
+        limit: &Operand,
+        next: usize,
+    ) {
+        self.lower_for(index, init, limit, next + 1);
+    }
+
+    /// `NEXT` of the `FOR` at op `head`.
+    pub(crate) fn next(&mut self, head: usize) {
+        let pou = self.env.prog.pou(self.pou);
+        if let Some(Op::For { index, limit, .. }) = pou.ops.get(head) {
+            self.lower_next(index, limit, head + 1)
+        }
+    }
+
+    /// `LSCR`: the segment's bit becomes the gate and is pushed.
+    pub(crate) fn scr_begin(&mut self, bit: BitLoc) {
+        let v = self.read_bit(bit);
+        let a = self.sched(Sched::SCR_ENABLE);
+        let v01 = v.to01(&mut self.b);
+        self.set_byte(a, v01);
+        self.gate = v;
+        self.stack.push(v);
+    }
+
+    /// `SCRT`: if PF, sets `to` and resets `from`.
+    pub(crate) fn scr_transition(&mut self, to: BitLoc, from: BitLoc) {
+        let pf = self.pf();
+        let (ta, fa) = (self.bit_byte(to), self.bit_byte(from));
+        // Conditional set then reset, as straight-line read-modify-writes.
+        let old = self.byte(ta);
+        let m = pf.at_bit(&mut self.b, to.bit);
+        let new = self.b.ins().bor(old, m);
+        self.set_byte(ta, new);
+        let old = self.byte(fa);
+        let m = pf.at_bit(&mut self.b, from.bit);
+        let new = self.b.ins().band_not(old, m);
+        self.set_byte(fa, new);
+    }
+
+    /// `CSCRE`: to the segment end if PF.
+    pub(crate) fn scr_cond_end(&mut self, end: usize) {
+        let pf = self.pf();
+        self.branch_if(pf, end, false);
+    }
+
+    /// `SCRE`: the gate opens again.
+    pub(crate) fn scr_end(&mut self) {
+        let a = self.sched(Sched::SCR_ENABLE);
+        let one = self.iconst(I32, 1);
+        self.set_byte(a, one);
+        self.gate = B::K(true);
     }
 
     /// `CALL`: if PF, the callee runs one frame deeper with a fresh stack (its own function);
     /// nesting beyond the profile's limit is error 0x0008 and the call is skipped.
-    fn call(&mut self, callee: PouId) {
+    pub(crate) fn call(&mut self, callee: PouId) {
         let pf = self.pf();
         if pf == B::K(false) {
             return;
@@ -267,7 +280,7 @@ impl Lower<'_, '_> {
                 too_deep,
                 |s| s.record_error_k(ErrorCode::CallNesting),
                 |s| {
-                    s.flush_forget();
+                    s.forget_all();
                     let d1 = s.b.ins().iadd_imm_s(s.depth, 1);
                     let call = s.b.ins().call(fref, &[s.image, d1]);
                     let status = s.b.inst_results(call)[0];

@@ -1,8 +1,7 @@
 //! Control flow inside one op: two-armed diamonds and the frame every box instruction runs in.
 //!
-//! Both keep the byte cache across the op: the cache is flushed (made clean) before the branch,
-//! every arm starts from that clean copy and flushes its own writes, and the join keeps only the
-//! entries no arm replaced ([`Cache::meet`]). The logic stack and the gate are untouched by these
+//! Both keep the byte cache across the op: every arm starts from a copy of the cache at the
+//! branch, and the join keeps only the entries no arm replaced ([`Cache::meet`]). The logic stack and the gate are untouched by these
 //! ops, so their compile-time values stay valid after the join.
 
 use super::Lower;
@@ -11,12 +10,44 @@ use super::mem::OnFail;
 use super::value::B;
 use cranelift_codegen::ir::{Block, InstBuilder, Value, types::I32};
 
+/// The arms of one branching op on their way to `join`: the cache at the branch, which every
+/// arm starts from, and the cache each finished arm left.
+pub(crate) struct Arms {
+    start: Cache,
+    ends: Vec<Cache>,
+    join: Block,
+}
+
 impl Lower<'_, '_> {
-    /// Ends the current arm: flush, remember its cache, jump to `join`.
-    fn close_arm(&mut self, join: Block, arms: &mut Vec<Cache>) {
-        self.flush();
-        arms.push(std::mem::take(&mut self.cache));
-        self.b.ins().jump(join, &[]);
+    /// Starts the "clone the cache, build the arms, meet" protocol of an op that branches and
+    /// joins again at `join`: every arm starts from the cache as it is now
+    /// ([`Lower::start_arm`]), ends with a jump to `join` ([`Lower::end_arm`]), and
+    /// [`Lower::join_arms`] continues at `join` with the entries no arm changed.
+    pub(crate) fn fork(&self, join: Block) -> Arms {
+        Arms {
+            start: self.cache.clone(),
+            ends: Vec::with_capacity(3),
+            join,
+        }
+    }
+
+    /// Continues in `block`, an arm, with the cache of the branch.
+    pub(crate) fn start_arm(&mut self, arms: &Arms, block: Block) {
+        self.b.switch_to_block(block);
+        self.cache = arms.start.clone();
+    }
+
+    /// Ends the current arm: remembers its cache and jumps to the join.
+    pub(crate) fn end_arm(&mut self, arms: &mut Arms) {
+        arms.ends.push(std::mem::take(&mut self.cache));
+        self.b.ins().jump(arms.join, &[]);
+    }
+
+    /// Continues at the join with the entries every arm left untouched.
+    pub(crate) fn join_arms(&mut self, arms: Arms) {
+        self.b.seal_block(arms.join);
+        self.b.switch_to_block(arms.join);
+        self.cache = Cache::meet(&arms.ends);
     }
 
     /// `if cond { then } else { other }` with the cache kept across.
@@ -26,28 +57,22 @@ impl Lower<'_, '_> {
         then: impl FnOnce(&mut Self),
         other: impl FnOnce(&mut Self),
     ) {
-        self.flush();
-        let start = self.cache.clone();
         let (t, e, j) = (
             self.b.create_block(),
             self.b.create_block(),
             self.b.create_block(),
         );
+        let mut arms = self.fork(j);
         self.b.ins().brif(cond, t, &[], e, &[]);
         self.b.seal_block(t);
         self.b.seal_block(e);
-        let mut arms = Vec::with_capacity(2);
-        self.b.switch_to_block(t);
-        self.cache = start.clone();
+        self.start_arm(&arms, t);
         then(self);
-        self.close_arm(j, &mut arms);
-        self.b.switch_to_block(e);
-        self.cache = start;
+        self.end_arm(&mut arms);
+        self.start_arm(&arms, e);
         other(self);
-        self.close_arm(j, &mut arms);
-        self.b.seal_block(j);
-        self.b.switch_to_block(j);
-        self.cache = Cache::meet(&arms);
+        self.end_arm(&mut arms);
+        self.join_arms(arms);
     }
 
     /// Runs a box instruction (spec §4.0): nothing but `ENO = 0` when PF is 0; otherwise `run`
@@ -64,14 +89,24 @@ impl Lower<'_, '_> {
             self.boxed_free(pf, run);
             return;
         }
-        self.flush();
-        let start = self.cache.clone();
+        self.run_failing(pf, true, |s, fail| {
+            let eno = run(s, fail);
+            s.set_eno(eno);
+        });
+    }
+
+    /// Runs `run` where `pf` (not constant 0) holds, with a failure block for pointer operands
+    /// (and explicit failures) that records the error; with `eno` (boxes) the failure and skip
+    /// paths also clear ENO. The arms (run, error, and skip unless PF is 1) join with the cache
+    /// kept across.
+    pub(crate) fn run_failing(&mut self, pf: B, eno: bool, run: impl FnOnce(&mut Self, OnFail)) {
         let (r, err, j) = (
             self.b.create_block(),
             self.b.create_block(),
             self.b.create_block(),
         );
         let code = self.b.append_block_param(err, I32);
+        let mut arms = self.fork(j);
         let skip = if pf == B::K(true) {
             self.b.ins().jump(r, &[]);
             None
@@ -83,29 +118,26 @@ impl Lower<'_, '_> {
             Some(s)
         };
         self.b.seal_block(r);
-        let mut arms = Vec::with_capacity(3);
-        self.b.switch_to_block(r);
-        self.cache = start.clone();
-        let eno = run(self, OnFail::Branch(err));
-        self.set_eno(eno);
-        self.close_arm(j, &mut arms);
+        self.start_arm(&arms, r);
+        run(self, OnFail::Branch(err));
+        self.end_arm(&mut arms);
 
         self.b.seal_block(err);
-        self.b.switch_to_block(err);
-        self.cache = start.clone();
+        self.start_arm(&arms, err);
         self.record_error(code);
-        self.set_eno(B::K(false));
-        self.close_arm(j, &mut arms);
+        if eno {
+            self.set_eno(B::K(false));
+        }
+        self.end_arm(&mut arms);
 
         if let Some(s) = skip {
-            self.b.switch_to_block(s);
-            self.cache = start;
-            self.set_eno(B::K(false));
-            self.close_arm(j, &mut arms);
+            self.start_arm(&arms, s);
+            if eno {
+                self.set_eno(B::K(false));
+            }
+            self.end_arm(&mut arms);
         }
-        self.b.seal_block(j);
-        self.b.switch_to_block(j);
-        self.cache = Cache::meet(&arms);
+        self.join_arms(arms);
     }
 
     /// A box that cannot fail (no pointer operand, no static error) runs on every path; its

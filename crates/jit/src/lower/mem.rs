@@ -4,8 +4,9 @@
 //! loads and stores at constant offsets (big-endian words through `bswap`). A pointer operand is
 //! read as a dword, resolved by the runtime's `pointer::resolve` (through its shim, so the rule
 //! exists once) and accessed at the resulting image offset; a failed resolution branches to the
-//! caller's failure path. Because a pointer may alias any cached byte, dirty bytes are stored
-//! before a pointer access and the cache is forgotten after a pointer write.
+//! caller's failure path. Because a pointer may alias any cached byte, the cache is forgotten
+//! before a pointer write (the cache holds only values equal to memory, so a pointer read needs
+//! nothing).
 
 use super::cache::Addr;
 use super::{Lower, mf};
@@ -62,12 +63,6 @@ impl Lower<'_, '_> {
             && let Some(&(_, _, v)) = self.pred_reads.iter().find(|r| r.0 == a && r.1 == width)
         {
             return v;
-        }
-        let d = self.cache.take_dirty_in(a, n);
-        for (da, v) in d {
-            self.stores.stored(da, 1, self.cache.now);
-            let base = self.base(da);
-            self.b.ins().istore8(mf(), v, base, da.off as i32);
         }
         let base = self.base(a);
         let v = self.load_be(base, a.off as i32, width);
@@ -206,10 +201,7 @@ impl Lower<'_, '_> {
     pub(crate) fn read_place(&mut self, p: Place, width: Width) -> Value {
         match p {
             Place::Static(a) => self.read_static(a, width),
-            Place::Dyn(addr) => {
-                self.flush();
-                self.load_be(addr, 0, width)
-            }
+            Place::Dyn(addr) => self.load_be(addr, 0, width),
         }
     }
 
@@ -218,7 +210,7 @@ impl Lower<'_, '_> {
         match p {
             Place::Static(a) => self.write_static(a, width, v),
             Place::Dyn(addr) => {
-                self.flush_forget();
+                self.forget_all();
                 self.store_be(addr, 0, width, v);
             }
         }

@@ -36,6 +36,7 @@ use std::collections::HashMap;
 use stljit_core::ir::{Op, Program};
 use stljit_core::layout::{Layout, Sched};
 use stljit_core::{Area, ErrorCode, FatalCode, PouId, ScanStatus};
+use stljit_runtime::rules::Rules;
 use value::{B, Stack};
 
 /// What all POU functions of one program share.
@@ -53,6 +54,8 @@ pub(crate) struct Env<'a> {
     pub(crate) plans: Vec<Option<ChunkPlan>>,
     /// [`crate::JitOptions::hot_ops`].
     pub(crate) hot_ops: usize,
+    /// The semantic switches the inlined code follows (`Rules::IN_FORCE` but in tests).
+    pub(crate) rules: Rules,
 }
 
 /// Memory flags for every image access: the image is never null and every direct offset is in
@@ -210,33 +213,15 @@ impl<'e, 'f> Lower<'e, 'f> {
         self.set_byte(a, v);
     }
 
-    /// Stores the given dirty entries.
-    fn store_entries(&mut self, entries: Vec<(Addr, Value)>) {
-        for (a, v) in entries {
-            self.stores.stored(a, 1, self.cache.now);
-            let base = self.base(a);
-            self.b.ins().istore8(mf(), v, base, Self::off32(a));
-        }
-    }
-
-    /// Stores every dirty byte; the cache stays valid.
-    pub(crate) fn flush(&mut self) {
-        let d = self.cache.take_all_dirty();
-        self.store_entries(d);
-    }
-
-    /// Stores every dirty byte and forgets everything (before code that may write anywhere).
-    pub(crate) fn flush_forget(&mut self) {
-        self.flush();
+    /// Forgets every cached byte and counts every byte as just stored (before code that may
+    /// write anywhere).
+    pub(crate) fn forget_all(&mut self) {
         self.cache.clear();
         self.stores.stored_anywhere(self.cache.now);
     }
 
     /// Loads `ty` in native byte order at a static address (scheduler fields).
     pub(crate) fn load_ne(&mut self, a: Addr, ty: Type) -> Value {
-        let n = ty.bytes();
-        let d = self.cache.take_dirty_in(a, n);
-        self.store_entries(d);
         let base = self.base(a);
         self.b.ins().load(ty, mf(), base, Self::off32(a))
     }
@@ -270,25 +255,20 @@ impl<'e, 'f> Lower<'e, 'f> {
         self.b.ins().iconst(ty, v)
     }
 
-    /// Calls a runtime shim after flushing and forgetting the cache (it may touch any byte).
+    /// Calls a runtime shim after forgetting the cache (it may touch any byte).
     pub(crate) fn call_helper(&mut self, h: Helper, args: &[Value]) -> Value {
-        self.flush_forget();
+        self.forget_all();
         self.call_pure(h, args)
     }
 
-    /// Calls a runtime shim that reads and writes only the image bytes in `ranges`: only dirty
-    /// bytes inside them are stored before the call and only they are forgotten after it, so
-    /// the rest of the cache (dirty bytes included) stays valid across the call.
+    /// Calls a runtime shim that reads and writes only the image bytes in `ranges`: only they
+    /// are forgotten after it, so the rest of the cache stays valid across the call.
     pub(crate) fn call_touching(
         &mut self,
         h: Helper,
         args: &[Value],
         ranges: &[(Addr, u32)],
     ) -> Value {
-        for &(a, n) in ranges {
-            let d = self.cache.take_dirty_in(a, n);
-            self.store_entries(d);
-        }
         let r = self.call_pure(h, args);
         for &(a, n) in ranges {
             self.cache.forget(a, n);
@@ -311,8 +291,6 @@ impl<'e, 'f> Lower<'e, 'f> {
         let mut all = Vec::with_capacity(args.len() + 2);
         if h.takes_image() {
             all.push(self.image);
-        }
-        if h.takes_layout() {
             let layout = self.iconst(I64, self.env.layout_ptr);
             all.push(layout);
         }
@@ -353,9 +331,8 @@ impl<'e, 'f> Lower<'e, 'f> {
         self.set_byte(a, v01);
     }
 
-    /// Emits the fatal exit of the current op in the current block: record, flush, return.
+    /// Emits the fatal exit of the current op in the current block: record, return.
     pub(crate) fn fatal_here(&mut self, code: FatalCode) {
-        self.flush();
         let c = self.iconst(I16, i64::from(code as u16));
         let a = self.sched(Sched::FATAL);
         self.store_ne(a, c);
@@ -393,8 +370,7 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     // ---- blocks ------------------------------------------------------------------------------
 
-    /// Writes the stack register and every dirty byte back (end of a block that continues at
-    /// op `target`). Levels that are dead at `target` ([`crate::analysis::PouInfo`]'s
+    /// Writes the stack register back (end of a block that continues at op `target`). Levels that are dead at `target` ([`crate::analysis::PouInfo`]'s
     /// `stack_live`) are packed as 0: nothing reads them, and most of a long program's stack
     /// is old rungs' results that later pushes drop off the bottom.
     pub(crate) fn spill_state(&mut self, target: usize) {
@@ -418,7 +394,6 @@ impl<'e, 'f> Lower<'e, 'f> {
             let r = stack.to_reg(&mut self.b);
             self.b.def_var(self.st, r);
         }
-        self.flush();
     }
 
     /// Starts lowering in `block` with state reloaded from the image and the stack register.
@@ -479,9 +454,8 @@ impl<'e, 'f> Lower<'e, 'f> {
         self.b.ins().return_(&[r]);
     }
 
-    /// Returns 0 (continue) after writing the state back.
+    /// Returns 0 (continue).
     pub(crate) fn ret_ok(&mut self) {
-        self.flush();
         let z = self.iconst(I32, 0);
         self.return_status(z);
     }
@@ -610,41 +584,65 @@ impl<'e, 'f> Lower<'e, 'f> {
         }
     }
 
+    /// Lowers one op: the one match over [`Op`], so a new op is a compile error here and
+    /// nowhere else in the lowering.
     fn lower_op(&mut self, op: &Op) {
-        match op {
-            Op::Load(_)
-            | Op::And(_)
-            | Op::Or(_)
-            | Op::Not
-            | Op::AndBlock
-            | Op::OrBlock
-            | Op::Dup
-            | Op::ReadSecond
-            | Op::Pop
-            | Op::Pick(_)
-            | Op::AndEno
-            | Op::Edge { .. }
-            | Op::Assign { .. }
-            | Op::SetRange { .. } => self.lower_bits(op),
-            Op::ResetTimers { .. }
-            | Op::ResetCounters { .. }
-            | Op::Timer { .. }
-            | Op::Counter { .. } => self.lower_stateful(op),
-            Op::Box(bx) => self.lower_box(bx),
-            Op::Jump(_)
-            | Op::Label(_)
-            | Op::Call(_)
-            | Op::Return { .. }
-            | Op::End { .. }
-            | Op::Stop
-            | Op::Wdr
-            | Op::Nop
-            | Op::For { .. }
-            | Op::Next { .. }
-            | Op::ScrBegin { .. }
-            | Op::ScrTransition { .. }
-            | Op::ScrCondEnd { .. }
-            | Op::ScrEnd => self.lower_control(op),
+        match *op {
+            Op::Load(ref c) => self.load(c),
+            Op::And(ref c) => self.combine(c, true),
+            Op::Or(ref c) => self.combine(c, false),
+            Op::Not => self.not(),
+            Op::AndBlock => self.combine_block(true),
+            Op::OrBlock => self.combine_block(false),
+            Op::Dup => self.dup(),
+            Op::ReadSecond => self.read_second(),
+            Op::Pop => {
+                self.stack.pop();
+            }
+            Op::Pick(n) => self.pick(n),
+            Op::AndEno => self.and_eno(),
+            Op::Edge { slot, falling } => self.edge(slot.0, falling),
+            Op::Assign { bit, immediate } => self.assign(bit, immediate),
+            Op::SetRange {
+                start,
+                ref count,
+                value,
+                immediate,
+            } => self.set_range(start, count, value, immediate),
+            Op::ResetTimers { first, ref count } => {
+                self.reset_range(Helper::TimerReset, u32::from(first.0), count)
+            }
+            Op::ResetCounters { first, ref count } => {
+                self.reset_range(Helper::CounterReset, u32::from(first.0), count)
+            }
+            Op::Timer {
+                kind,
+                timer,
+                ref preset,
+            } => self.timer(kind, timer.0, preset),
+            Op::Counter {
+                kind,
+                counter,
+                ref preset,
+            } => self.counter(kind, counter.0, preset),
+            Op::Box(ref bx) => self.lower_box(bx),
+            Op::Jump(l) => self.jump(l),
+            Op::Label(_) | Op::Nop => {}
+            Op::Call(callee) => self.call(callee),
+            Op::Return { conditional } | Op::End { conditional } => self.ret(conditional),
+            Op::Stop => self.stop(),
+            Op::Wdr => self.wdr(),
+            Op::For {
+                ref index,
+                ref init,
+                ref limit,
+                next,
+            } => self.for_loop(index, init, limit, next.index()),
+            Op::Next { head } => self.next(head.index()),
+            Op::ScrBegin { bit } => self.scr_begin(bit),
+            Op::ScrTransition { to, from } => self.scr_transition(to, from),
+            Op::ScrCondEnd { end } => self.scr_cond_end(end.index()),
+            Op::ScrEnd => self.scr_end(),
         }
     }
 }

@@ -7,10 +7,11 @@ use super::mem::OnFail;
 use super::value::{B, Stack};
 use crate::helpers::Helper;
 use cranelift_codegen::ir::{BlockArg, InstBuilder, Value, condcodes::IntCC, types::I32};
-use stljit_core::ir::{BitLoc, BoxOp, Op, Operand};
-use stljit_core::layout::{COUNTER_STATE_SIZE, Sched, TIMER_STATE_SIZE};
+use stljit_core::ir::{BitLoc, CounterKind, Operand, TimerKind};
+use stljit_core::layout::Sched;
 use stljit_core::{Area, ErrorCode, Width};
-use stljit_runtime::ffi::{CTL_GATE, FfiCode};
+use stljit_runtime::ffi::{CTL_GATE, FfiCode, fast_shims_apply, gate_word_fixed};
+use stljit_runtime::rules::SCR_POLICY;
 
 impl Lower<'_, '_> {
     /// Records a non-zero runtime status as a non-fatal error (a diamond, rarely taken).
@@ -20,8 +21,9 @@ impl Lower<'_, '_> {
     }
 
     /// Executes timer or counter `n` (of kind `code`) with `inputs` (the `ctl` bits) and preset
-    /// `pv`. In range (`ranges` = its bytes): the kind's fast shim on those bytes only, which
-    /// cannot fail. Otherwise the general shim, whose error (no such object) is recorded.
+    /// `pv`. In range (`ranges` = its bytes) and under the rules the fast shims are specialised
+    /// to: the kind's fast shim on those bytes only, which cannot fail. Otherwise the general
+    /// shim, whose error (no such object) is recorded.
     fn call_stateful(
         &mut self,
         ranges: Option<[(Addr, u32); 4]>,
@@ -30,14 +32,14 @@ impl Lower<'_, '_> {
         inputs: Value,
         pv: Value,
     ) {
-        match ranges {
+        match ranges.filter(|_| fast_shims_apply(self.env.rules)) {
             Some(r) => {
                 let ctl = self.fast_ctl(inputs);
                 let args = self.fast_args(&r, ctl, pv);
                 self.call_touching(fast, &args, &r);
             }
             None => {
-                let gate = self.gate.to01(&mut self.b);
+                let gate = self.gate_word();
                 let nv = self.iconst(I32, i64::from(n));
                 let k = self.iconst(I32, i64::from(code));
                 let st = self.call_helper(general, &[nv, k, inputs, gate, pv]);
@@ -59,68 +61,59 @@ impl Lower<'_, '_> {
             return;
         }
         // A pointer preset: resolve first; the failure path records the error and skips.
-        self.flush();
-        let start = self.cache.clone();
         let err = self.b.create_block();
         let code = self.b.append_block_param(err, I32);
         let join = self.b.create_block();
+        let mut arms = self.fork(join);
         let v = self.read_operand(preset, Width::Word, OnFail::Branch(err));
         let v = self.sext(v, Width::Word);
         f(self, v);
-        self.flush();
-        let ok_cache = std::mem::take(&mut self.cache);
-        self.b.ins().jump(join, &[]);
+        self.end_arm(&mut arms);
         self.b.seal_block(err);
-        self.b.switch_to_block(err);
-        self.cache = start;
+        self.start_arm(&arms, err);
         self.record_error(code);
-        self.flush();
-        let err_cache = std::mem::take(&mut self.cache);
-        self.b.ins().jump(join, &[]);
-        self.b.seal_block(join);
-        self.b.switch_to_block(join);
-        self.cache = super::cache::Cache::meet(&[ok_cache, err_cache]);
+        self.end_arm(&mut arms);
+        self.join_arms(arms);
     }
 
-    pub(crate) fn lower_stateful(&mut self, op: &Op) {
-        match op {
-            Op::Timer {
-                kind,
-                timer,
-                preset,
-            } => {
-                let (kind, n) = (*kind, timer.0);
-                self.with_preset(preset, |s, pv| {
-                    let input = s.stack.top().to01(&mut s.b);
-                    let ranges = s.timer_ranges(n);
-                    let calls = (Helper::timer_fast(kind), Helper::Timer);
-                    s.call_stateful(ranges, calls, (n, kind.code()), input, pv);
-                });
-            }
-            Op::Counter {
-                kind,
-                counter,
-                preset,
-            } => {
-                let (kind, n) = (*kind, counter.0);
-                self.with_preset(preset, |s, pv| {
-                    // `counter::execute` reads levels 0..=2 only; packing just those is cheaper.
-                    let levels = Stack {
-                        lv: (0..3).map(|i| s.stack.level(i)).collect(),
-                    };
-                    let stack = levels.to_reg(&mut s.b);
-                    let ranges = s.counter_ranges(n);
-                    let calls = (Helper::counter_fast(kind), Helper::Counter);
-                    s.call_stateful(ranges, calls, (n, kind.code()), stack, pv);
-                });
-            }
-            Op::ResetTimers { first, count } => {
-                self.reset_range(Helper::TimerReset, u32::from(first.0), count)
-            }
-            Op::ResetCounters { first, count } => {
-                self.reset_range(Helper::CounterReset, u32::from(first.0), count)
-            }
-            _ => {}
+    /// `TON`/`TONR`/`TOF Tn, PT`.
+    pub(crate) fn timer(&mut self, kind: TimerKind, n: u16, preset: &Operand) {
+        self.with_preset(preset, |s, pv| {
+            let input = s.stack.top().to01(&mut s.b);
+            let ranges = s.timer_ranges(n);
+            let calls = (Helper::timer_fast(kind), Helper::Timer);
+            s.call_stateful(ranges, calls, (n, kind.code()), input, pv);
+        });
+    }
+
+    /// `CTU`/`CTD`/`CTUD Cn, PV`.
+    pub(crate) fn counter(&mut self, kind: CounterKind, n: u16, preset: &Operand) {
+        self.with_preset(preset, |s, pv| {
+            // `counter::execute` reads levels 0..=2 only; packing just those is cheaper.
+            let levels = Stack {
+                lv: (0..3).map(|i| s.stack.level(i)).collect(),
+            };
+            let stack = levels.to_reg(&mut s.b);
+            let ranges = s.counter_ranges(n);
+            let calls = (Helper::counter_fast(kind), Helper::Counter);
+            s.call_stateful(ranges, calls, (n, kind.code()), stack, pv);
+        });
+    }
+
+    /// The bits of the gate word ([`stljit_runtime::ffi::decode_gate_word`]) that do not
+    /// depend on the gate's state: the SCR policy and the rules (0 for S7 under the rules in
+    /// force).
+    fn gate_word_fixed(&self) -> u32 {
+        gate_word_fixed(SCR_POLICY, self.env.rules)
+    }
+
+    /// The gate word of the general timer and counter shims: the gate at bit 0 and the fixed
+    /// bits.
+    fn gate_word(&mut self) -> Value {
+        let open = self.gate.to01(&mut self.b);
+        match self.gate_word_fixed() {
+            0 => open,
+            fixed => self.b.ins().bor_imm_s(open, i64::from(fixed)),
         }
     }
 
@@ -149,35 +142,30 @@ impl Lower<'_, '_> {
         [p[0], p[1], p[2], p[3], ctl, preset]
     }
 
-    /// The bytes `timer::execute` reads or writes for an existing timer `n`: its value, bit and
-    /// private state, and the scan's 100-ms delta (`None`: no such timer, the shim fails).
+    /// The bytes `timer::execute` reads or writes for an existing timer `n`: its own
+    /// ([`Layout::timer_bytes`](stljit_core::layout::Layout::timer_bytes)) and the scan's
+    /// 100-ms delta (`None`: no such timer, the shim fails).
     fn timer_ranges(&self, n: u16) -> Option<[(Addr, u32); 4]> {
         let l = self.env.layout;
         (u32::from(n) < l.area_size(Area::TimerBit)).then(|| {
-            [
-                (self.area_addr(Area::TimerValue, 2 * u32::from(n)), 2),
-                (self.area_addr(Area::TimerBit, u32::from(n)), 1),
-                (Addr::img(l.timer_state(n)), TIMER_STATE_SIZE),
-                (self.sched(Sched::D100), 4),
-            ]
+            let [v, b, s] = l.timer_bytes(n).map(|(off, len)| (Addr::img(off), len));
+            [v, b, s, (self.sched(Sched::D100), 4)]
         })
     }
 
-    /// The bytes `counter::execute` reads or writes for an existing counter `n`: its value, bit
-    /// and private state, and the first-scan flag.
+    /// The bytes `counter::execute` reads or writes for an existing counter `n`: its own
+    /// ([`Layout::counter_bytes`](stljit_core::layout::Layout::counter_bytes)) and the
+    /// first-scan flag.
     fn counter_ranges(&self, n: u16) -> Option<[(Addr, u32); 4]> {
         let l = self.env.layout;
         (u32::from(n) < l.area_size(Area::CounterBit)).then(|| {
-            [
-                (self.area_addr(Area::CounterValue, 2 * u32::from(n)), 2),
-                (self.area_addr(Area::CounterBit, u32::from(n)), 1),
-                (Addr::img(l.counter_state(n)), COUNTER_STATE_SIZE),
-                (self.sched(Sched::FIRST_SCAN), 1),
-            ]
+            let [v, b, s] = l.counter_bytes(n).map(|(off, len)| (Addr::img(off), len));
+            [v, b, s, (self.sched(Sched::FIRST_SCAN), 1)]
         })
     }
 
-    fn reset_range(&mut self, h: Helper, first: u32, count: &Operand) {
+    /// `R Tn, N` / `R Cn, N` through the runtime's reset (`h`).
+    pub(crate) fn reset_range(&mut self, h: Helper, first: u32, count: &Operand) {
         let pf = self.pf();
         let count = *count;
         self.guarded_failing(pf, move |s, fail| {
@@ -191,43 +179,9 @@ impl Lower<'_, '_> {
     /// Like [`Lower::guarded`], with a failure block for pointer operands that records the
     /// error (no ENO: these are not boxes).
     pub(crate) fn guarded_failing(&mut self, pf: B, f: impl FnOnce(&mut Self, OnFail)) {
-        if pf == B::K(false) {
-            return;
+        if pf != B::K(false) {
+            self.run_failing(pf, false, f);
         }
-        self.flush();
-        let start = self.cache.clone();
-        let (r, err, j) = (
-            self.b.create_block(),
-            self.b.create_block(),
-            self.b.create_block(),
-        );
-        let code = self.b.append_block_param(err, I32);
-        let skip = self.b.create_block();
-        let c = pf.cond(&mut self.b);
-        self.b.ins().brif(c, r, &[], skip, &[]);
-        self.b.seal_block(r);
-        self.b.seal_block(skip);
-        let mut arms = Vec::new();
-        self.b.switch_to_block(r);
-        self.cache = start.clone();
-        f(self, OnFail::Branch(err));
-        self.flush();
-        arms.push(std::mem::take(&mut self.cache));
-        self.b.ins().jump(j, &[]);
-        self.b.seal_block(err);
-        self.b.switch_to_block(err);
-        self.cache = start.clone();
-        self.record_error(code);
-        self.flush();
-        arms.push(std::mem::take(&mut self.cache));
-        self.b.ins().jump(j, &[]);
-        self.b.switch_to_block(skip);
-        self.cache = start;
-        arms.push(std::mem::take(&mut self.cache));
-        self.b.ins().jump(j, &[]);
-        self.b.seal_block(j);
-        self.b.switch_to_block(j);
-        self.cache = super::cache::Cache::meet(&arms);
     }
 
     /// `S`/`R` with a count only known at run time: the runtime's `set_range_imm`.
@@ -313,66 +267,65 @@ impl Lower<'_, '_> {
         }
     }
 
-    /// Block moves, FILL and SHRB (interpreter `exec_box` order of operand reads).
-    pub(crate) fn lower_block_box(&mut self, bx: &BoxOp) {
+    /// `BMB/BMW/BMD` (interpreter `exec_box` order of operand reads).
+    pub(crate) fn block_move(
+        &mut self,
+        width: Width,
+        src: &Operand,
+        dst: &Operand,
+        count: &Operand,
+    ) {
         let range = ErrorCode::OperandRange as u16;
-        match *bx {
-            BoxOp::BlockMove {
-                width,
-                ref src,
-                ref dst,
-                ref count,
-            } => self.boxed(|s, f| {
-                let n = s.count_value(count, f);
-                let Some((ss, se)) = s.span(src, width, false, f) else {
-                    s.fail_now(f, range);
-                    return B::K(false);
-                };
-                let Some((ds, de)) = s.span(dst, width, true, f) else {
-                    s.fail_now(f, range);
-                    return B::K(false);
-                };
-                let w = s.iconst(I32, i64::from(width.bytes()));
-                let st = s.call_helper(Helper::BlockMove, &[ss, se, ds, de, w, n]);
-                s.fail_on_status(st, f);
-                B::K(true)
-            }),
-            BoxOp::Fill {
-                ref src,
-                ref dst,
-                ref count,
-            } => self.boxed(|s, f| {
-                let v = s.read_operand(src, Width::Word, f);
-                let n = s.count_value(count, f);
-                let Some((ds, de)) = s.span(dst, Width::Word, true, f) else {
-                    s.fail_now(f, range);
-                    return B::K(false);
-                };
-                let st = s.call_helper(Helper::Fill, &[v, ds, de, n]);
-                s.fail_on_status(st, f);
-                B::K(true)
-            }),
-            BoxOp::ShiftRegister {
-                data,
-                start,
-                ref len,
-            } => self.boxed(|s, f| {
-                let d = s.read_bit(data).to01(&mut s.b);
-                let n = s.count_value(len, f);
-                let n = s.sext(n, Width::Byte);
-                let args = [
-                    d,
-                    s.iconst(I32, i64::from(start.area.ffi_code())),
-                    s.iconst(I32, i64::from(start.byte)),
-                    s.iconst(I32, i64::from(start.bit)),
-                    s.depth,
-                    n,
-                ];
-                let st = s.call_helper(Helper::ShiftRegister, &args);
-                s.fail_on_status(st, f);
-                B::K(true)
-            }),
-            _ => {}
-        }
+        self.boxed(|s, f| {
+            let n = s.count_value(count, f);
+            let Some((ss, se)) = s.span(src, width, false, f) else {
+                s.fail_now(f, range);
+                return B::K(false);
+            };
+            let Some((ds, de)) = s.span(dst, width, true, f) else {
+                s.fail_now(f, range);
+                return B::K(false);
+            };
+            let w = s.iconst(I32, i64::from(width.bytes()));
+            let st = s.call_helper(Helper::BlockMove, &[ss, se, ds, de, w, n]);
+            s.fail_on_status(st, f);
+            B::K(true)
+        })
+    }
+
+    /// `FILL` (interpreter `exec_box` order of operand reads).
+    pub(crate) fn fill(&mut self, src: &Operand, dst: &Operand, count: &Operand) {
+        let range = ErrorCode::OperandRange as u16;
+        self.boxed(|s, f| {
+            let v = s.read_operand(src, Width::Word, f);
+            let n = s.count_value(count, f);
+            let Some((ds, de)) = s.span(dst, Width::Word, true, f) else {
+                s.fail_now(f, range);
+                return B::K(false);
+            };
+            let st = s.call_helper(Helper::Fill, &[v, ds, de, n]);
+            s.fail_on_status(st, f);
+            B::K(true)
+        })
+    }
+
+    /// `SHRB` (interpreter `exec_box` order of operand reads).
+    pub(crate) fn shift_register(&mut self, data: BitLoc, start: BitLoc, len: &Operand) {
+        self.boxed(|s, f| {
+            let d = s.read_bit(data).to01(&mut s.b);
+            let n = s.count_value(len, f);
+            let n = s.sext(n, Width::Byte);
+            let args = [
+                d,
+                s.iconst(I32, i64::from(start.area.ffi_code())),
+                s.iconst(I32, i64::from(start.byte)),
+                s.iconst(I32, i64::from(start.bit)),
+                s.depth,
+                n,
+            ];
+            let st = s.call_helper(Helper::ShiftRegister, &args);
+            s.fail_on_status(st, f);
+            B::K(true)
+        })
     }
 }

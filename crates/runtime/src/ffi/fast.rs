@@ -17,17 +17,29 @@
 //! at compile time, so each shim is the step function specialised to it, with no dispatch.
 //! `ctl` packs the small arguments so that every argument travels in a register on x86-64 and
 //! AArch64: bits 0–7 the input(s) (timer: `S0` 0/1; counter: logic-stack levels 0–2,
-//! `bit i = S_i`), bit 8 the SCR gate ([`CTL_GATE`]); other bits are ignored.
+//! `bit i = S_i`), bit 8 the gate ([`CTL_GATE`]); other bits are ignored.
+//!
+//! The shims are also specialised to the gate policy of the SCR enable
+//! ([`crate::rules::SCR_POLICY`]) and to [`Rules::IN_FORCE`], so that both fold away: compiled
+//! code that follows other rules (tests) calls the general shims `stljit_rt_timer` /
+//! `stljit_rt_counter`, which take a full gate word ([`super::decode_gate_word`]). See
+//! [`fast_shims_apply`].
 
-use super::RT_OK;
+use super::{GATE_OPEN, RT_OK, gate_word_fixed};
 use crate::counter::Counter;
-use crate::edge;
+use crate::rules::{Gate, Rules, SCR_POLICY};
 use crate::timer::{STATE_BYTES, Timer};
 use stljit_core::ir::{CounterKind, TimerKind};
 use stljit_core::layout::COUNTER_STATE_SIZE;
 
-/// `ctl` bit: the SCR gate is open.
-pub const CTL_GATE: u32 = 1 << 8;
+/// `ctl` bit: the gate is open.
+pub const CTL_GATE: u32 = GATE_OPEN << 8;
+
+/// Whether the fast shims implement `rules` with the SCR gate policy (else compiled code must
+/// call the general shims).
+pub fn fast_shims_apply(rules: Rules) -> bool {
+    gate_word_fixed(SCR_POLICY, rules) == gate_word_fixed(SCR_POLICY, Rules::IN_FORCE)
+}
 
 /// [`Timer::step`] for `kind` on one timer's bytes: `value` (2 bytes, big-endian CV), `bit` (1),
 /// `state` ([`STATE_BYTES`]), `d100` (the scan's native-endian `u32` 100-ms delta).
@@ -58,10 +70,11 @@ unsafe fn timer_fast(
         )
     };
     let mut t = Timer::decode(value, *bit, state);
+    let gate = Gate::scr(ctl & CTL_GATE != 0);
     t.step(
         kind,
         ctl & 1 != 0,
-        ctl & CTL_GATE != 0,
+        gate,
         preset as i16,
         u32::from_ne_bytes(d100),
     );
@@ -71,7 +84,7 @@ unsafe fn timer_fast(
 
 /// [`Counter::step`] for `kind` on one counter's bytes: `value` (2 bytes, big-endian CV), `bit`
 /// (1), `state` ([`COUNTER_STATE_SIZE`]), `first_scan` (the scan's first-scan flag byte, for
-/// [`edge::suppressed`]).
+/// [`crate::rules::Rules::edges_suppressed`]).
 ///
 /// # Safety
 /// As [`timer_fast`]: valid, disjoint ranges of the stated sizes, exclusively borrowed for the
@@ -99,12 +112,14 @@ unsafe fn counter_fast(
     let on = c.step(
         kind,
         (ctl & 0xFF) as u16,
-        ctl & CTL_GATE != 0,
+        Gate::scr(ctl & CTL_GATE != 0),
         preset as i16,
-        edge::suppressed(first_scan),
+        Rules::IN_FORCE.edges_suppressed(first_scan),
     );
     c.encode(value, state);
-    *bit = u8::from(on);
+    if let Some(on) = on {
+        *bit = u8::from(on);
+    }
     RT_OK
 }
 

@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::image::Image;
+use crate::rules::{Gate, Rules};
 use crate::timer::TofPhase::{self, Done, Idle, On as TofOn, Timing};
 use crate::{counter, mem, timer};
 use stljit_core::Area;
@@ -126,7 +127,7 @@ fn timer_fast_matches_execute_on_the_image() {
         mem::set_u32_ne(buf, l.sched(Sched::D100), d100);
         let mut b = a.clone();
         let (buf, l) = a.split_mut();
-        timer::execute(buf, l, n, kind, input, gate, pt).unwrap();
+        timer::execute(buf, l, n, kind, input, Gate::scr(gate), pt).unwrap();
         let (fb, l) = b.split_mut();
         let p = fb.as_mut_ptr();
         // SAFETY: disjoint in-range blocks of a live image (layout offsets of an existing timer).
@@ -234,7 +235,7 @@ fn counter_fast_matches_execute_on_the_image() {
         let mut b = a.clone();
         let (buf, l) = a.split_mut();
         let stack = stack_of(levels) as u16;
-        counter::execute(buf, l, n, kind, stack, gate, pv).unwrap();
+        counter::execute(buf, l, n, kind, stack, Gate::scr(gate), pv, Rules::IN_FORCE).unwrap();
         let (fb, l) = b.split_mut();
         let p = fb.as_mut_ptr();
         // SAFETY: disjoint in-range blocks of a live image (layout offsets of an existing counter).

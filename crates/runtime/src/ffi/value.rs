@@ -1,0 +1,244 @@
+//! The value shim: one pure `extern "C"` entry to every box computation with an intricate flag
+//! rule ([`arith`], [`bitops`], [`convert`]). Part of [`crate::ffi`].
+//!
+//! Compiled code reads the operands itself, calls [`stljit_rt_value`] with a [`ValueOp`]
+//! encoded as two integers, and applies the packed [`Outcome`] (value and SMB1 masks) with its
+//! own stores, so the call touches no memory and the byte cache survives it. [`ValueOp`] is the
+//! one place that knows the encoding: [`ValueOp::encode`] for the JIT, [`ValueOp::decode`] for
+//! the shim, and [`ValueOp::outcome`] for the dispatch, an exhaustive match.
+
+use crate::flags::Outcome;
+use crate::{arith, bitops, convert};
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use stljit_core::Width;
+use stljit_core::ir::{ArithOp, Conversion, RealFn};
+
+use super::{FfiCode, width_of};
+
+/// A box computation the value shim runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ValueOp {
+    /// [`arith::int_arith`].
+    IntArith(ArithOp, Width),
+    /// [`arith::mul_wide`].
+    MulWide,
+    /// [`arith::div_wide`].
+    DivWide,
+    /// [`arith::step`] (INC/DEC).
+    Step {
+        /// Operand width.
+        width: Width,
+        /// INC (true) or DEC.
+        up: bool,
+    },
+    /// [`arith::real_arith`].
+    RealArith(ArithOp),
+    /// [`arith::real_func`].
+    RealFunc(RealFn),
+    /// [`bitops::shift`].
+    Shift {
+        /// SL (true) or SR.
+        left: bool,
+        /// Operand width.
+        width: Width,
+    },
+    /// [`bitops::rotate`].
+    Rotate {
+        /// RL (true) or RR.
+        left: bool,
+        /// Operand width.
+        width: Width,
+    },
+    /// [`convert::convert`].
+    Convert(Conversion),
+}
+
+// Selector codes (the `op` argument).
+const INT_ARITH: u32 = 1;
+const MUL_WIDE: u32 = 2;
+const DIV_WIDE: u32 = 3;
+const STEP: u32 = 4;
+const REAL_ARITH: u32 = 5;
+const REAL_FUNC: u32 = 6;
+const SHIFT_L: u32 = 9;
+const SHIFT_R: u32 = 10;
+const ROT_L: u32 = 11;
+const ROT_R: u32 = 12;
+const CONVERT: u32 = 13;
+
+/// `sub`: bits 0–7 the width's byte count, bits 8– a sub-operation code.
+fn sub(width: Width, code: u32) -> u32 {
+    width.bytes() | code << 8
+}
+
+impl ValueOp {
+    /// The `(op, sub)` arguments of [`stljit_rt_value`].
+    pub fn encode(self) -> (u32, u32) {
+        match self {
+            ValueOp::IntArith(op, w) => (INT_ARITH, sub(w, op.ffi_code())),
+            ValueOp::MulWide => (MUL_WIDE, sub(Width::DWord, 0)),
+            ValueOp::DivWide => (DIV_WIDE, sub(Width::DWord, 0)),
+            ValueOp::Step { width, up } => (STEP, sub(width, u32::from(up))),
+            ValueOp::RealArith(op) => (REAL_ARITH, sub(Width::DWord, op.ffi_code())),
+            ValueOp::RealFunc(f) => (REAL_FUNC, sub(Width::DWord, f.ffi_code())),
+            ValueOp::Shift { left, width } => (if left { SHIFT_L } else { SHIFT_R }, sub(width, 0)),
+            ValueOp::Rotate { left, width } => (if left { ROT_L } else { ROT_R }, sub(width, 0)),
+            ValueOp::Convert(c) => (CONVERT, sub(convert::widths(c).1, c.ffi_code())),
+        }
+    }
+
+    /// The operation [`ValueOp::encode`] encoded as `(op, sub)`; `None` for any other pair.
+    pub fn decode(op: u32, sub_code: u32) -> Option<ValueOp> {
+        let width = width_of(sub_code & 0xFF)?;
+        let code = sub_code >> 8;
+        let v = match op {
+            INT_ARITH => ValueOp::IntArith(ArithOp::from_ffi(code)?, width),
+            MUL_WIDE => ValueOp::MulWide,
+            DIV_WIDE => ValueOp::DivWide,
+            STEP => ValueOp::Step {
+                width,
+                up: match code {
+                    0 => false,
+                    1 => true,
+                    _ => return None,
+                },
+            },
+            REAL_ARITH => ValueOp::RealArith(ArithOp::from_ffi(code)?),
+            REAL_FUNC => ValueOp::RealFunc(RealFn::from_ffi(code)?),
+            SHIFT_L | SHIFT_R => ValueOp::Shift {
+                left: op == SHIFT_L,
+                width,
+            },
+            ROT_L | ROT_R => ValueOp::Rotate {
+                left: op == ROT_L,
+                width,
+            },
+            CONVERT => ValueOp::Convert(Conversion::from_ffi(code)?),
+            _ => return None,
+        };
+        // Exactly the encoding of `v`: no other pair is accepted.
+        (v.encode() == (op, sub_code)).then_some(v)
+    }
+
+    /// Runs the computation on the operands' raw bits (`out`: OUT's old value, 0 where OUT is
+    /// not an input; `in1`: IN1, or the count byte of a shift/rotate).
+    pub fn outcome(self, out: u32, in1: u32) -> Outcome {
+        match self {
+            ValueOp::IntArith(op, w) => arith::int_arith(op, w, out, in1),
+            ValueOp::MulWide => arith::mul_wide(out, in1),
+            ValueOp::DivWide => arith::div_wide(out, in1),
+            ValueOp::Step { width, up } => arith::step(width, up, out),
+            ValueOp::RealArith(op) => arith::real_arith(op, out, in1),
+            ValueOp::RealFunc(f) => arith::real_func(f, in1),
+            ValueOp::Shift { left, width } => bitops::shift(left, width, out, in1 as u8),
+            ValueOp::Rotate { left, width } => bitops::rotate(left, width, out, in1 as u8),
+            ValueOp::Convert(c) => convert::convert(c, in1),
+        }
+    }
+}
+
+/// Bit position of the SMB1 set mask in a packed outcome (see [`pack_outcome`]).
+pub const OUTCOME_SET_SHIFT: u32 = 40;
+/// Bit position of the SMB1 clear mask in a packed outcome.
+pub const OUTCOME_CLEAR_SHIFT: u32 = 48;
+/// Bit position of the "has a value" bit in a packed outcome.
+pub const OUTCOME_HAS_VALUE_SHIFT: u32 = 32;
+
+/// Packs an outcome: bits 0–31 the value, bit 32 set when there is one, bits 40–47 the SMB1
+/// bits to set, bits 48–55 the bits to clear.
+pub fn pack_outcome(o: Outcome) -> u64 {
+    let (v, has) = match o.value {
+        Some(v) => (u64::from(v), 1u64 << OUTCOME_HAS_VALUE_SHIFT),
+        None => (0, 0),
+    };
+    v | has
+        | u64::from(o.flags.set) << OUTCOME_SET_SHIFT
+        | u64::from(o.flags.clear) << OUTCOME_CLEAR_SHIFT
+}
+
+/// The value shim: runs the [`ValueOp`] encoded as `(op, sub)` on the operands and packs its
+/// outcome ([`pack_outcome`]). Touches no memory. An `(op, sub)` pair that is no encoding, or
+/// a panic (a runtime bug), reads as "no value, no flags", i.e. ENO = 0; the panic never
+/// unwinds across the boundary.
+pub extern "C" fn stljit_rt_value(op: u32, sub: u32, out: u32, in1: u32) -> u64 {
+    let Some(v) = ValueOp::decode(op, sub) else {
+        return 0;
+    };
+    catch_unwind(AssertUnwindSafe(|| pack_outcome(v.outcome(out, in1)))).unwrap_or(0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn every_op() -> Vec<ValueOp> {
+        let widths = [Width::Byte, Width::Word, Width::DWord];
+        let mut v = vec![ValueOp::MulWide, ValueOp::DivWide];
+        for &w in &widths {
+            for &op in ArithOp::ALL {
+                v.push(ValueOp::IntArith(op, w));
+            }
+            for left in [false, true] {
+                v.push(ValueOp::Step { width: w, up: left });
+                v.push(ValueOp::Shift { left, width: w });
+                v.push(ValueOp::Rotate { left, width: w });
+            }
+        }
+        v.extend(ArithOp::ALL.iter().map(|&op| ValueOp::RealArith(op)));
+        v.extend(RealFn::ALL.iter().map(|&f| ValueOp::RealFunc(f)));
+        v.extend(Conversion::ALL.iter().map(|&c| ValueOp::Convert(c)));
+        v
+    }
+
+    #[test]
+    fn decode_inverts_encode_and_rejects_the_rest() {
+        let ops = every_op();
+        for &v in &ops {
+            let (op, sub) = v.encode();
+            assert_eq!(ValueOp::decode(op, sub), Some(v), "{v:?}");
+        }
+        let mut accepted = 0;
+        for op in 0..16 {
+            for sub in 0..0x1000 {
+                accepted += usize::from(ValueOp::decode(op, sub).is_some());
+            }
+        }
+        assert_eq!(accepted, ops.len(), "only encodings decode");
+        assert_eq!(
+            stljit_rt_value(7, 4, 1, 1),
+            0,
+            "an unknown selector is ENO = 0"
+        );
+    }
+
+    #[test]
+    fn shim_packs_the_helpers_outcome() {
+        let samples = [
+            0u32,
+            1,
+            0x7FFF,
+            0x8000,
+            0xFFFF,
+            0x3F80_0000,
+            0x7FC0_0000,
+            0xFFFF_FFFF,
+        ];
+        for v in every_op() {
+            let (op, sub) = v.encode();
+            for &x in &samples {
+                for &y in &samples {
+                    assert_eq!(
+                        stljit_rt_value(op, sub, x, y),
+                        pack_outcome(v.outcome(x, y)),
+                        "{v:?} {x:#x} {y:#x}"
+                    );
+                }
+            }
+        }
+        // +I 32767 + 1: overflow, no value, SM1.1 set, SM1.0/SM1.2 cleared.
+        let (op, sub) = ValueOp::IntArith(ArithOp::Add, Width::Word).encode();
+        let r = stljit_rt_value(op, sub, 32767, 1);
+        assert_eq!(r >> OUTCOME_HAS_VALUE_SHIFT & 1, 0);
+        assert_eq!((r >> OUTCOME_SET_SHIFT) as u8, crate::flags::OVERFLOW);
+    }
+}
