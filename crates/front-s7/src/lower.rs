@@ -22,7 +22,7 @@ fn width_of(c: u8) -> Width {
 }
 
 /// Splits a compare mnemonic (`LDW>=`) into its stack form, type and relation.
-fn compare(m: &str) -> Option<(u8, CmpType, CmpOp)> {
+pub(crate) fn compare(m: &str) -> Option<(u8, CmpType, CmpOp)> {
     let (form, rest) = if let Some(r) = m.strip_prefix("LD") {
         (b'L', r)
     } else if let Some(r) = m.strip_prefix('A') {

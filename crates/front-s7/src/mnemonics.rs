@@ -362,6 +362,142 @@ pub(crate) fn closest(m: &str) -> Option<&'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lower::compare;
+    use crate::{compile_str, print_op};
+    use stljit_core::ProfileId;
+    use stljit_core::ir::Program;
+    use stljit_source::Code;
+
+    /// Where a line may stand: text before and after it (loops, segments, jump targets,
+    /// subroutines and interrupt routines for the instructions that need them).
+    const CONTEXTS: &[(&str, &str)] = &[
+        ("LD I0.0\n", ""),
+        ("LD I0.0\nFOR VW100, 1, 2\n", ""),
+        ("LD I0.0\n", "NEXT\n"),
+        ("LD I0.0\n", "SCRE\n"),
+        ("LSCR S0.1\n", "SCRE\n"),
+        ("LSCR S0.1\n", ""),
+        ("LD I0.0\n", "LBL 1\n"),
+        ("LD I0.0\n", "MEND\nSBR 0\nLD I0.0\n"),
+        ("MEND\nSBR 0\nLD I0.0\n", ""),
+        ("MEND\nINT 0\nLD I0.0\n", ""),
+    ];
+
+    /// Plausible operand lists, one of which fits every supported instruction.
+    const OPERANDS: &[&str] = &[
+        "",
+        "I0.0",
+        "Q0.0",
+        "S0.2",
+        "1",
+        "Q0.0, 1",
+        "T37, 100",
+        "T1, 100",
+        "C1, 5",
+        "VB0, VB1",
+        "VW0, VW2",
+        "VD0, VD4",
+        "VW0, VD4",
+        "VB0, VW2",
+        "VW0, VB2",
+        "VD0, VW4",
+        "VB0",
+        "VW0",
+        "VD0",
+        "VB0, 1",
+        "VW0, 1",
+        "VD0, 1",
+        "VB0, VB10, 3",
+        "VW0, VW10, 3",
+        "VD0, VD20, 3",
+        "I0.0, V0.0, 4",
+        "IB0, VB1",
+        "VB1, QB0",
+        "VW100, 1, 2",
+        "SBR0",
+    ];
+
+    /// Mnemonics that lower to the same IR as another one, which the printer uses.
+    const SAME_IR: &[(&str, &str)] = &[("TOFF", "TOF"), ("MOVR", "MOVD")];
+
+    /// The mnemonic the S7 printer gives the last op lowered from source line `line`.
+    fn printed_at(program: &Program, line: usize) -> Option<String> {
+        program.pous.iter().find_map(|pou| {
+            let at = pou.locs.iter().rposition(|l| l.line as usize == line)?;
+            let text = print_op(program, pou, &pou.ops[at]);
+            text.split_whitespace().next().map(str::to_owned)
+        })
+    }
+
+    /// Every table entry reaches its lowering routine (no "unknown"/"not supported" with any
+    /// operands) and lowers cleanly with some plausible operands to an op the printer spells
+    /// with the entry's own mnemonic, so the table and the lowering cannot drift apart.
+    #[test]
+    fn every_entry_lowers() {
+        for &(m, group) in TABLE {
+            let mut clean = false;
+            'search: for (before, after) in CONTEXTS {
+                for ops in OPERANDS {
+                    let text = format!("{before}{m} {ops}\n{after}");
+                    let c = compile_str("t.stl", &text, ProfileId::A5);
+                    for d in &c.diagnostics {
+                        assert!(
+                            !matches!(d.code, Code::UnknownMnemonic | Code::Unsupported),
+                            "{m} ({group:?}) is not lowered:\n{text}{d:?}"
+                        );
+                    }
+                    if let Some(program) = &c.program {
+                        let line = before.lines().count() + 1;
+                        let same_ir = SAME_IR.iter().find(|&&(a, _)| a == m).map(|&(_, b)| b);
+                        assert_eq!(
+                            printed_at(program, line).as_deref(),
+                            Some(same_ir.unwrap_or(m)),
+                            "{m} ({group:?}) lowers to another instruction:\n{text}"
+                        );
+                        clean = true;
+                        break 'search;
+                    }
+                }
+            }
+            assert!(clean, "{m} ({group:?}) never lowers without an error");
+        }
+    }
+
+    #[test]
+    fn entries_are_unique_and_not_out_of_scope() {
+        for (i, &(m, _)) in TABLE.iter().enumerate() {
+            assert!(
+                TABLE[..i].iter().all(|&(k, _)| k != m),
+                "{m} is listed twice"
+            );
+            assert!(
+                !OUT_OF_SCOPE.contains(&m) && !is_string_compare(m),
+                "{m} is out of scope"
+            );
+        }
+    }
+
+    /// The compare entries are exactly the form × type × relation combinations `compare`
+    /// reads, so suggestions include every compare contact.
+    #[test]
+    fn compare_entries_are_what_compare_reads() {
+        for &(m, group) in TABLE {
+            assert_eq!(compare(m).is_some(), group == Group::Compare, "{m}");
+        }
+        for ty in ["B", "W", "D", "R"] {
+            for form in ["LD", "A", "O"] {
+                for rel in ["=", "<>", ">=", "<=", ">", "<"] {
+                    let m = format!("{form}{ty}{rel}");
+                    assert_eq!(group(&m), Some(Group::Compare), "{m}");
+                }
+            }
+        }
+        assert_eq!(group("LDW=="), Some(Group::Compare));
+        assert!(compare("LDW==").is_some());
+        assert_eq!(group("LDS=="), None);
+        assert_eq!(group("S=="), None);
+        assert_eq!(group("NOPE"), None);
+    }
 
     #[test]
     fn suggestions() {
