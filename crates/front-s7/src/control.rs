@@ -3,11 +3,12 @@
 
 use crate::classes::{BitClass, R};
 use crate::lexer::{Line, Tok};
+use crate::mnemonics::Flow;
 use crate::operand::unquote;
 use crate::program::{Lowerer, OpenScr, PouState};
 use crate::symbols::{PouRef, SymTarget};
 use stljit_core::ir::{Op, PouKind};
-use stljit_core::{OpIdx, PouId, Width};
+use stljit_core::{LabelId, OpIdx, PouId, Width};
 use stljit_source::Code;
 use stljit_source::clip;
 
@@ -53,12 +54,18 @@ impl Lowerer<'_> {
         ))
     }
 
-    /// Lowers a program-control instruction, or reports an unknown mnemonic.
-    pub(crate) fn control(&mut self, ps: &mut PouState, m: &str, line: &Line<'_>) -> R<()> {
+    /// Lowers the program-control instruction `m` (upper case) of routine `flow`.
+    pub(crate) fn control(
+        &mut self,
+        ps: &mut PouState,
+        flow: Flow,
+        m: &str,
+        line: &Line<'_>,
+    ) -> R<()> {
         let o = line.ops;
         let main = ps.kind == PouKind::Main;
-        let op = match m {
-            "END" | "MEND" => {
+        let op = match flow {
+            Flow::End => {
                 self.arity(line, 0, 0)?;
                 self.only_in(ps, main, "the main program")?;
                 if m == "END" {
@@ -68,11 +75,15 @@ impl Lowerer<'_> {
                     conditional: m == "END",
                 }
             }
-            "STOP" | "WDR" => {
+            Flow::Stop => {
                 self.arity(line, 0, 0)?;
-                if m == "STOP" { Op::Stop } else { Op::Wdr }
+                Op::Stop
             }
-            "RET" | "CRET" => {
+            Flow::WatchdogReset => {
+                self.arity(line, 0, 0)?;
+                Op::Wdr
+            }
+            Flow::Return => {
                 self.arity(line, 0, 0)?;
                 self.only_in(
                     ps,
@@ -83,7 +94,7 @@ impl Lowerer<'_> {
                     conditional: m == "CRET",
                 }
             }
-            "RETI" => {
+            Flow::ReturnFromInterrupt => {
                 self.arity(line, 0, 0)?;
                 self.only_in(
                     ps,
@@ -92,32 +103,28 @@ impl Lowerer<'_> {
                 )?;
                 Op::Return { conditional: false }
             }
-            "JMP" | "LBL" => {
-                self.arity(line, 1, 1)?;
-                self.not_in_scr(ps)?;
-                let max = u32::from(self.cx.profile.max_label);
-                let n = self.cx.number(o[0], 0, max, "label", Code::NumberRange)?;
-                let id = ps.label(n);
-                if m == "JMP" {
-                    let span = self.cx.span(o[0]);
-                    ps.jumps
-                        .push((n, span, o[0].text.to_owned(), ps.next_idx()));
-                    Op::Jump(id)
-                } else {
-                    let span = self.cx.span(o[0]);
-                    if let Some((_, first)) = ps.label_defs[id.index()] {
-                        return Err(self.cx.report(
-                            Code::DuplicateLabel,
-                            o[0],
-                            format!("label {n} is defined twice in this block"),
-                            Some(format!("first defined on line {}", first.line)),
-                        ));
-                    }
-                    ps.label_defs[id.index()] = Some((ps.next_idx(), span));
-                    Op::Label(id)
-                }
+            Flow::Jump => {
+                let (n, id) = self.label_operand(ps, line)?;
+                let span = self.cx.span(o[0]);
+                ps.jumps
+                    .push((n, span, o[0].text.to_owned(), ps.next_idx()));
+                Op::Jump(id)
             }
-            "CALL" => {
+            Flow::Label => {
+                let (n, id) = self.label_operand(ps, line)?;
+                let span = self.cx.span(o[0]);
+                if let Some((_, first)) = ps.label_defs[id.index()] {
+                    return Err(self.cx.report(
+                        Code::DuplicateLabel,
+                        o[0],
+                        format!("label {n} is defined twice in this block"),
+                        Some(format!("first defined on line {}", first.line)),
+                    ));
+                }
+                ps.label_defs[id.index()] = Some((ps.next_idx(), span));
+                Op::Label(id)
+            }
+            Flow::Call => {
                 if line.n_ops > 1 {
                     return Err(self.cx.report(
                         Code::SubroutineParams,
@@ -132,7 +139,7 @@ impl Lowerer<'_> {
                 self.arity(line, 1, 1)?;
                 Op::Call(self.call_target(o[0])?)
             }
-            "FOR" => {
+            Flow::For => {
                 self.arity(line, 3, 3)?;
                 self.not_in_scr(ps)?;
                 let w = Width::Word;
@@ -161,7 +168,7 @@ impl Lowerer<'_> {
                     next: OpIdx(0),
                 }
             }
-            "NEXT" => {
+            Flow::Next => {
                 self.arity(line, 0, 0)?;
                 self.not_in_scr(ps)?;
                 let Some((head, _)) = ps.fors.pop() else {
@@ -178,7 +185,7 @@ impl Lowerer<'_> {
                 }
                 Op::Next { head }
             }
-            "LSCR" => {
+            Flow::ScrBegin => {
                 self.arity(line, 1, 1)?;
                 let bit = self.cx.bit(o[0], BitClass::Seq)?;
                 let span = self.cx.span(self.mnemonic);
@@ -218,13 +225,13 @@ impl Lowerer<'_> {
                 });
                 Op::ScrBegin { bit }
             }
-            "SCRT" => {
+            Flow::ScrTransition => {
                 self.arity(line, 1, 1)?;
                 let to = self.cx.bit(o[0], BitClass::Seq)?;
                 let from = self.open_scr(ps)?;
                 Op::ScrTransition { to, from }
             }
-            "CSCRE" => {
+            Flow::ScrCondEnd => {
                 self.arity(line, 0, 0)?;
                 self.open_scr(ps)?;
                 let here = ps.next_idx();
@@ -233,7 +240,7 @@ impl Lowerer<'_> {
                 }
                 Op::ScrCondEnd { end: OpIdx(0) }
             }
-            "SCRE" => {
+            Flow::ScrEnd => {
                 self.arity(line, 0, 0)?;
                 self.open_scr(ps)?;
                 let here = ps.next_idx();
@@ -247,13 +254,20 @@ impl Lowerer<'_> {
                 }
                 Op::ScrEnd
             }
-            _ => {
-                self.unknown(self.mnemonic);
-                return Ok(());
-            }
         };
         self.emit(ps, op);
         Ok(())
+    }
+
+    /// The label number operand of `JMP`/`LBL` (outside any SCR segment) and its label id.
+    fn label_operand(&mut self, ps: &mut PouState, line: &Line<'_>) -> R<(u32, LabelId)> {
+        self.arity(line, 1, 1)?;
+        self.not_in_scr(ps)?;
+        let max = u32::from(self.cx.profile.max_label);
+        let n = self
+            .cx
+            .number(line.ops[0], 0, max, "label", Code::NumberRange)?;
+        Ok((n, ps.label(n)))
     }
 
     /// The S bit of the open segment, or an error for SCRT/CSCRE/SCRE outside one.

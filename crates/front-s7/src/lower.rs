@@ -1,16 +1,15 @@
-//! The instruction table: one arm per mnemonic of spec §4.1-§4.12, turning checked operands into
-//! IR ops. Program control (§4.13) is in `control.rs`.
+//! Instruction lowering (spec §4.1-§4.12): one arm per lowering routine, a [`Group`] of
+//! `mnemonics::TABLE`, turning checked operands into IR ops. Program control (§4.13) is in
+//! `control.rs`.
 
 use crate::classes::{BitClass, R, Val};
 use crate::lexer::{Line, Tok};
+use crate::mnemonics::{self, Group};
 use crate::operand::Syn;
 use crate::program::{Lowerer, PouState};
 use stljit_core::EdgeSlot;
 use stljit_core::Width::{self, Byte, DWord, Word};
-use stljit_core::ir::{
-    ArithOp, BoxOp, CmpOp, CmpType, Contact, Conversion, CounterKind, LogicOp, Op, Operand, RealFn,
-    TimerKind,
-};
+use stljit_core::ir::{ArithOp, BoxOp, CmpOp, CmpType, Contact, Conversion, LogicOp, Op, Operand};
 use stljit_source::Code;
 use stljit_source::clip;
 
@@ -23,7 +22,7 @@ fn width_of(c: u8) -> Width {
 }
 
 /// Splits a compare mnemonic (`LDW>=`) into its stack form, type and relation.
-fn compare(m: &str) -> Option<(u8, CmpType, CmpOp)> {
+pub(crate) fn compare(m: &str) -> Option<(u8, CmpType, CmpOp)> {
     let (form, rest) = if let Some(r) = m.strip_prefix("LD") {
         (b'L', r)
     } else if let Some(r) = m.strip_prefix('A') {
@@ -137,13 +136,17 @@ impl<'s> Lowerer<'s> {
         Ok(())
     }
 
-    /// Lowers one instruction line whose upper-cased mnemonic is `m`.
+    /// Lowers one instruction line whose upper-cased mnemonic is `m`, or reports an unknown or
+    /// out-of-scope mnemonic.
     pub(crate) fn instr(&mut self, ps: &mut PouState, m: &str, line: &Line<'_>) -> R<()> {
+        let Some(group) = mnemonics::group(m) else {
+            self.unknown(self.mnemonic);
+            return Ok(());
+        };
         let o = line.ops;
         let bytes = m.as_bytes();
-        let op = match m {
-            "LD" | "LDN" | "A" | "AN" | "O" | "ON" | "LDI" | "LDNI" | "AI" | "ANI" | "OI"
-            | "ONI" => {
+        let op = match group {
+            Group::Contact => {
                 self.arity(line, 1, 1)?;
                 let immediate = m.ends_with('I');
                 let negated = m.contains('N');
@@ -166,7 +169,7 @@ impl<'s> Lowerer<'s> {
                     _ => Op::Or(c),
                 }
             }
-            "=" | "=I" => {
+            Group::Coil => {
                 self.arity(line, 1, 1)?;
                 let immediate = m == "=I";
                 let class = if immediate {
@@ -179,8 +182,8 @@ impl<'s> Lowerer<'s> {
                     immediate,
                 }
             }
-            "S" | "R" | "SI" | "RI" => return self.set_reset(ps, m, line),
-            "NOT" | "ALD" | "OLD" | "LPS" | "LRD" | "LPP" | "AENO" | "EU" | "ED" => {
+            Group::SetReset => return self.set_reset(ps, m, line),
+            Group::StackOp => {
                 self.arity(line, 0, 0)?;
                 match m {
                     "NOT" => Op::Not,
@@ -189,45 +192,38 @@ impl<'s> Lowerer<'s> {
                     "LPS" => Op::Dup,
                     "LRD" => Op::ReadSecond,
                     "LPP" => Op::Pop,
-                    "AENO" => Op::AndEno,
-                    _ => {
-                        let slot = EdgeSlot(u16::try_from(self.edges).unwrap_or(u16::MAX));
-                        self.edges += 1;
-                        if self.edges == usize::from(self.cx.profile.max_edges) + 1 {
-                            self.cx.report(
-                                Code::TooManyEdges,
-                                self.mnemonic,
-                                format!(
-                                    "more than {} EU/ED instructions",
-                                    self.cx.profile.max_edges
-                                ),
-                                Some(format!(
-                                    "the {} allows {} edge instructions per program",
-                                    self.cx.profile.model, self.cx.profile.max_edges
-                                )),
-                            );
-                        }
-                        Op::Edge {
-                            slot,
-                            falling: m == "ED",
-                        }
-                    }
+                    _ => Op::AndEno,
                 }
             }
-            "LDS" => {
+            Group::Edge => {
+                self.arity(line, 0, 0)?;
+                let slot = EdgeSlot(u16::try_from(self.edges).unwrap_or(u16::MAX));
+                self.edges += 1;
+                if self.edges == usize::from(self.cx.profile.max_edges) + 1 {
+                    self.cx.report(
+                        Code::TooManyEdges,
+                        self.mnemonic,
+                        format!("more than {} EU/ED instructions", self.cx.profile.max_edges),
+                        Some(format!(
+                            "the {} allows {} edge instructions per program",
+                            self.cx.profile.model, self.cx.profile.max_edges
+                        )),
+                    );
+                }
+                Op::Edge {
+                    slot,
+                    falling: m == "ED",
+                }
+            }
+            Group::Pick => {
                 self.arity(line, 1, 1)?;
                 Op::Pick(
                     u8::try_from(self.cx.number(o[0], 0, 8, "stack level", Code::LdsRange)?)
                         .unwrap_or(0),
                 )
             }
-            "TON" | "TONR" | "TOF" | "TOFF" => {
+            Group::Timer(kind) => {
                 self.arity(line, 2, 2)?;
-                let kind = match m {
-                    "TON" => TimerKind::On,
-                    "TONR" => TimerKind::Retentive,
-                    _ => TimerKind::Off,
-                };
                 let timer = self.cx.timer(o[0]);
                 let preset = self.cx.value(o[1], Val::input(Word));
                 let timer = timer?;
@@ -238,13 +234,8 @@ impl<'s> Lowerer<'s> {
                     preset: preset?,
                 }
             }
-            "CTU" | "CTD" | "CTUD" => {
+            Group::Counter(kind) => {
                 self.arity(line, 2, 2)?;
-                let kind = match m {
-                    "CTU" => CounterKind::Up,
-                    "CTD" => CounterKind::Down,
-                    _ => CounterKind::UpDown,
-                };
                 let counter = self.cx.counter(o[0]);
                 let preset = self.cx.value(o[1], Val::input(Word));
                 let counter = counter?;
@@ -255,7 +246,7 @@ impl<'s> Lowerer<'s> {
                     preset: preset?,
                 }
             }
-            "MOVB" | "MOVW" | "MOVD" | "MOVR" => {
+            Group::Move => {
                 let width = width_of(bytes[3]);
                 let (src, dst) = match m {
                     "MOVR" => (Val::REAL_IN, Val::REAL_OUT),
@@ -278,11 +269,11 @@ impl<'s> Lowerer<'s> {
                 let (src, dst) = self.in_out(line, src, dst)?;
                 return self.boxed(ps, BoxOp::Move { width, src, dst });
             }
-            "SWAP" => {
+            Group::Swap => {
                 let dst = self.one_out(line, Word)?;
                 return self.boxed(ps, BoxOp::Swap { dst });
             }
-            "BMB" | "BMW" | "BMD" | "FILL" => {
+            Group::BlockMove => {
                 self.arity(line, 3, 3)?;
                 let width = if m == "FILL" {
                     Word
@@ -315,7 +306,7 @@ impl<'s> Lowerer<'s> {
                 };
                 return self.boxed(ps, b);
             }
-            "+I" | "-I" | "*I" | "/I" | "+D" | "-D" | "*D" | "/D" | "+R" | "-R" | "*R" | "/R" => {
+            Group::Arith => {
                 let op = match bytes[0] {
                     b'+' => ArithOp::Add,
                     b'-' => ArithOp::Sub,
@@ -341,7 +332,7 @@ impl<'s> Lowerer<'s> {
                 };
                 return self.boxed(ps, b);
             }
-            "MUL" | "DIV" => {
+            Group::MulDiv => {
                 let (src, dst) = self.in_out(line, Val::input(Word), Val::output(DWord))?;
                 let b = if m == "MUL" {
                     BoxOp::MulWide { src, dst }
@@ -350,25 +341,17 @@ impl<'s> Lowerer<'s> {
                 };
                 return self.boxed(ps, b);
             }
-            "SQRT" | "LN" | "EXP" | "SIN" | "COS" | "TAN" => {
-                let func = match m {
-                    "SQRT" => RealFn::Sqrt,
-                    "LN" => RealFn::Ln,
-                    "EXP" => RealFn::Exp,
-                    "SIN" => RealFn::Sin,
-                    "COS" => RealFn::Cos,
-                    _ => RealFn::Tan,
-                };
+            Group::RealFunc(func) => {
                 let (src, dst) = self.in_out(line, Val::REAL_IN, Val::REAL_OUT)?;
                 return self.boxed(ps, BoxOp::RealFunc { func, src, dst });
             }
-            "INCB" | "DECB" | "INCW" | "DECW" | "INCD" | "DECD" => {
+            Group::Step => {
                 let width = width_of(bytes[3]);
                 let dst = self.one_out(line, width)?;
                 let up = bytes[0] == b'I';
                 return self.boxed(ps, BoxOp::Step { width, up, dst });
             }
-            "ANDB" | "ANDW" | "ANDD" | "ORB" | "ORW" | "ORD" | "XORB" | "XORW" | "XORD" => {
+            Group::WordLogic => {
                 let width = width_of(bytes[m.len() - 1]);
                 let op = match bytes[0] {
                     b'A' => LogicOp::And,
@@ -386,13 +369,12 @@ impl<'s> Lowerer<'s> {
                     },
                 );
             }
-            "INVB" | "INVW" | "INVD" => {
+            Group::Invert => {
                 let width = width_of(bytes[3]);
                 let dst = self.one_out(line, width)?;
                 return self.boxed(ps, BoxOp::Invert { width, dst });
             }
-            "SLB" | "SLW" | "SLD" | "SRB" | "SRW" | "SRD" | "RLB" | "RLW" | "RLD" | "RRB"
-            | "RRW" | "RRD" => {
+            Group::ShiftRotate => {
                 let width = width_of(bytes[2]);
                 let left = bytes[1] == b'L';
                 let (dst, count) = {
@@ -418,7 +400,7 @@ impl<'s> Lowerer<'s> {
                 };
                 return self.boxed(ps, b);
             }
-            "SHRB" => {
+            Group::ShiftRegister => {
                 self.arity(line, 3, 3)?;
                 let data = self.cx.bit(o[0], BitClass::MemRead);
                 let start = self.cx.bit(o[1], BitClass::MemWrite);
@@ -435,7 +417,7 @@ impl<'s> Lowerer<'s> {
                 }
                 return self.boxed(ps, BoxOp::ShiftRegister { data, start, len });
             }
-            "BTI" | "ITB" | "ITD" | "DTI" | "DTR" | "ROUND" | "TRUNC" | "DECO" | "ENCO" | "SEG" => {
+            Group::Convert => {
                 let (conv, src, dst) = match m {
                     "BTI" => (Conversion::ByteToInt, Val::input(Byte), Val::output(Word)),
                     "ITB" => (Conversion::IntToByte, Val::input(Word), Val::output(Byte)),
@@ -451,7 +433,7 @@ impl<'s> Lowerer<'s> {
                 let (src, dst) = self.in_out(line, src, dst)?;
                 return self.boxed(ps, BoxOp::Convert { conv, src, dst });
             }
-            "BCDI" | "IBCD" => {
+            Group::Bcd => {
                 self.arity(line, 1, 2)?;
                 let conv = if m == "BCDI" {
                     Conversion::BcdToInt
@@ -482,8 +464,8 @@ impl<'s> Lowerer<'s> {
                     },
                 );
             }
-            "BIR" | "BIW" => return self.immediate_byte(ps, m, line),
-            "NOP" => {
+            Group::ImmediateByte => return self.immediate_byte(ps, m, line),
+            Group::Nop => {
                 self.arity(line, 0, 1)?;
                 if line.n_ops == 1 {
                     self.cx
@@ -491,30 +473,32 @@ impl<'s> Lowerer<'s> {
                 }
                 Op::Nop
             }
-            _ => {
-                if let Some((form, ty, rel)) = compare(m) {
-                    self.arity(line, 2, 2)?;
-                    let v = match ty {
-                        CmpType::Real => Val::REAL_IN,
-                        t => Val::input(t.width()),
-                    };
-                    let lhs = self.cx.value(o[0], v);
-                    let rhs = self.cx.value(o[1], v);
-                    let c = Contact::Compare {
-                        ty,
-                        op: rel,
-                        lhs: lhs?,
-                        rhs: rhs?,
-                    };
-                    match form {
-                        b'L' => Op::Load(c),
-                        b'A' => Op::And(c),
-                        _ => Op::Or(c),
-                    }
-                } else {
-                    return self.control(ps, m, line);
+            Group::Compare => {
+                let Some((form, ty, rel)) = compare(m) else {
+                    // Unreachable: a test checks that `compare` reads every `Compare` entry.
+                    self.unknown(self.mnemonic);
+                    return Ok(());
+                };
+                self.arity(line, 2, 2)?;
+                let v = match ty {
+                    CmpType::Real => Val::REAL_IN,
+                    t => Val::input(t.width()),
+                };
+                let lhs = self.cx.value(o[0], v);
+                let rhs = self.cx.value(o[1], v);
+                let c = Contact::Compare {
+                    ty,
+                    op: rel,
+                    lhs: lhs?,
+                    rhs: rhs?,
+                };
+                match form {
+                    b'L' => Op::Load(c),
+                    b'A' => Op::And(c),
+                    _ => Op::Or(c),
                 }
             }
+            Group::Control(flow) => return self.control(ps, flow, m, line),
         };
         self.emit(ps, op);
         Ok(())

@@ -1,24 +1,301 @@
-//! The mnemonic lists: every supported instruction (for "did you mean" suggestions) and the
-//! out-of-scope ones of spec §4.12 that get a "not supported" error instead of "unknown".
+//! The S7 mnemonics: [`TABLE`], every supported instruction with the lowering routine it goes
+//! to (`Lowerer::instr` dispatches on it and "did you mean" suggestions iterate it, so the two
+//! cannot drift), and the out-of-scope ones of spec §4.12 that get a "not supported" error
+//! instead of "unknown".
 
-/// Every supported mnemonic (compare contacts are listed with each relation).
-pub(crate) const KNOWN: &[&str] = &[
-    "LD", "LDN", "A", "AN", "O", "ON", "=", "NOT", "S", "R", "EU", "ED", "LDI", "LDNI", "AI",
-    "ANI", "OI", "ONI", "=I", "SI", "RI", "BIR", "BIW", "NOP", "ALD", "OLD", "LPS", "LRD", "LPP",
-    "LDS", "AENO", "TON", "TONR", "TOF", "TOFF", "CTU", "CTD", "CTUD", "LDB=", "LDB<>", "LDB>=",
-    "LDB<=", "LDB>", "LDB<", "AB=", "AB<>", "AB>=", "AB<=", "AB>", "AB<", "OB=", "OB<>", "OB>=",
-    "OB<=", "OB>", "OB<", "LDW=", "LDW<>", "LDW>=", "LDW<=", "LDW>", "LDW<", "AW=", "AW<>", "AW>=",
-    "AW<=", "AW>", "AW<", "OW=", "OW<>", "OW>=", "OW<=", "OW>", "OW<", "LDD=", "LDD<>", "LDD>=",
-    "LDD<=", "LDD>", "LDD<", "AD=", "AD<>", "AD>=", "AD<=", "AD>", "AD<", "OD=", "OD<>", "OD>=",
-    "OD<=", "OD>", "OD<", "LDR=", "LDR<>", "LDR>=", "LDR<=", "LDR>", "LDR<", "AR=", "AR<>", "AR>=",
-    "AR<=", "AR>", "AR<", "OR=", "OR<>", "OR>=", "OR<=", "OR>", "OR<", "MOVB", "MOVW", "MOVD",
-    "MOVR", "SWAP", "BMB", "BMW", "BMD", "FILL", "+I", "-I", "*I", "/I", "+D", "-D", "*D", "/D",
-    "MUL", "DIV", "+R", "-R", "*R", "/R", "SQRT", "LN", "EXP", "SIN", "COS", "TAN", "INCB", "DECB",
-    "INCW", "DECW", "INCD", "DECD", "ANDB", "ANDW", "ANDD", "ORB", "ORW", "ORD", "XORB", "XORW",
-    "XORD", "INVB", "INVW", "INVD", "SLB", "SLW", "SLD", "SRB", "SRW", "SRD", "RLB", "RLW", "RLD",
-    "RRB", "RRW", "RRD", "SHRB", "BTI", "ITB", "ITD", "DTI", "DTR", "ROUND", "TRUNC", "BCDI",
-    "IBCD", "DECO", "ENCO", "SEG", "END", "MEND", "STOP", "WDR", "JMP", "LBL", "CALL", "CRET",
-    "RET", "RETI", "FOR", "NEXT", "LSCR", "SCRT", "CSCRE", "SCRE",
+use stljit_core::ir::{CounterKind, RealFn, TimerKind};
+
+/// The lowering routine of a mnemonic (`Lowerer::instr`); a routine that serves several
+/// mnemonics tells them apart by the mnemonic's text, or by the kind carried here.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Group {
+    /// `LD`, `A`, `O` with their negated (`N`) and immediate (`I`) forms.
+    Contact,
+    /// `=`, `=I`.
+    Coil,
+    /// `S`, `R`, `SI`, `RI`.
+    SetReset,
+    /// The logic-stack ops without operands: `NOT`, `ALD`, `OLD`, `LPS`, `LRD`, `LPP`, `AENO`.
+    StackOp,
+    /// `EU`, `ED`.
+    Edge,
+    /// `LDS n`.
+    Pick,
+    /// `TON`, `TONR`, `TOF` (also spelled `TOFF`).
+    Timer(TimerKind),
+    /// `CTU`, `CTD`, `CTUD`.
+    Counter(CounterKind),
+    /// The compare contacts `LDB=` … `OR<` (form, type and relation are parsed from the text).
+    Compare,
+    /// `MOVB`, `MOVW`, `MOVD`, `MOVR`.
+    Move,
+    /// `SWAP`.
+    Swap,
+    /// `BMB`, `BMW`, `BMD`, `FILL`.
+    BlockMove,
+    /// `+I` … `/R`: integer and real arithmetic.
+    Arith,
+    /// `MUL`, `DIV`: 16 × 16 → 32 bit.
+    MulDiv,
+    /// `SQRT`, `LN`, `EXP`, `SIN`, `COS`, `TAN`.
+    RealFunc(RealFn),
+    /// `INCB` … `DECD`.
+    Step,
+    /// `ANDB` … `XORD`.
+    WordLogic,
+    /// `INVB`, `INVW`, `INVD`.
+    Invert,
+    /// `SLB` … `RRD`.
+    ShiftRotate,
+    /// `SHRB`.
+    ShiftRegister,
+    /// `BTI`, `ITB`, `ITD`, `DTI`, `DTR`, `ROUND`, `TRUNC`, `DECO`, `ENCO`, `SEG`.
+    Convert,
+    /// `BCDI`, `IBCD`.
+    Bcd,
+    /// `BIR`, `BIW`.
+    ImmediateByte,
+    /// `NOP`.
+    Nop,
+    /// Program control (spec §4.13), lowered by `Lowerer::control`.
+    Control(Flow),
+}
+
+/// The program-control routines (spec §4.13).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Flow {
+    /// `END` (conditional), `MEND`.
+    End,
+    /// `STOP`.
+    Stop,
+    /// `WDR`.
+    WatchdogReset,
+    /// `RET`, `CRET` (conditional).
+    Return,
+    /// `RETI`.
+    ReturnFromInterrupt,
+    /// `JMP n`.
+    Jump,
+    /// `LBL n`.
+    Label,
+    /// `CALL`.
+    Call,
+    /// `FOR`.
+    For,
+    /// `NEXT`.
+    Next,
+    /// `LSCR`.
+    ScrBegin,
+    /// `SCRT`.
+    ScrTransition,
+    /// `CSCRE`.
+    ScrCondEnd,
+    /// `SCRE`.
+    ScrEnd,
+}
+
+/// Every supported mnemonic (upper case) and its lowering routine; compare contacts are listed
+/// with each relation. On a tie, suggestions prefer the earlier entry, so the order is part of
+/// the behaviour.
+pub(crate) const TABLE: &[(&str, Group)] = &[
+    ("LD", Group::Contact),
+    ("LDN", Group::Contact),
+    ("A", Group::Contact),
+    ("AN", Group::Contact),
+    ("O", Group::Contact),
+    ("ON", Group::Contact),
+    ("=", Group::Coil),
+    ("NOT", Group::StackOp),
+    ("S", Group::SetReset),
+    ("R", Group::SetReset),
+    ("EU", Group::Edge),
+    ("ED", Group::Edge),
+    ("LDI", Group::Contact),
+    ("LDNI", Group::Contact),
+    ("AI", Group::Contact),
+    ("ANI", Group::Contact),
+    ("OI", Group::Contact),
+    ("ONI", Group::Contact),
+    ("=I", Group::Coil),
+    ("SI", Group::SetReset),
+    ("RI", Group::SetReset),
+    ("BIR", Group::ImmediateByte),
+    ("BIW", Group::ImmediateByte),
+    ("NOP", Group::Nop),
+    ("ALD", Group::StackOp),
+    ("OLD", Group::StackOp),
+    ("LPS", Group::StackOp),
+    ("LRD", Group::StackOp),
+    ("LPP", Group::StackOp),
+    ("LDS", Group::Pick),
+    ("AENO", Group::StackOp),
+    ("TON", Group::Timer(TimerKind::On)),
+    ("TONR", Group::Timer(TimerKind::Retentive)),
+    ("TOF", Group::Timer(TimerKind::Off)),
+    ("TOFF", Group::Timer(TimerKind::Off)),
+    ("CTU", Group::Counter(CounterKind::Up)),
+    ("CTD", Group::Counter(CounterKind::Down)),
+    ("CTUD", Group::Counter(CounterKind::UpDown)),
+    ("LDB=", Group::Compare),
+    ("LDB<>", Group::Compare),
+    ("LDB>=", Group::Compare),
+    ("LDB<=", Group::Compare),
+    ("LDB>", Group::Compare),
+    ("LDB<", Group::Compare),
+    ("AB=", Group::Compare),
+    ("AB<>", Group::Compare),
+    ("AB>=", Group::Compare),
+    ("AB<=", Group::Compare),
+    ("AB>", Group::Compare),
+    ("AB<", Group::Compare),
+    ("OB=", Group::Compare),
+    ("OB<>", Group::Compare),
+    ("OB>=", Group::Compare),
+    ("OB<=", Group::Compare),
+    ("OB>", Group::Compare),
+    ("OB<", Group::Compare),
+    ("LDW=", Group::Compare),
+    ("LDW<>", Group::Compare),
+    ("LDW>=", Group::Compare),
+    ("LDW<=", Group::Compare),
+    ("LDW>", Group::Compare),
+    ("LDW<", Group::Compare),
+    ("AW=", Group::Compare),
+    ("AW<>", Group::Compare),
+    ("AW>=", Group::Compare),
+    ("AW<=", Group::Compare),
+    ("AW>", Group::Compare),
+    ("AW<", Group::Compare),
+    ("OW=", Group::Compare),
+    ("OW<>", Group::Compare),
+    ("OW>=", Group::Compare),
+    ("OW<=", Group::Compare),
+    ("OW>", Group::Compare),
+    ("OW<", Group::Compare),
+    ("LDD=", Group::Compare),
+    ("LDD<>", Group::Compare),
+    ("LDD>=", Group::Compare),
+    ("LDD<=", Group::Compare),
+    ("LDD>", Group::Compare),
+    ("LDD<", Group::Compare),
+    ("AD=", Group::Compare),
+    ("AD<>", Group::Compare),
+    ("AD>=", Group::Compare),
+    ("AD<=", Group::Compare),
+    ("AD>", Group::Compare),
+    ("AD<", Group::Compare),
+    ("OD=", Group::Compare),
+    ("OD<>", Group::Compare),
+    ("OD>=", Group::Compare),
+    ("OD<=", Group::Compare),
+    ("OD>", Group::Compare),
+    ("OD<", Group::Compare),
+    ("LDR=", Group::Compare),
+    ("LDR<>", Group::Compare),
+    ("LDR>=", Group::Compare),
+    ("LDR<=", Group::Compare),
+    ("LDR>", Group::Compare),
+    ("LDR<", Group::Compare),
+    ("AR=", Group::Compare),
+    ("AR<>", Group::Compare),
+    ("AR>=", Group::Compare),
+    ("AR<=", Group::Compare),
+    ("AR>", Group::Compare),
+    ("AR<", Group::Compare),
+    ("OR=", Group::Compare),
+    ("OR<>", Group::Compare),
+    ("OR>=", Group::Compare),
+    ("OR<=", Group::Compare),
+    ("OR>", Group::Compare),
+    ("OR<", Group::Compare),
+    ("MOVB", Group::Move),
+    ("MOVW", Group::Move),
+    ("MOVD", Group::Move),
+    ("MOVR", Group::Move),
+    ("SWAP", Group::Swap),
+    ("BMB", Group::BlockMove),
+    ("BMW", Group::BlockMove),
+    ("BMD", Group::BlockMove),
+    ("FILL", Group::BlockMove),
+    ("+I", Group::Arith),
+    ("-I", Group::Arith),
+    ("*I", Group::Arith),
+    ("/I", Group::Arith),
+    ("+D", Group::Arith),
+    ("-D", Group::Arith),
+    ("*D", Group::Arith),
+    ("/D", Group::Arith),
+    ("MUL", Group::MulDiv),
+    ("DIV", Group::MulDiv),
+    ("+R", Group::Arith),
+    ("-R", Group::Arith),
+    ("*R", Group::Arith),
+    ("/R", Group::Arith),
+    ("SQRT", Group::RealFunc(RealFn::Sqrt)),
+    ("LN", Group::RealFunc(RealFn::Ln)),
+    ("EXP", Group::RealFunc(RealFn::Exp)),
+    ("SIN", Group::RealFunc(RealFn::Sin)),
+    ("COS", Group::RealFunc(RealFn::Cos)),
+    ("TAN", Group::RealFunc(RealFn::Tan)),
+    ("INCB", Group::Step),
+    ("DECB", Group::Step),
+    ("INCW", Group::Step),
+    ("DECW", Group::Step),
+    ("INCD", Group::Step),
+    ("DECD", Group::Step),
+    ("ANDB", Group::WordLogic),
+    ("ANDW", Group::WordLogic),
+    ("ANDD", Group::WordLogic),
+    ("ORB", Group::WordLogic),
+    ("ORW", Group::WordLogic),
+    ("ORD", Group::WordLogic),
+    ("XORB", Group::WordLogic),
+    ("XORW", Group::WordLogic),
+    ("XORD", Group::WordLogic),
+    ("INVB", Group::Invert),
+    ("INVW", Group::Invert),
+    ("INVD", Group::Invert),
+    ("SLB", Group::ShiftRotate),
+    ("SLW", Group::ShiftRotate),
+    ("SLD", Group::ShiftRotate),
+    ("SRB", Group::ShiftRotate),
+    ("SRW", Group::ShiftRotate),
+    ("SRD", Group::ShiftRotate),
+    ("RLB", Group::ShiftRotate),
+    ("RLW", Group::ShiftRotate),
+    ("RLD", Group::ShiftRotate),
+    ("RRB", Group::ShiftRotate),
+    ("RRW", Group::ShiftRotate),
+    ("RRD", Group::ShiftRotate),
+    ("SHRB", Group::ShiftRegister),
+    ("BTI", Group::Convert),
+    ("ITB", Group::Convert),
+    ("ITD", Group::Convert),
+    ("DTI", Group::Convert),
+    ("DTR", Group::Convert),
+    ("ROUND", Group::Convert),
+    ("TRUNC", Group::Convert),
+    ("BCDI", Group::Bcd),
+    ("IBCD", Group::Bcd),
+    ("DECO", Group::Convert),
+    ("ENCO", Group::Convert),
+    ("SEG", Group::Convert),
+    ("END", Group::Control(Flow::End)),
+    ("MEND", Group::Control(Flow::End)),
+    ("STOP", Group::Control(Flow::Stop)),
+    ("WDR", Group::Control(Flow::WatchdogReset)),
+    ("JMP", Group::Control(Flow::Jump)),
+    ("LBL", Group::Control(Flow::Label)),
+    ("CALL", Group::Control(Flow::Call)),
+    ("CRET", Group::Control(Flow::Return)),
+    ("RET", Group::Control(Flow::Return)),
+    ("RETI", Group::Control(Flow::ReturnFromInterrupt)),
+    ("FOR", Group::Control(Flow::For)),
+    ("NEXT", Group::Control(Flow::Next)),
+    ("LSCR", Group::Control(Flow::ScrBegin)),
+    ("SCRT", Group::Control(Flow::ScrTransition)),
+    ("CSCRE", Group::Control(Flow::ScrCondEnd)),
+    ("SCRE", Group::Control(Flow::ScrEnd)),
 ];
 
 /// Out of scope for version 1 (spec §4.12): parsed and rejected with a clear message.
@@ -37,6 +314,22 @@ pub(crate) fn is_string_compare(m: &str) -> bool {
         .or_else(|| m.strip_prefix("AS"))
         .or_else(|| m.strip_prefix("OS"));
     rest.is_some_and(|r| !r.is_empty() && r.bytes().all(|c| matches!(c, b'=' | b'<' | b'>')))
+}
+
+/// The lowering routine of the supported mnemonic `m` (upper case); `None` for an unknown or
+/// out-of-scope one. A compare contact may spell its `=` as `==` (`LDW==`); only `=` is
+/// suggested.
+pub(crate) fn group(m: &str) -> Option<Group> {
+    listed(m).or_else(|| {
+        m.strip_suffix('=')
+            .filter(|stem| stem.ends_with('='))
+            .and_then(listed)
+            .filter(|&g| g == Group::Compare)
+    })
+}
+
+fn listed(m: &str) -> Option<Group> {
+    TABLE.iter().find(|&&(k, _)| k == m).map(|&(_, g)| g)
 }
 
 fn distance(a: &str, b: &str) -> usize {
@@ -58,9 +351,9 @@ pub(crate) fn closest(m: &str) -> Option<&'static str> {
     if m.is_empty() || m.len() > 12 {
         return None;
     }
-    let (best, d) = KNOWN
+    let (best, d) = TABLE
         .iter()
-        .map(|k| (*k, distance(m, k)))
+        .map(|&(k, _)| (k, distance(m, k)))
         .min_by_key(|&(_, d)| d)?;
     let limit = if m.len() <= 3 { 1 } else { 2 };
     (d <= limit).then_some(best)
@@ -69,6 +362,142 @@ pub(crate) fn closest(m: &str) -> Option<&'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lower::compare;
+    use crate::{compile_str, print_op};
+    use stljit_core::ProfileId;
+    use stljit_core::ir::Program;
+    use stljit_source::Code;
+
+    /// Where a line may stand: text before and after it (loops, segments, jump targets,
+    /// subroutines and interrupt routines for the instructions that need them).
+    const CONTEXTS: &[(&str, &str)] = &[
+        ("LD I0.0\n", ""),
+        ("LD I0.0\nFOR VW100, 1, 2\n", ""),
+        ("LD I0.0\n", "NEXT\n"),
+        ("LD I0.0\n", "SCRE\n"),
+        ("LSCR S0.1\n", "SCRE\n"),
+        ("LSCR S0.1\n", ""),
+        ("LD I0.0\n", "LBL 1\n"),
+        ("LD I0.0\n", "MEND\nSBR 0\nLD I0.0\n"),
+        ("MEND\nSBR 0\nLD I0.0\n", ""),
+        ("MEND\nINT 0\nLD I0.0\n", ""),
+    ];
+
+    /// Plausible operand lists, one of which fits every supported instruction.
+    const OPERANDS: &[&str] = &[
+        "",
+        "I0.0",
+        "Q0.0",
+        "S0.2",
+        "1",
+        "Q0.0, 1",
+        "T37, 100",
+        "T1, 100",
+        "C1, 5",
+        "VB0, VB1",
+        "VW0, VW2",
+        "VD0, VD4",
+        "VW0, VD4",
+        "VB0, VW2",
+        "VW0, VB2",
+        "VD0, VW4",
+        "VB0",
+        "VW0",
+        "VD0",
+        "VB0, 1",
+        "VW0, 1",
+        "VD0, 1",
+        "VB0, VB10, 3",
+        "VW0, VW10, 3",
+        "VD0, VD20, 3",
+        "I0.0, V0.0, 4",
+        "IB0, VB1",
+        "VB1, QB0",
+        "VW100, 1, 2",
+        "SBR0",
+    ];
+
+    /// Mnemonics that lower to the same IR as another one, which the printer uses.
+    const SAME_IR: &[(&str, &str)] = &[("TOFF", "TOF"), ("MOVR", "MOVD")];
+
+    /// The mnemonic the S7 printer gives the last op lowered from source line `line`.
+    fn printed_at(program: &Program, line: usize) -> Option<String> {
+        program.pous.iter().find_map(|pou| {
+            let at = pou.locs.iter().rposition(|l| l.line as usize == line)?;
+            let text = print_op(program, pou, &pou.ops[at]);
+            text.split_whitespace().next().map(str::to_owned)
+        })
+    }
+
+    /// Every table entry reaches its lowering routine (no "unknown"/"not supported" with any
+    /// operands) and lowers cleanly with some plausible operands to an op the printer spells
+    /// with the entry's own mnemonic, so the table and the lowering cannot drift apart.
+    #[test]
+    fn every_entry_lowers() {
+        for &(m, group) in TABLE {
+            let mut clean = false;
+            'search: for (before, after) in CONTEXTS {
+                for ops in OPERANDS {
+                    let text = format!("{before}{m} {ops}\n{after}");
+                    let c = compile_str("t.stl", &text, ProfileId::A5);
+                    for d in &c.diagnostics {
+                        assert!(
+                            !matches!(d.code, Code::UnknownMnemonic | Code::Unsupported),
+                            "{m} ({group:?}) is not lowered:\n{text}{d:?}"
+                        );
+                    }
+                    if let Some(program) = &c.program {
+                        let line = before.lines().count() + 1;
+                        let same_ir = SAME_IR.iter().find(|&&(a, _)| a == m).map(|&(_, b)| b);
+                        assert_eq!(
+                            printed_at(program, line).as_deref(),
+                            Some(same_ir.unwrap_or(m)),
+                            "{m} ({group:?}) lowers to another instruction:\n{text}"
+                        );
+                        clean = true;
+                        break 'search;
+                    }
+                }
+            }
+            assert!(clean, "{m} ({group:?}) never lowers without an error");
+        }
+    }
+
+    #[test]
+    fn entries_are_unique_and_not_out_of_scope() {
+        for (i, &(m, _)) in TABLE.iter().enumerate() {
+            assert!(
+                TABLE[..i].iter().all(|&(k, _)| k != m),
+                "{m} is listed twice"
+            );
+            assert!(
+                !OUT_OF_SCOPE.contains(&m) && !is_string_compare(m),
+                "{m} is out of scope"
+            );
+        }
+    }
+
+    /// The compare entries are exactly the form × type × relation combinations `compare`
+    /// reads, so suggestions include every compare contact.
+    #[test]
+    fn compare_entries_are_what_compare_reads() {
+        for &(m, group) in TABLE {
+            assert_eq!(compare(m).is_some(), group == Group::Compare, "{m}");
+        }
+        for ty in ["B", "W", "D", "R"] {
+            for form in ["LD", "A", "O"] {
+                for rel in ["=", "<>", ">=", "<=", ">", "<"] {
+                    let m = format!("{form}{ty}{rel}");
+                    assert_eq!(group(&m), Some(Group::Compare), "{m}");
+                }
+            }
+        }
+        assert_eq!(group("LDW=="), Some(Group::Compare));
+        assert!(compare("LDW==").is_some());
+        assert_eq!(group("LDS=="), None);
+        assert_eq!(group("S=="), None);
+        assert_eq!(group("NOPE"), None);
+    }
 
     #[test]
     fn suggestions() {
