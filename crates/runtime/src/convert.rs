@@ -53,18 +53,10 @@ fn int_to_bcd(x: i16) -> Option<u32> {
     Some(((x / 1000) << 12) | ((x / 100 % 10) << 8) | ((x / 10 % 10) << 4) | (x % 10))
 }
 
-/// The widths of a conversion's input and output operands.
+/// The widths of a conversion's input and output operands ([`Conversion::widths`], core's one
+/// statement of them).
 pub fn widths(conv: Conversion) -> (Width, Width) {
-    use Width::{Byte, DWord, Word};
-    match conv {
-        Conversion::ByteToInt | Conversion::Decode => (Byte, Word),
-        Conversion::IntToByte | Conversion::Encode => (Word, Byte),
-        Conversion::IntToDInt => (Word, DWord),
-        Conversion::DIntToInt => (DWord, Word),
-        Conversion::DIntToReal | Conversion::Round | Conversion::Trunc => (DWord, DWord),
-        Conversion::BcdToInt | Conversion::IntToBcd => (Word, Word),
-        Conversion::Segment => (Byte, Byte),
-    }
+    conv.widths()
 }
 
 /// Executes a conversion on the input bits (for BCDI/IBCD, the current value of OUT).

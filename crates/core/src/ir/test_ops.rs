@@ -1,8 +1,8 @@
 //! Builders for the IR unit tests of this module: a main POU from ops and label positions, and
 //! the control ops the structural tests need.
 
-use super::{Op, Operand, Pou, PouKind, Program, SrcLoc};
-use crate::{LabelId, OpIdx, ProfileId};
+use super::{Loc, Op, Operand, Pou, PouKind, Program, SrcLoc};
+use crate::{Area, LabelId, OpIdx, ProfileId};
 
 /// A main POU with `ops` and labels at `labels`.
 pub(super) fn pou(ops: Vec<Op>, labels: Vec<usize>) -> Pou {
@@ -28,10 +28,10 @@ pub(super) fn program(ops: Vec<Op>, labels: Vec<usize>) -> Program {
     }
 }
 
-/// `FOR` with constant operands, closed by the NEXT at `next`.
+/// `FOR VW0, 0, 0`, closed by the NEXT at `next`.
 pub(super) fn for_(next: usize) -> Op {
     Op::For {
-        index: Operand::Const(0),
+        index: vw(0),
         init: Operand::Const(0),
         limit: Operand::Const(0),
         next: OpIdx::new(next),
@@ -53,4 +53,12 @@ pub(super) fn jmp(l: usize) -> Op {
 /// `LBL l`.
 pub(super) fn lbl(l: usize) -> Op {
     Op::Label(LabelId::new(l))
+}
+
+/// The word `VW offset`.
+pub(super) fn vw(offset: u32) -> Operand {
+    Operand::Mem(Loc {
+        area: Area::V,
+        offset,
+    })
 }

@@ -7,10 +7,16 @@
 //! POU has one source location per op and fewer than 2^31 ops; every label position holds its
 //! `LBL`; jumps name known labels and never enter a FOR body from outside; calls name a
 //! subroutine (never the main program); FOR and NEXT name each other and nest properly; CSCRE
-//! names a SCRE; edge slots exist, and the program has no more of them than its profile allows.
+//! names a SCRE; edge slots exist, and the program has no more of them than its profile allows;
+//! every direct location an op names ([`Op::operand_uses`], [`Op::bit_uses`]) lies inside its
+//! area of the profile's layout, no op writes a constant, and every timer and counter an op runs
+//! is declared with that kind. Pointers are the only run-time-checked accesses.
 
 use super::facts::loop_entered_by;
-use super::{Op, Pou, Program};
+use super::uses::Access;
+use super::{Op, Operand, Pou, Program};
+use crate::area::{Area, Width};
+use crate::layout::Layout;
 use std::fmt;
 
 /// The deepest logic stack an engine supports (the interpreter keeps it in a `u16`).
@@ -76,6 +82,21 @@ pub enum OpRule {
     CondEndWithoutEnd,
     /// An edge slot beyond `Program::edges`.
     UnknownEdge,
+    /// A direct location (or a pointer's own dword) runs past the end of its area.
+    OutOfArea {
+        /// The area.
+        area: Area,
+        /// The first byte.
+        offset: u32,
+        /// Bytes accessed.
+        len: u32,
+    },
+    /// `&` of an area pointers cannot address.
+    PointerToArea(Area),
+    /// An op writes a constant or an address constant.
+    WriteToConstant,
+    /// A timer or counter op whose object is not declared with that kind.
+    UndeclaredObject,
 }
 
 impl fmt::Display for VerifyError {
@@ -107,6 +128,14 @@ impl fmt::Display for VerifyError {
                     OpRule::LoopsOverlap => f.write_str("FOR loops overlap without nesting"),
                     OpRule::CondEndWithoutEnd => f.write_str("CSCRE without its SCRE"),
                     OpRule::UnknownEdge => f.write_str("edge slot not declared"),
+                    OpRule::OutOfArea { area, offset, len } => {
+                        write!(f, "{len} byte(s) at {area:?} {offset} run past the area")
+                    }
+                    OpRule::PointerToArea(a) => write!(f, "no pointer can address area {a:?}"),
+                    OpRule::WriteToConstant => f.write_str("writes a constant"),
+                    OpRule::UndeclaredObject => {
+                        f.write_str("timer or counter not declared with this kind")
+                    }
                 }
             }
         }
@@ -126,8 +155,9 @@ pub fn verify(program: &Program) -> Result<(), VerifyError> {
     if program.edges.len() > usize::from(program.profile.profile().max_edges) {
         return Err(VerifyError::TooManyEdges(program.edges.len()));
     }
+    let layout = Layout::of(program.profile);
     for (p, pou) in program.pous.iter().enumerate() {
-        verify_pou(program, pou).map_err(|e| match e {
+        verify_pou(program, &layout, pou).map_err(|e| match e {
             Err(rule) => VerifyError::Pou { pou: p, rule },
             Ok((op, rule)) => VerifyError::Op { pou: p, op, rule },
         })?;
@@ -136,7 +166,11 @@ pub fn verify(program: &Program) -> Result<(), VerifyError> {
 }
 
 /// One POU's rules; the error is a POU rule, or an op index and its rule.
-fn verify_pou(program: &Program, pou: &Pou) -> Result<(), Result<(usize, OpRule), PouRule>> {
+fn verify_pou(
+    program: &Program,
+    layout: &Layout,
+    pou: &Pou,
+) -> Result<(), Result<(usize, OpRule), PouRule>> {
     let n = pou.ops.len();
     if pou.locs.len() != n {
         return Err(Err(PouRule::LocsLength));
@@ -182,6 +216,7 @@ fn verify_pou(program: &Program, pou: &Pou) -> Result<(), Result<(usize, OpRule)
             }
             _ => {}
         }
+        locations(program, layout, op).map_err(|rule| Ok((i, rule)))?;
     }
     // Loops nest properly now, so the loop a jump enters is well defined.
     for (i, op) in pou.ops.iter().enumerate() {
@@ -195,10 +230,85 @@ fn verify_pou(program: &Program, pou: &Pou) -> Result<(), Result<(usize, OpRule)
     Ok(())
 }
 
+/// The location rules of one op: direct operands and bits inside their areas, no write to a
+/// constant, timers and counters declared with the kind the op runs.
+fn locations(program: &Program, layout: &Layout, op: &Op) -> Result<(), OpRule> {
+    let inside = |area: Area, offset: u32, len: u32| {
+        let fits = offset
+            .checked_add(len)
+            .is_some_and(|end| end <= layout.area_size(area));
+        if fits {
+            Ok(())
+        } else {
+            Err(OpRule::OutOfArea { area, offset, len })
+        }
+    };
+    for u in op.operand_uses() {
+        match u.operand {
+            Operand::Mem(l) => inside(l.area, l.offset, u.width.bytes())?,
+            Operand::Indirect(l) => inside(l.area, l.offset, Width::DWord.bytes())?,
+            Operand::AddressOf(l) => {
+                if l.area.pointer_code().is_none() {
+                    return Err(OpRule::PointerToArea(l.area));
+                }
+                inside(l.area, l.offset, 1)?;
+            }
+            Operand::Const(_) => {}
+        }
+        let constant = matches!(u.operand, Operand::Const(_) | Operand::AddressOf(_));
+        if constant && u.access != Access::Read {
+            return Err(OpRule::WriteToConstant);
+        }
+    }
+    for (b, _) in op.bit_uses() {
+        if b.bit > 7 {
+            return Err(OpRule::OutOfArea {
+                area: b.area,
+                offset: b.byte,
+                len: 1,
+            });
+        }
+        inside(b.area, b.byte, 1)?;
+    }
+    let declared = match op {
+        Op::Timer { kind, timer, .. } => program
+            .timers
+            .iter()
+            .any(|t| t.id == *timer && t.kind == *kind),
+        Op::Counter { kind, counter, .. } => program
+            .counters
+            .iter()
+            .any(|c| c.id == *counter && c.kind == *kind),
+        Op::Box(super::BoxOp::ImmediateRead { input, .. }) => {
+            inside(Area::I, *input, 1)?;
+            true
+        }
+        Op::Box(super::BoxOp::ImmediateWrite { output, .. }) => {
+            inside(Area::Q, *output, 1)?;
+            true
+        }
+        Op::ResetTimers { first, .. } => {
+            inside(Area::TimerBit, u32::from(first.0), 1)?;
+            true
+        }
+        Op::ResetCounters { first, .. } => {
+            inside(Area::CounterBit, u32::from(first.0), 1)?;
+            true
+        }
+        _ => true,
+    };
+    if declared {
+        Ok(())
+    } else {
+        Err(OpRule::UndeclaredObject)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ir::test_ops::{for_, jmp, lbl, next, program};
+    use crate::ir::test_ops::{for_, jmp, lbl, next, program, vw};
+    use crate::ir::{BoxOp, Loc};
 
     fn op_rule(p: &Program) -> Option<(usize, OpRule)> {
         match verify(p) {
@@ -256,5 +366,50 @@ mod tests {
         assert_eq!(verify(&p), Err(VerifyError::StackDepth(17)));
         p.pous.clear();
         assert_eq!(verify(&p), Err(VerifyError::NoMain));
+    }
+
+    #[test]
+    fn direct_locations_must_lie_inside_their_areas() {
+        let mov = |src, dst| {
+            Op::Box(BoxOp::Move {
+                width: crate::Width::Word,
+                src,
+                dst,
+            })
+        };
+        // A5: V has 2500 bytes, so VW2498 is the last word.
+        assert_eq!(op_rule(&program(vec![mov(vw(0), vw(2498))], vec![])), None);
+        assert_eq!(
+            op_rule(&program(vec![mov(vw(0), vw(2499))], vec![])),
+            Some((
+                0,
+                OpRule::OutOfArea {
+                    area: Area::V,
+                    offset: 2499,
+                    len: 2
+                }
+            ))
+        );
+        let pointer = Operand::Indirect(Loc {
+            area: Area::V,
+            offset: 2497,
+        });
+        assert!(matches!(
+            op_rule(&program(vec![mov(pointer, vw(0))], vec![])),
+            Some((0, OpRule::OutOfArea { len: 4, .. }))
+        ));
+        assert_eq!(
+            op_rule(&program(vec![mov(vw(0), Operand::Const(1))], vec![])),
+            Some((0, OpRule::WriteToConstant))
+        );
+        let timer = Op::Timer {
+            kind: crate::ir::TimerKind::On,
+            timer: crate::TimerId(37),
+            preset: Operand::Const(10),
+        };
+        assert_eq!(
+            op_rule(&program(vec![timer], vec![])),
+            Some((0, OpRule::UndeclaredObject))
+        );
     }
 }
