@@ -124,3 +124,25 @@ fn every_repository_program_round_trips_through_ir_text() {
     assert!(corpus.len() >= 60, "only {} programs found", corpus.len());
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// An IR text that parses but breaks a verifier rule (here a word one byte past the end of V) is
+/// rejected by both engines before anything runs: the text form is an input like any other.
+#[test]
+fn engines_reject_a_parsed_ir_that_breaks_the_verifier() {
+    let text = "LD SM0.0\nMOVW 7, VW2498\n";
+    let p = stljit_front_s7::compile_str("t.stl", text, ProfileId::A5)
+        .program
+        .expect("compiles");
+    let printed = text::print(&p);
+    assert!(printed.contains("V.2498"), "{printed}");
+    let bad = text::parse(&printed.replace("V.2498", "V.2499")).expect("still parses");
+    let interp = stljit_interp::Interpreter::new(&bad)
+        .map(|_| ())
+        .unwrap_err();
+    let jit = stljit_jit::JitProgram::compile(&bad, &stljit_jit::JitOptions::default())
+        .map(|_| ())
+        .unwrap_err();
+    let rule = "2 byte(s) at V 2499 run past the area";
+    assert!(interp.to_string().contains(rule), "{interp}");
+    assert!(jit.to_string().contains(rule), "{jit}");
+}
