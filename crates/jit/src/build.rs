@@ -259,9 +259,7 @@ fn lower_fn(
         op: 0,
         live: true,
         unsupported: None,
-        pred: None,
-        pred_reads: Vec::new(),
-        free_box: false,
+        in_box: Default::default(),
         chunk,
         stores: crate::lower::cache::StoreLog::new(
             env.layout.size,

@@ -7,6 +7,7 @@
 use super::Lower;
 use super::cache::Cache;
 use super::mem::OnFail;
+use super::state::Pred;
 use super::value::B;
 use cranelift_codegen::ir::{Block, InstBuilder, Value, types::I32};
 
@@ -85,7 +86,7 @@ impl Lower<'_, '_> {
             self.set_eno(B::K(false));
             return;
         }
-        if self.free_box {
+        if self.in_box.free {
             self.boxed_free(pf, run);
             return;
         }
@@ -145,16 +146,14 @@ impl Lower<'_, '_> {
     /// leaves exactly the bytes of the branching form without splitting the block, so the byte
     /// cache stays valid across the box.
     fn boxed_free(&mut self, pf: B, run: impl FnOnce(&mut Self, OnFail) -> B) {
-        self.pred = match pf {
+        self.in_box.pred = match pf {
             B::K(_) => None,
-            B::Bit { .. } | B::Not { .. } => Some(pf.cond(&mut self.b)),
+            B::Bit { .. } | B::Not { .. } => Some(Pred::new(pf.cond(&mut self.b))),
         };
-        self.pred_reads.clear();
         // No operand is a pointer, so nothing takes this failure path; a compare's fatal code
         // is only a placeholder.
         let ok = run(self, OnFail::Fatal(stljit_core::FatalCode::CompareIndirect));
-        self.pred = None;
-        self.pred_reads.clear();
+        self.in_box.pred = None;
         let eno = pf.and(&mut self.b, ok);
         self.set_eno(eno);
     }

@@ -19,6 +19,7 @@ pub(crate) mod cache;
 pub(crate) mod control;
 pub(crate) mod flow;
 pub(crate) mod mem;
+pub(crate) mod state;
 pub(crate) mod stateful;
 pub(crate) mod value;
 
@@ -32,6 +33,7 @@ use cranelift_codegen::ir::{
 use cranelift_frontend::{FunctionBuilder, Variable};
 use cranelift_jit::JITModule;
 use cranelift_module::{FuncId, Module};
+use state::BoxState;
 use std::collections::HashMap;
 use stljit_core::ir::{Op, Program};
 use stljit_core::layout::{Layout, Sched};
@@ -88,15 +90,8 @@ pub(crate) struct Lower<'e, 'f> {
     pub(crate) live: bool,
     /// The first instruction this engine cannot compile, if any.
     pub(crate) unsupported: Option<String>,
-    /// While a box is lowered branch-free: its power flow (non-zero = run). Writes of OUT and
-    /// SMB1 then keep the old value where it is zero (see [`Lower::set_byte_pred`]).
-    pub(crate) pred: Option<Value>,
-    /// Multi-byte values read during the current branch-free box, reused as the "old" value of
-    /// a predicated write (every write of such a box is a no-op when PF is 0, so any value read
-    /// inside it is the value at its start).
-    pub(crate) pred_reads: Vec<(Addr, stljit_core::Width, Value)>,
-    /// The box being lowered has no pointer operand and no static error: lower it branch-free.
-    pub(crate) free_box: bool,
+    /// The box instruction being lowered.
+    pub(crate) in_box: BoxState,
     /// Lowering one chunk of a split POU: its index in the POU's [`ChunkPlan`].
     pub(crate) chunk: Option<usize>,
     /// Recent stores, for [`Lower::test_byte`].
@@ -203,7 +198,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// Writes a byte through the cache, keeping the old value where the current box predicate
     /// is zero.
     pub(crate) fn set_byte_pred(&mut self, a: Addr, v: Value) {
-        let v = match self.pred {
+        let v = match self.in_box.pf() {
             Some(p) => {
                 let old = self.byte(a);
                 self.b.ins().select(p, v, old)
