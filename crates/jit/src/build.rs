@@ -5,6 +5,7 @@
 
 use crate::analysis::{self, ChunkPlan};
 use crate::helpers::{Helper, HelperIds};
+use crate::lower::state::BlockState;
 use crate::lower::value::Stack;
 use crate::lower::{Env, Lower};
 use crate::{JitError, JitOptions, OptLevel};
@@ -249,15 +250,11 @@ fn lower_fn(
         lbase,
         depth,
         st,
-        stack: initial_stack(env, pou),
-        entry_st: None,
-        gate: crate::lower::value::B::K(true),
-        cache: Default::default(),
+        block: BlockState::function_entry(initial_stack(env, pou)),
         leaders: HashMap::new(),
         fnrefs: HashMap::new(),
         pou_refs: HashMap::new(),
         op: 0,
-        live: true,
         unsupported: None,
         in_box: Default::default(),
         chunk,

@@ -42,7 +42,7 @@ impl Lower<'_, '_> {
                     self.loop_tick();
                 }
                 self.jump_to_op(target);
-                self.live = false;
+                self.block.open = false;
             }
             _ => {
                 let c = pf.cond(&mut self.b);
@@ -52,12 +52,12 @@ impl Lower<'_, '_> {
                 self.b.seal_block(taken);
                 self.b.seal_block(cont);
                 self.b.switch_to_block(taken);
-                let saved = self.cache.clone();
+                let saved = self.block.cache.clone();
                 if backward {
                     self.loop_tick();
                 }
                 self.jump_to_op(target);
-                self.cache = saved;
+                self.block.cache = saved;
                 self.b.switch_to_block(cont);
             }
         }
@@ -69,7 +69,7 @@ impl Lower<'_, '_> {
             B::K(false) => {}
             B::K(true) => {
                 self.ret_ok();
-                self.live = false;
+                self.block.open = false;
             }
             _ => {
                 let c = pf.cond(&mut self.b);
@@ -78,9 +78,9 @@ impl Lower<'_, '_> {
                 self.b.seal_block(t);
                 self.b.seal_block(cont);
                 self.b.switch_to_block(t);
-                let saved = self.cache.clone();
+                let saved = self.block.cache.clone();
                 self.ret_ok();
-                self.cache = saved;
+                self.block.cache = saved;
                 self.b.switch_to_block(cont);
             }
         }
@@ -96,11 +96,11 @@ impl Lower<'_, '_> {
         let cont = self.b.create_block();
         self.b.ins().jump(cont, &[]);
         self.b.seal_block(cont);
-        let saved = std::mem::take(&mut self.cache);
+        let saved = std::mem::take(&mut self.block.cache);
         self.b.switch_to_block(err);
         self.record_error(code);
         self.jump_to_op(past);
-        self.cache = saved;
+        self.block.cache = saved;
         self.b.switch_to_block(cont);
         err
     }
@@ -112,7 +112,7 @@ impl Lower<'_, '_> {
         let pf = self.pf();
         let not_pf = pf.not(&mut self.b);
         self.branch_if(not_pf, past, false);
-        if !self.live {
+        if !self.block.open {
             return;
         }
         let err = self.loop_fail_block(past);
@@ -128,16 +128,16 @@ impl Lower<'_, '_> {
         let l16 = self.b.ins().ireduce(I16, last);
         let over = self.b.ins().icmp(IntCC::SignedGreaterThan, f16, l16);
         let over = self.b.ins().uextend(I32, over);
-        let top = self.stack.top();
-        self.stack.set_top(B::K(true));
+        let top = self.block.stack.top();
+        self.block.stack.set_top(B::K(true));
         self.branch_if(B::Bit { v: over, pos: 0 }, past, false);
-        self.stack.set_top(top);
+        self.block.stack.set_top(top);
     }
 
     /// `NEXT` (interpreter `exec_next`): S0 = 1; INDX += 1 (wrapping); loop back (counting the
     /// budget) while INDX <= FINAL; an operand error records it and leaves the loop.
     fn lower_next(&mut self, index: &Operand, limit: &Operand, body: usize) {
-        self.stack.set_top(B::K(true));
+        self.block.stack.set_top(B::K(true));
         let past = self.op + 1;
         let err = self.loop_fail_block(past);
         let fail = OnFail::Branch(err);
@@ -216,8 +216,8 @@ impl Lower<'_, '_> {
         let a = self.sched(Sched::SCR_ENABLE);
         let v01 = v.to01(&mut self.b);
         self.set_byte(a, v01);
-        self.gate = v;
-        self.stack.push(v);
+        self.block.gate = v;
+        self.block.stack.push(v);
     }
 
     /// `SCRT`: if PF, sets `to` and resets `from`.
@@ -246,7 +246,7 @@ impl Lower<'_, '_> {
         let a = self.sched(Sched::SCR_ENABLE);
         let one = self.iconst(I32, 1);
         self.set_byte(a, one);
-        self.gate = B::K(true);
+        self.block.gate = B::K(true);
     }
 
     /// `CALL`: if PF, the callee runs one frame deeper with a fresh stack (its own function);
@@ -271,7 +271,7 @@ impl Lower<'_, '_> {
                 f
             }
         };
-        let gate_before = self.gate;
+        let gate_before = self.block.gate;
         self.guarded(pf, |s| {
             let too_deep =
                 s.b.ins()
@@ -296,7 +296,7 @@ impl Lower<'_, '_> {
                 },
             );
         });
-        self.gate = if exits_one {
+        self.block.gate = if exits_one {
             gate_before
         } else {
             self.gate_reload()

@@ -26,7 +26,7 @@ impl Lower<'_, '_> {
     /// [`Lower::join_arms`] continues at `join` with the entries no arm changed.
     pub(crate) fn fork(&self, join: Block) -> Arms {
         Arms {
-            start: self.cache.clone(),
+            start: self.block.cache.clone(),
             ends: Vec::with_capacity(3),
             join,
         }
@@ -35,12 +35,12 @@ impl Lower<'_, '_> {
     /// Continues in `block`, an arm, with the cache of the branch.
     pub(crate) fn start_arm(&mut self, arms: &Arms, block: Block) {
         self.b.switch_to_block(block);
-        self.cache = arms.start.clone();
+        self.block.cache = arms.start.clone();
     }
 
     /// Ends the current arm: remembers its cache and jumps to the join.
     pub(crate) fn end_arm(&mut self, arms: &mut Arms) {
-        arms.ends.push(std::mem::take(&mut self.cache));
+        arms.ends.push(std::mem::take(&mut self.block.cache));
         self.b.ins().jump(arms.join, &[]);
     }
 
@@ -48,7 +48,7 @@ impl Lower<'_, '_> {
     pub(crate) fn join_arms(&mut self, arms: Arms) {
         self.b.seal_block(arms.join);
         self.b.switch_to_block(arms.join);
-        self.cache = Cache::meet(&arms.ends);
+        self.block.cache = Cache::meet(&arms.ends);
     }
 
     /// `if cond { then } else { other }` with the cache kept across.

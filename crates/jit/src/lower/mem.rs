@@ -49,7 +49,7 @@ impl Lower<'_, '_> {
             return self.byte(a);
         }
         let n = width.bytes();
-        if (0..n).all(|i| self.cache.get(a.plus(i)).is_some()) {
+        if (0..n).all(|i| self.block.cache.get(a.plus(i)).is_some()) {
             // All bytes are in registers (typically just written): assemble them.
             let mut acc = self.byte(a);
             for i in 1..n {
@@ -131,9 +131,9 @@ impl Lower<'_, '_> {
                         self.b.ins().ushr_imm_s(v, i64::from(sh))
                     };
                     let m = self.b.ins().band_imm_s(s, 0xFF);
-                    self.cache.put_clean(a.plus(i), m);
+                    self.block.cache.put_clean(a.plus(i), m);
                 }
-                self.stores.stored(a, n, self.cache.now);
+                self.stores.stored(a, n, self.block.cache.now);
                 let base = self.base(a);
                 self.store_be(base, a.off as i32, width, v);
             }

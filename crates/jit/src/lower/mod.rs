@@ -25,7 +25,7 @@ pub(crate) mod value;
 
 use crate::analysis::{ChunkPlan, PouInfo};
 use crate::helpers::{Helper, HelperIds};
-use cache::{Addr, Cache, StoreLog};
+use cache::{Addr, StoreLog};
 use cranelift_codegen::ir::{
     Block, FuncRef, InstBuilder, MemFlagsData, SourceLoc, Type, Value,
     types::{I16, I32, I64},
@@ -33,13 +33,13 @@ use cranelift_codegen::ir::{
 use cranelift_frontend::{FunctionBuilder, Variable};
 use cranelift_jit::JITModule;
 use cranelift_module::{FuncId, Module};
-use state::BoxState;
+use state::{BlockState, BoxState};
 use std::collections::HashMap;
 use stljit_core::ir::{Op, Program};
 use stljit_core::layout::{Layout, Sched};
 use stljit_core::{Area, ErrorCode, FatalCode, PouId, ScanStatus};
 use stljit_runtime::rules::Rules;
-use value::{B, Stack};
+use value::B;
 
 /// What all POU functions of one program share.
 pub(crate) struct Env<'a> {
@@ -76,18 +76,13 @@ pub(crate) struct Lower<'e, 'f> {
     pub(crate) lbase: Value,
     pub(crate) depth: Value,
     pub(crate) st: Variable,
-    pub(crate) stack: Stack,
-    /// The block's entry value of `st`, to recognise an unchanged stack.
-    pub(crate) entry_st: Option<Value>,
-    pub(crate) gate: B,
-    pub(crate) cache: Cache,
+    /// The basic block being lowered.
+    pub(crate) block: BlockState,
     pub(crate) leaders: HashMap<usize, Block>,
     pub(crate) fnrefs: HashMap<Helper, FuncRef>,
     pub(crate) pou_refs: HashMap<PouId, FuncRef>,
     /// The op being lowered (recorded as the error site).
     pub(crate) op: usize,
-    /// False after an unconditional transfer until the next leader.
-    pub(crate) live: bool,
     /// The first instruction this engine cannot compile, if any.
     pub(crate) unsupported: Option<String>,
     /// The box instruction being lowered.
@@ -105,9 +100,7 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// `PF = S0 AND gate`.
     pub(crate) fn pf(&mut self) -> B {
-        let top = self.stack.top();
-        let gate = self.gate;
-        top.and(&mut self.b, gate)
+        self.block.pf(&mut self.b)
     }
 
     // ---- raw memory --------------------------------------------------------------------------
@@ -124,12 +117,12 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// A byte through the cache.
     pub(crate) fn byte(&mut self, a: Addr) -> Value {
-        if let Some(v) = self.cache.get(a) {
+        if let Some(v) = self.block.cache.get(a) {
             return v;
         }
         let base = self.base(a);
         let v = self.b.ins().uload8(I32, mf(), base, Self::off32(a));
-        self.cache.put_clean(a, v);
+        self.block.cache.put_clean(a, v);
         v
     }
 
@@ -140,7 +133,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// are garbage to a [`B`]). The aligned word comes first, so that tests of neighbouring
     /// bytes share one load. Loads are not cached: the cache holds clean bytes.
     pub(crate) fn test_byte(&mut self, a: Addr) -> (Value, u8) {
-        if self.cache.get(a).is_none() {
+        if self.block.cache.get(a).is_none() {
             let aligned = a.off & !3;
             let starts = std::iter::once(aligned)
                 .chain((a.off.saturating_sub(3)..=a.off).filter(|&s| s != aligned));
@@ -167,7 +160,7 @@ impl<'e, 'f> Lower<'e, 'f> {
         } else {
             self.env.layout.size
         };
-        w.off % 16 <= 12 && w.off + 4 <= room && self.stores.is_cold(w, 4, self.cache.now)
+        w.off % 16 <= 12 && w.off + 4 <= room && self.stores.is_cold(w, 4, self.block.cache.now)
     }
 
     /// A plain 32-bit load of the four bytes from `w` (foldable into the instruction that
@@ -179,8 +172,8 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// Stores the low byte of `v` (whose upper bits may be garbage, so it is not cached).
     pub(crate) fn store_low_byte(&mut self, a: Addr, v: Value) {
-        self.stores.stored(a, 1, self.cache.now);
-        self.cache.forget(a, 1);
+        self.stores.stored(a, 1, self.block.cache.now);
+        self.block.cache.forget(a, 1);
         let base = self.base(a);
         self.b.ins().istore8(mf(), v, base, Self::off32(a));
     }
@@ -189,10 +182,10 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// value stays cached: keeping writes in registers until the block ends made every value
     /// of the block live to its end, which the register allocator paid for with spills.
     pub(crate) fn set_byte(&mut self, a: Addr, v: Value) {
-        self.stores.stored(a, 1, self.cache.now);
+        self.stores.stored(a, 1, self.block.cache.now);
         let base = self.base(a);
         self.b.ins().istore8(mf(), v, base, Self::off32(a));
-        self.cache.put_clean(a, v);
+        self.block.cache.put_clean(a, v);
     }
 
     /// Writes a byte through the cache, keeping the old value where the current box predicate
@@ -211,8 +204,8 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// Forgets every cached byte and counts every byte as just stored (before code that may
     /// write anywhere).
     pub(crate) fn forget_all(&mut self) {
-        self.cache.clear();
-        self.stores.stored_anywhere(self.cache.now);
+        self.block.cache.clear();
+        self.stores.stored_anywhere(self.block.cache.now);
     }
 
     /// Loads `ty` in native byte order at a static address (scheduler fields).
@@ -224,8 +217,8 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// Stores `v` (of type `ty`) in native byte order at a static address.
     pub(crate) fn store_ne(&mut self, a: Addr, v: Value) {
         let ty = self.b.func.dfg.value_type(v);
-        self.cache.forget(a, ty.bytes());
-        self.stores.stored(a, ty.bytes(), self.cache.now);
+        self.block.cache.forget(a, ty.bytes());
+        self.stores.stored(a, ty.bytes(), self.block.cache.now);
         let base = self.base(a);
         self.b.ins().store(mf(), v, base, Self::off32(a));
     }
@@ -266,8 +259,8 @@ impl<'e, 'f> Lower<'e, 'f> {
     ) -> Value {
         let r = self.call_pure(h, args);
         for &(a, n) in ranges {
-            self.cache.forget(a, n);
-            self.stores.stored(a, n, self.cache.now);
+            self.block.cache.forget(a, n);
+            self.stores.stored(a, n, self.block.cache.now);
         }
         r
     }
@@ -357,51 +350,37 @@ impl<'e, 'f> Lower<'e, 'f> {
         self.b.seal_block(exit);
         self.b.seal_block(cont);
         self.b.switch_to_block(exit);
-        let saved = self.cache.clone();
+        let saved = self.block.cache.clone();
         self.fatal_here(code);
-        self.cache = saved;
+        self.block.cache = saved;
         self.b.switch_to_block(cont);
     }
 
     // ---- blocks ------------------------------------------------------------------------------
 
-    /// Writes the stack register back (end of a block that continues at op `target`). Levels that are dead at `target` ([`crate::analysis::PouInfo`]'s
-    /// `stack_live`) are packed as 0: nothing reads them, and most of a long program's stack
-    /// is old rungs' results that later pushes drop off the bottom.
+    /// Writes the stack register back (end of a block that continues at op `target`), with
+    /// the levels live at `target` ([`crate::analysis::PouInfo`]'s `stack_live`).
     pub(crate) fn spill_state(&mut self, target: usize) {
         let live = self.env.info[self.pou.index()]
             .stack_live
             .get(target)
             .copied()
             .unwrap_or(u32::MAX);
-        let stack = self.stack.keeping(live);
-        let unchanged = self.entry_st.is_some_and(|st| {
-            stack.lv.iter().enumerate().all(|(i, l)| {
-                live & (1 << i) == 0
-                    || *l
-                        == B::Bit {
-                            v: st,
-                            pos: i as u8,
-                        }
-            })
-        });
-        if !unchanged {
-            let r = stack.to_reg(&mut self.b);
+        if let Some(r) = self.block.pack(live, &mut self.b) {
             self.b.def_var(self.st, r);
         }
     }
 
-    /// Starts lowering in `block` with state reloaded from the image and the stack register.
-    pub(crate) fn enter(&mut self, block: Block, at_op: usize) {
+    /// Starts lowering in `blk`, a block reached by a jump (or an unreachable one), with a
+    /// fresh [`BlockState`]: the stack from the stack register, the gate from the analysis or
+    /// the image.
+    pub(crate) fn enter(&mut self, blk: Block, at_op: usize) {
         // Reached by a jump or as a function entry: earlier stores are not in the log.
         self.stores.stored_anywhere(at_op);
-        self.b.switch_to_block(block);
-        self.cache.clear();
+        self.b.switch_to_block(blk);
         let st = self.b.use_var(self.st);
-        self.entry_st = Some(st);
-        self.stack = Stack::from_reg(st, self.depth());
-        self.gate = self.gate_at(at_op);
-        self.live = true;
+        self.block = BlockState::unpack(st, self.depth(), self.block.cache.now);
+        self.block.gate = self.gate_at(at_op);
     }
 
     /// The gate at the start of op `at` of this POU: 1 where the analysis proves it, else read.
@@ -514,13 +493,13 @@ impl<'e, 'f> Lower<'e, 'f> {
                 sw.emit(&mut self.b, at, start);
             }
         }
-        self.live = false;
+        self.block.open = false;
         self.lower_ops(range.clone());
         if last {
             self.lower_end(n);
-        } else if self.live {
+        } else if self.block.open {
             self.exit_chunk_to(k, range.end);
-            self.live = false;
+            self.block.open = false;
         }
     }
 
@@ -529,14 +508,14 @@ impl<'e, 'f> Lower<'e, 'f> {
         let Some(&end_blk) = self.leaders.get(&end) else {
             return;
         };
-        if self.live {
+        if self.block.open {
             self.spill_state(end);
             self.b.ins().jump(end_blk, &[]);
         }
         self.enter(end_blk, end);
         self.b.set_srcloc(SourceLoc::default());
         self.ret_ok();
-        self.live = false;
+        self.block.open = false;
     }
 
     /// Lowers the ops in `range`, starting a new block at every leader.
@@ -546,13 +525,13 @@ impl<'e, 'f> Lower<'e, 'f> {
             let op = &pou.ops[i];
             if let Some(&blk) = self.leaders.get(&i) {
                 let cut = self.env.info[self.pou.index()].cut[i];
-                if self.live && cut {
-                    // Only this block falls into a cut: the logic stack, the gate and the
-                    // cached bytes carry over as they are.
+                if self.block.open && cut {
+                    // Only this block falls into a cut: the block state (logic stack, gate,
+                    // cached bytes) carries over as it is.
                     self.b.ins().jump(blk, &[]);
                     self.b.switch_to_block(blk);
                 } else {
-                    if self.live {
+                    if self.block.open {
                         // (At op 0 this writes the initial stack into the register.)
                         self.spill_state(i);
                         self.b.ins().jump(blk, &[]);
@@ -560,14 +539,14 @@ impl<'e, 'f> Lower<'e, 'f> {
                     self.enter(blk, i);
                 }
             }
-            if !self.live {
+            if !self.block.open {
                 // Unreachable ops after an unconditional transfer: lower them into a block
                 // without predecessors so that every op still has CLIF (and a srcloc).
                 let blk = self.b.create_block();
                 self.enter(blk, i);
             }
             self.op = i;
-            self.cache.now = i;
+            self.block.cache.now = i;
             self.b.set_srcloc(SourceLoc::new(i as u32 + 1));
             if let Some(addr) = self.env.op_counter {
                 let a = self.iconst(I64, addr);
@@ -592,7 +571,7 @@ impl<'e, 'f> Lower<'e, 'f> {
             Op::Dup => self.dup(),
             Op::ReadSecond => self.read_second(),
             Op::Pop => {
-                self.stack.pop();
+                self.block.stack.pop();
             }
             Op::Pick(n) => self.pick(n),
             Op::AndEno => self.and_eno(),

@@ -1,12 +1,80 @@
 //! The lowering's state, grouped by how long it lives.
 //!
 //! [`Lower`](super::Lower) keeps what the whole program shares ([`Env`](super::Env)), the
-//! function builder, and one value per lifetime below it: [`BoxState`] lives for one box
-//! instruction and is replaced when the next box starts.
+//! function builder, and one value per lifetime below it: [`BlockState`] lives for one basic
+//! block and is replaced where a block is entered by a jump (cuts of a long straight run keep
+//! it), and [`BoxState`] lives for one box instruction.
 
-use super::cache::Addr;
+use super::cache::{Addr, Cache};
+use super::value::{B, Stack};
 use cranelift_codegen::ir::Value;
+use cranelift_frontend::FunctionBuilder;
 use stljit_core::Width;
+
+/// What the lowering knows inside one basic block: the logic stack and the gate as
+/// compile-time values, and the image bytes held in SSA values.
+#[derive(Debug)]
+pub(crate) struct BlockState {
+    pub(crate) stack: Stack,
+    /// The block's entry value of the stack register, to recognise an unchanged stack.
+    pub(crate) entry_st: Option<Value>,
+    pub(crate) gate: B,
+    pub(crate) cache: Cache,
+    /// Code still flows here: false after an unconditional transfer until the next leader.
+    pub(crate) open: bool,
+}
+
+impl BlockState {
+    /// The state in a function's entry block: `stack` as the POU starts with it, the gate
+    /// open (a POU runs only when called with PF = 1), nothing cached.
+    pub(crate) fn function_entry(stack: Stack) -> BlockState {
+        BlockState {
+            stack,
+            entry_st: None,
+            gate: B::K(true),
+            cache: Cache::default(),
+            open: true,
+        }
+    }
+
+    /// The state where a block reached by a jump begins: the stack unpacked from the stack
+    /// register's value `st` (`depth` levels) and nothing cached, with the cache's op clock
+    /// still at `now`. The gate is open until the caller reads it (into this block's cache).
+    pub(crate) fn unpack(st: Value, depth: u8, now: usize) -> BlockState {
+        BlockState {
+            stack: Stack::from_reg(st, depth),
+            entry_st: Some(st),
+            gate: B::K(true),
+            cache: Cache::at(now),
+            open: true,
+        }
+    }
+
+    /// The stack register's value at the end of this block, for a successor that reads the
+    /// levels set in `live`, or `None` when the register holds it already (every live level
+    /// is still the bit it was unpacked from). Dead levels are packed as 0: nothing reads
+    /// them, and most of a long program's stack is old rungs' results that later pushes drop
+    /// off the bottom.
+    pub(crate) fn pack(&self, live: u32, b: &mut FunctionBuilder<'_>) -> Option<Value> {
+        let stack = self.stack.keeping(live);
+        let unchanged = self.entry_st.is_some_and(|st| {
+            stack.lv.iter().enumerate().all(|(i, l)| {
+                live & (1 << i) == 0
+                    || *l
+                        == B::Bit {
+                            v: st,
+                            pos: i as u8,
+                        }
+            })
+        });
+        (!unchanged).then(|| stack.to_reg(b))
+    }
+
+    /// `PF = S0 AND gate`.
+    pub(crate) fn pf(&self, b: &mut FunctionBuilder<'_>) -> B {
+        self.stack.top().and(b, self.gate)
+    }
+}
 
 /// The state of the box instruction being lowered (the default outside boxes).
 #[derive(Debug, Default)]
