@@ -79,7 +79,7 @@ impl Lower<'_, '_> {
         let first = self.load_window(a);
         let diff = self.b.ins().bxor(s, first);
         let diff = self.b.ins().band_imm_s(diff, 1i64 << pos);
-        let pair = self.b.ins().iconcat(self.image, self.image);
+        let pair = self.b.ins().iconcat(self.func.image, self.func.image);
         let (image, _) = self.b.ins().isplit(pair);
         let second = self.b.ins().load(I32, super::mf(), image, Self::off32(a));
         let new = self.b.ins().bxor(diff, second);
@@ -203,7 +203,11 @@ impl Lower<'_, '_> {
     pub(crate) fn and_eno(&mut self) {
         let a = self.sched(Sched::ENO);
         let v = self.byte(a);
-        let t = self.block.stack.top().and(&mut self.b, B::Bit { v, pos: 0 });
+        let t = self
+            .block
+            .stack
+            .top()
+            .and(&mut self.b, B::Bit { v, pos: 0 });
         self.block.stack.set_top(t);
     }
 
@@ -253,7 +257,7 @@ impl Lower<'_, '_> {
             return x;
         }
         let wide = self.b.ins().uextend(I64, v);
-        let pair = self.b.ins().iconcat(wide, self.image);
+        let pair = self.b.ins().iconcat(wide, self.func.image);
         let (lo, _) = self.b.ins().isplit(pair);
         let v = self.b.ins().ireduce(I32, lo);
         if neg {

@@ -158,7 +158,7 @@ impl Lower<'_, '_> {
 
     /// `JMP n`: to the label's op if PF (a backward jump counts a loop event).
     pub(crate) fn jump(&mut self, l: LabelId) {
-        let target = self.env.prog.pou(self.pou).label_target(l).index();
+        let target = self.env.prog.pou(self.func.pou).label_target(l).index();
         let pf = self.pf();
         self.branch_if(pf, target, target <= self.op);
     }
@@ -204,7 +204,7 @@ impl Lower<'_, '_> {
 
     /// `NEXT` of the `FOR` at op `head`.
     pub(crate) fn next(&mut self, head: usize) {
-        let pou = self.env.prog.pou(self.pou);
+        let pou = self.env.prog.pou(self.func.pou);
         if let Some(Op::For { index, limit, .. }) = pou.ops.get(head) {
             self.lower_next(index, limit, head + 1)
         }
@@ -262,12 +262,12 @@ impl Lower<'_, '_> {
             .info
             .get(callee.index())
             .is_some_and(|i| i.exits_one);
-        let fref = match self.pou_refs.get(&callee) {
+        let fref = match self.func.pou_refs.get(&callee) {
             Some(f) => *f,
             None => {
                 let id = self.env.pou_funcs[callee.index()];
                 let f = self.module.declare_func_in_func(id, self.b.func);
-                self.pou_refs.insert(callee, f);
+                self.func.pou_refs.insert(callee, f);
                 f
             }
         };
@@ -275,14 +275,14 @@ impl Lower<'_, '_> {
         self.guarded(pf, |s| {
             let too_deep =
                 s.b.ins()
-                    .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, s.depth, max);
+                    .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, s.func.call_depth, max);
             s.diamond(
                 too_deep,
                 |s| s.record_error_k(ErrorCode::CallNesting),
                 |s| {
                     s.forget_all();
-                    let d1 = s.b.ins().iadd_imm_s(s.depth, 1);
-                    let call = s.b.ins().call(fref, &[s.image, d1]);
+                    let d1 = s.b.ins().iadd_imm_s(s.func.call_depth, 1);
+                    let call = s.b.ins().call(fref, &[s.func.image, d1]);
                     let status = s.b.inst_results(call)[0];
                     let exit = s.b.create_block();
                     let cont = s.b.create_block();

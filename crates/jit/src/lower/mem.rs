@@ -133,7 +133,7 @@ impl Lower<'_, '_> {
                     let m = self.b.ins().band_imm_s(s, 0xFF);
                     self.block.cache.put_clean(a.plus(i), m);
                 }
-                self.stores.stored(a, n, self.block.cache.now);
+                self.func.stores.stored(a, n, self.block.cache.now);
                 let base = self.base(a);
                 self.store_be(base, a.off as i32, width, v);
             }
@@ -148,7 +148,7 @@ impl Lower<'_, '_> {
     fn resolve(&mut self, loc: Loc, width: Width, write: bool, fail: OnFail) -> Value {
         let (off, _) = self.resolve_off(loc, width, write, fail);
         let off = self.b.ins().uextend(I64, off);
-        self.b.ins().iadd(self.image, off)
+        self.b.ins().iadd(self.func.image, off)
     }
 
     /// Resolves a pointer held at `loc`: its image offset (`i32`) and the raw pointer.

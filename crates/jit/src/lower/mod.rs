@@ -9,9 +9,11 @@
 //! Straight-line code between two block leaders (see [`crate::analysis`]) is lowered with the
 //! logic stack as compile-time booleans ([`value::Stack`]), packed into the stack register (its
 //! live levels only) where a block ends, and with recently read or written image bytes reused
-//! from SSA values ([`cache::Cache`]); writes are stored at once. Both carry across the cuts of
-//! long straight runs, which are entered only by falling through. The submodules lower the instruction groups: bit logic, boxes, control flow, memory
-//! operands and the stateful instructions that call the runtime.
+//! from SSA values ([`cache::Cache`]); writes are stored at once. Both are the block's
+//! [`BlockState`], which a block entered by a jump starts afresh and the cuts of long straight
+//! runs, entered only by falling through, keep ([`state`] groups the lowering's state by
+//! lifetime). The submodules lower the instruction groups: bit logic, boxes, control flow,
+//! memory operands and the stateful instructions that call the runtime.
 
 pub(crate) mod bits;
 pub(crate) mod boxes;
@@ -25,19 +27,18 @@ pub(crate) mod value;
 
 use crate::analysis::{ChunkPlan, PouInfo};
 use crate::helpers::{Helper, HelperIds};
-use cache::{Addr, StoreLog};
+use cache::Addr;
 use cranelift_codegen::ir::{
-    Block, FuncRef, InstBuilder, MemFlagsData, SourceLoc, Type, Value,
+    Block, InstBuilder, MemFlagsData, SourceLoc, Type, Value,
     types::{I16, I32, I64},
 };
-use cranelift_frontend::{FunctionBuilder, Variable};
+use cranelift_frontend::FunctionBuilder;
 use cranelift_jit::JITModule;
 use cranelift_module::{FuncId, Module};
-use state::{BlockState, BoxState};
-use std::collections::HashMap;
+use state::{BlockState, BoxState, FnState};
 use stljit_core::ir::{Op, Program};
 use stljit_core::layout::{Layout, Sched};
-use stljit_core::{Area, ErrorCode, FatalCode, PouId, ScanStatus};
+use stljit_core::{Area, ErrorCode, FatalCode, ScanStatus};
 use stljit_runtime::rules::Rules;
 use value::B;
 
@@ -66,35 +67,26 @@ pub(crate) fn mf() -> MemFlagsData {
     MemFlagsData::new().with_notrap()
 }
 
-/// The state of lowering one POU.
+/// The state of lowering one function (a POU, or one chunk of a split POU), one field per
+/// lifetime: the program's [`Env`] and module, the function's builder and [`FnState`], the
+/// current [`BlockState`], op and [`BoxState`].
 pub(crate) struct Lower<'e, 'f> {
     pub(crate) env: &'e Env<'e>,
     pub(crate) module: &'e mut JITModule,
     pub(crate) b: FunctionBuilder<'f>,
-    pub(crate) pou: PouId,
-    pub(crate) image: Value,
-    pub(crate) lbase: Value,
-    pub(crate) depth: Value,
-    pub(crate) st: Variable,
+    /// The function being built.
+    pub(crate) func: FnState,
     /// The basic block being lowered.
     pub(crate) block: BlockState,
-    pub(crate) leaders: HashMap<usize, Block>,
-    pub(crate) fnrefs: HashMap<Helper, FuncRef>,
-    pub(crate) pou_refs: HashMap<PouId, FuncRef>,
     /// The op being lowered (recorded as the error site).
     pub(crate) op: usize,
-    /// The first instruction this engine cannot compile, if any.
-    pub(crate) unsupported: Option<String>,
     /// The box instruction being lowered.
     pub(crate) in_box: BoxState,
-    /// Lowering one chunk of a split POU: its index in the POU's [`ChunkPlan`].
-    pub(crate) chunk: Option<usize>,
-    /// Recent stores, for [`Lower::test_byte`].
-    pub(crate) stores: StoreLog,
 }
 
 impl<'e, 'f> Lower<'e, 'f> {
-    pub(crate) fn depth(&self) -> u8 {
+    /// The number of logic-stack levels (the program's `logic_stack_depth`).
+    pub(crate) fn stack_depth(&self) -> u8 {
         self.env.prog.logic_stack_depth
     }
 
@@ -107,7 +99,11 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// The base pointer of an address.
     pub(crate) fn base(&self, a: Addr) -> Value {
-        if a.local { self.lbase } else { self.image }
+        if a.local {
+            self.func.lbase
+        } else {
+            self.func.image
+        }
     }
 
     fn off32(a: Addr) -> i32 {
@@ -128,7 +124,7 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// A byte for a bit test, as a value and the bit where the byte's bit 0 sits in it: the
     /// cached byte (at 0), or else a plain 32-bit load of four bytes around it that were not
-    /// stored recently (see [`StoreLog`]), which x86 folds into the consuming `and`/`or`/`andn`
+    /// stored recently (see [`StoreLog`](cache::StoreLog)), which x86 folds into the consuming `and`/`or`/`andn`
     /// (little-endian: the byte `k` bytes into the load is at bit `8 * k`; the other bytes
     /// are garbage to a [`B`]). The aligned word comes first, so that tests of neighbouring
     /// bytes share one load. Loads are not cached: the cache holds clean bytes.
@@ -152,7 +148,7 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// Whether a 32-bit load of the four bytes from `w` stays inside the image (or L frame),
     /// does not cross a 16-byte boundary of the image and overlaps no recent store (see
-    /// [`StoreLog`]). The system allocator aligns the image buffer to 16 bytes on the hosts we
+    /// [`StoreLog`](cache::StoreLog)). The system allocator aligns the image buffer to 16 bytes on the hosts we
     /// run on, so such a load never splits across cache lines; elsewhere it is only slower.
     pub(crate) fn cold_window(&self, w: Addr) -> bool {
         let room = if w.local {
@@ -160,7 +156,9 @@ impl<'e, 'f> Lower<'e, 'f> {
         } else {
             self.env.layout.size
         };
-        w.off % 16 <= 12 && w.off + 4 <= room && self.stores.is_cold(w, 4, self.block.cache.now)
+        w.off % 16 <= 12
+            && w.off + 4 <= room
+            && self.func.stores.is_cold(w, 4, self.block.cache.now)
     }
 
     /// A plain 32-bit load of the four bytes from `w` (foldable into the instruction that
@@ -172,7 +170,7 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// Stores the low byte of `v` (whose upper bits may be garbage, so it is not cached).
     pub(crate) fn store_low_byte(&mut self, a: Addr, v: Value) {
-        self.stores.stored(a, 1, self.block.cache.now);
+        self.func.stores.stored(a, 1, self.block.cache.now);
         self.block.cache.forget(a, 1);
         let base = self.base(a);
         self.b.ins().istore8(mf(), v, base, Self::off32(a));
@@ -182,7 +180,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// value stays cached: keeping writes in registers until the block ends made every value
     /// of the block live to its end, which the register allocator paid for with spills.
     pub(crate) fn set_byte(&mut self, a: Addr, v: Value) {
-        self.stores.stored(a, 1, self.block.cache.now);
+        self.func.stores.stored(a, 1, self.block.cache.now);
         let base = self.base(a);
         self.b.ins().istore8(mf(), v, base, Self::off32(a));
         self.block.cache.put_clean(a, v);
@@ -205,7 +203,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// write anywhere).
     pub(crate) fn forget_all(&mut self) {
         self.block.cache.clear();
-        self.stores.stored_anywhere(self.block.cache.now);
+        self.func.stores.stored_anywhere(self.block.cache.now);
     }
 
     /// Loads `ty` in native byte order at a static address (scheduler fields).
@@ -218,7 +216,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     pub(crate) fn store_ne(&mut self, a: Addr, v: Value) {
         let ty = self.b.func.dfg.value_type(v);
         self.block.cache.forget(a, ty.bytes());
-        self.stores.stored(a, ty.bytes(), self.block.cache.now);
+        self.func.stores.stored(a, ty.bytes(), self.block.cache.now);
         let base = self.base(a);
         self.b.ins().store(mf(), v, base, Self::off32(a));
     }
@@ -260,25 +258,25 @@ impl<'e, 'f> Lower<'e, 'f> {
         let r = self.call_pure(h, args);
         for &(a, n) in ranges {
             self.block.cache.forget(a, n);
-            self.stores.stored(a, n, self.block.cache.now);
+            self.func.stores.stored(a, n, self.block.cache.now);
         }
         r
     }
 
     /// Calls a runtime shim that never touches the image.
     pub(crate) fn call_pure(&mut self, h: Helper, args: &[Value]) -> Value {
-        let fref = match self.fnrefs.get(&h) {
+        let fref = match self.func.fnrefs.get(&h) {
             Some(f) => *f,
             None => {
                 let id = self.env.helpers.id(h);
                 let f = self.module.declare_func_in_func(id, self.b.func);
-                self.fnrefs.insert(h, f);
+                self.func.fnrefs.insert(h, f);
                 f
             }
         };
         let mut all = Vec::with_capacity(args.len() + 2);
         if h.takes_image() {
-            all.push(self.image);
+            all.push(self.func.image);
             let layout = self.iconst(I64, self.env.layout_ptr);
             all.push(layout);
         }
@@ -298,7 +296,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     }
 
     fn record_site(&mut self) {
-        let pou = self.iconst(I16, i64::from(self.pou.0 as u16));
+        let pou = self.iconst(I16, i64::from(self.func.pou.0 as u16));
         let a = self.sched(Sched::ERR_POU);
         self.store_ne(a, pou);
         let op = self.iconst(I32, self.op as i64);
@@ -332,7 +330,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// Leaves the POU with `status` (an `i32`: 0 = continue, else the scan's status). A chunk
     /// function returns it as an `i64` whose upper half 0 means "the POU returns".
     pub(crate) fn return_status(&mut self, status: Value) {
-        if self.chunk.is_some() {
+        if self.func.chunk.is_some() {
             let r = self.b.ins().uextend(I64, status);
             self.b.ins().return_(&[r]);
         } else {
@@ -361,13 +359,13 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// Writes the stack register back (end of a block that continues at op `target`), with
     /// the levels live at `target` ([`crate::analysis::PouInfo`]'s `stack_live`).
     pub(crate) fn spill_state(&mut self, target: usize) {
-        let live = self.env.info[self.pou.index()]
+        let live = self.env.info[self.func.pou.index()]
             .stack_live
             .get(target)
             .copied()
             .unwrap_or(u32::MAX);
         if let Some(r) = self.block.pack(live, &mut self.b) {
-            self.b.def_var(self.st, r);
+            self.b.def_var(self.func.st, r);
         }
     }
 
@@ -376,16 +374,16 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// the image.
     pub(crate) fn enter(&mut self, blk: Block, at_op: usize) {
         // Reached by a jump or as a function entry: earlier stores are not in the log.
-        self.stores.stored_anywhere(at_op);
+        self.func.stores.stored_anywhere(at_op);
         self.b.switch_to_block(blk);
-        let st = self.b.use_var(self.st);
-        self.block = BlockState::unpack(st, self.depth(), self.block.cache.now);
+        let st = self.b.use_var(self.func.st);
+        self.block = BlockState::unpack(st, self.stack_depth(), self.block.cache.now);
         self.block.gate = self.gate_at(at_op);
     }
 
     /// The gate at the start of op `at` of this POU: 1 where the analysis proves it, else read.
     pub(crate) fn gate_at(&mut self, at: usize) -> B {
-        let known = self.env.info[self.pou.index()]
+        let known = self.env.info[self.func.pou.index()]
             .gate_one
             .get(at)
             .copied()
@@ -401,10 +399,10 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// Ends the current block with a jump to the leader at op `target`.
     pub(crate) fn jump_to_op(&mut self, target: usize) {
-        if let Some(&blk) = self.leaders.get(&target) {
+        if let Some(&blk) = self.func.leaders.get(&target) {
             self.spill_state(target);
             self.b.ins().jump(blk, &[]);
-        } else if let Some(k) = self.chunk {
+        } else if let Some(k) = self.func.chunk {
             self.exit_chunk_to(k, target);
         } else {
             // The analysis makes every target a leader; returning keeps codegen total anyway.
@@ -415,14 +413,14 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// Leaves chunk `k` to continue at op `target` of another chunk: returns
     /// `(target + 1) << 32 | stack register` to the POU's dispatcher.
     fn exit_chunk_to(&mut self, k: usize, target: usize) {
-        let plan = self.env.plans[self.pou.index()].as_ref();
+        let plan = self.env.plans[self.func.pou.index()].as_ref();
         let planned = plan.is_some_and(|p| p.entries[p.chunk_of(target)].contains(&target));
-        if !planned && self.unsupported.is_none() {
+        if !planned && self.func.unsupported.is_none() {
             // The plan lists every cross-chunk target; anything else is a bug in this crate.
-            self.unsupported = Some(format!("chunk {k}: unplanned exit to op {target}"));
+            self.func.unsupported = Some(format!("chunk {k}: unplanned exit to op {target}"));
         }
         self.spill_state(target);
-        let st = self.b.use_var(self.st);
+        let st = self.b.use_var(self.func.st);
         let st = self.b.ins().uextend(I64, st);
         let r = self.b.ins().bor_imm_s(st, ((target as i64) + 1) << 32);
         self.b.ins().return_(&[r]);
@@ -436,8 +434,8 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// Lowers the whole POU as one function.
     pub(crate) fn lower_pou(&mut self) {
-        let pou = self.env.prog.pou(self.pou);
-        let info = &self.env.info[self.pou.index()];
+        let pou = self.env.prog.pou(self.func.pou);
+        let info = &self.env.info[self.func.pou.index()];
         // Op 0 needs a block only when a jump targets it (a loop to the top of the POU).
         let top_targeted = pou.ops.iter().any(|op| {
             matches!(op, Op::Jump(l) if pou.labels.get(l.index()).is_some_and(|t| t.index() == 0))
@@ -445,13 +443,13 @@ impl<'e, 'f> Lower<'e, 'f> {
         for (i, &lead) in info.leader.iter().enumerate() {
             if lead && (i != 0 || top_targeted) {
                 let blk = self.b.create_block();
-                self.leaders.insert(i, blk);
+                self.func.leaders.insert(i, blk);
             }
         }
         // The end of the op list is a leader too, for jumps past the last op.
         let end = pou.ops.len();
         let end_blk = self.b.create_block();
-        self.leaders.insert(end, end_blk);
+        self.func.leaders.insert(end, end_blk);
         self.lower_ops(0..end);
         self.lower_end(end);
     }
@@ -460,27 +458,27 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// and `at` (the op to start at, one of the chunk's planned entries) come from the
     /// dispatcher; leaving the chunk's range returns to it (see [`Lower::exit_chunk_to`]).
     pub(crate) fn lower_chunk(&mut self, k: usize, st_in: Value, at: Value) {
-        let pou = self.env.prog.pou(self.pou);
+        let pou = self.env.prog.pou(self.func.pou);
         let n = pou.ops.len();
-        let Some(plan) = self.env.plans[self.pou.index()].as_ref() else {
-            self.unsupported = Some("chunk of an unsplit POU".into());
+        let Some(plan) = self.env.plans[self.func.pou.index()].as_ref() else {
+            self.func.unsupported = Some("chunk of an unsplit POU".into());
             return;
         };
         let range = plan.range(k, n);
         let last = k + 1 == plan.starts.len();
-        let info = &self.env.info[self.pou.index()];
+        let info = &self.env.info[self.func.pou.index()];
         for i in range.clone() {
             if info.leader[i] || i == range.start {
                 let blk = self.b.create_block();
-                self.leaders.insert(i, blk);
+                self.func.leaders.insert(i, blk);
             }
         }
         if last {
             let end_blk = self.b.create_block();
-            self.leaders.insert(n, end_blk);
+            self.func.leaders.insert(n, end_blk);
         }
-        self.b.def_var(self.st, st_in);
-        let start = self.leaders[&range.start];
+        self.b.def_var(self.func.st, st_in);
+        let start = self.func.leaders[&range.start];
         match plan.entries[k].as_slice() {
             [_] => {
                 self.b.ins().jump(start, &[]);
@@ -488,7 +486,7 @@ impl<'e, 'f> Lower<'e, 'f> {
             entries => {
                 let mut sw = cranelift_frontend::Switch::new();
                 for e in entries {
-                    sw.set_entry(*e as u128, self.leaders[e]);
+                    sw.set_entry(*e as u128, self.func.leaders[e]);
                 }
                 sw.emit(&mut self.b, at, start);
             }
@@ -505,7 +503,7 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// The end of the POU: falls into (or is jumped to as) the final leader and returns 0.
     fn lower_end(&mut self, end: usize) {
-        let Some(&end_blk) = self.leaders.get(&end) else {
+        let Some(&end_blk) = self.func.leaders.get(&end) else {
             return;
         };
         if self.block.open {
@@ -520,11 +518,11 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// Lowers the ops in `range`, starting a new block at every leader.
     fn lower_ops(&mut self, range: std::ops::Range<usize>) {
-        let pou = self.env.prog.pou(self.pou);
+        let pou = self.env.prog.pou(self.func.pou);
         for i in range {
             let op = &pou.ops[i];
-            if let Some(&blk) = self.leaders.get(&i) {
-                let cut = self.env.info[self.pou.index()].cut[i];
+            if let Some(&blk) = self.func.leaders.get(&i) {
+                let cut = self.env.info[self.func.pou.index()].cut[i];
                 if self.block.open && cut {
                     // Only this block falls into a cut: the block state (logic stack, gate,
                     // cached bytes) carries over as it is.

@@ -1,24 +1,62 @@
 //! The lowering's state, grouped by how long it lives.
 //!
 //! [`Lower`](super::Lower) keeps what the whole program shares ([`Env`](super::Env)), the
-//! function builder, and one value per lifetime below it: [`BlockState`] lives for one basic
-//! block and is replaced where a block is entered by a jump (cuts of a long straight run keep
-//! it), and [`BoxState`] lives for one box instruction.
+//! function builder, and one value per lifetime below it: [`FnState`] lives for the function
+//! being built (a POU or one chunk of it), [`BlockState`] for one basic block and is replaced
+//! where a block is entered by a jump (cuts of a long straight run keep it), and [`BoxState`]
+//! for one box instruction.
 
-use super::cache::{Addr, Cache};
+use super::cache::{Addr, Cache, StoreLog};
 use super::value::{B, Stack};
-use cranelift_codegen::ir::Value;
-use cranelift_frontend::FunctionBuilder;
-use stljit_core::Width;
+use crate::helpers::Helper;
+use cranelift_codegen::ir::{Block, FuncRef, Value};
+use cranelift_frontend::{FunctionBuilder, Variable};
+use std::collections::HashMap;
+use stljit_core::{PouId, Width};
+
+/// What holds for the whole function being built: which POU (or chunk) it is, its
+/// parameters and the values derived from them, its blocks and declared callees, and what
+/// the lowering learnt about it so far.
+#[derive(Debug)]
+pub(crate) struct FnState {
+    /// The POU the function belongs to.
+    pub(crate) pou: PouId,
+    /// Lowering one chunk of a split POU: its index in the POU's
+    /// [`ChunkPlan`](crate::analysis::ChunkPlan).
+    pub(crate) chunk: Option<usize>,
+    /// The image's first byte (the function's first parameter).
+    pub(crate) image: Value,
+    /// The first byte of the POU's L frame.
+    pub(crate) lbase: Value,
+    /// The call depth (the function's second parameter; 0 for the main program).
+    pub(crate) call_depth: Value,
+    /// The stack register: the logic stack where it crosses a block boundary.
+    pub(crate) st: Variable,
+    /// The block of every leader op lowered in this function.
+    pub(crate) leaders: HashMap<usize, Block>,
+    /// Runtime shims declared in this function so far.
+    pub(crate) fnrefs: HashMap<Helper, FuncRef>,
+    /// Called POUs declared in this function so far.
+    pub(crate) pou_refs: HashMap<PouId, FuncRef>,
+    /// Recent stores, for [`Lower::test_byte`](super::Lower::test_byte). A block entered by a
+    /// jump marks every byte as stored rather than starting a new log: entries older than the
+    /// mark no longer matter, and the log is as large as the image.
+    pub(crate) stores: StoreLog,
+    /// The first instruction this engine cannot compile, if any.
+    pub(crate) unsupported: Option<String>,
+}
 
 /// What the lowering knows inside one basic block: the logic stack and the gate as
 /// compile-time values, and the image bytes held in SSA values.
 #[derive(Debug)]
 pub(crate) struct BlockState {
+    /// The logic stack, level by level.
     pub(crate) stack: Stack,
     /// The block's entry value of the stack register, to recognise an unchanged stack.
     pub(crate) entry_st: Option<Value>,
+    /// The SCR gate (power flow is `S0 AND gate`).
     pub(crate) gate: B,
+    /// Image bytes read or written recently in this block.
     pub(crate) cache: Cache,
     /// Code still flows here: false after an unconditional transfer until the next leader.
     pub(crate) open: bool,
@@ -26,7 +64,8 @@ pub(crate) struct BlockState {
 
 impl BlockState {
     /// The state in a function's entry block: `stack` as the POU starts with it, the gate
-    /// open (a POU runs only when called with PF = 1), nothing cached.
+    /// open (a POU starts with gate 1: the main program at the start of a scan, a
+    /// subroutine called with PF = 1), nothing cached.
     pub(crate) fn function_entry(stack: Stack) -> BlockState {
         BlockState {
             stack,

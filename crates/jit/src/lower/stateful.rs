@@ -134,7 +134,7 @@ impl Lower<'_, '_> {
     /// [`Lower::counter_ranges`] (image-relative, checked in range at compile time), `ctl`,
     /// the preset.
     fn fast_args(&mut self, r: &[(Addr, u32); 4], ctl: Value, preset: Value) -> [Value; 6] {
-        let image = self.image;
+        let image = self.func.image;
         let p = r.map(|(a, _)| {
             debug_assert!(!a.local, "timer and counter bytes are never in L");
             self.b.ins().iadd_imm_s(image, i64::from(a.off))
@@ -200,7 +200,7 @@ impl Lower<'_, '_> {
                 s.iconst(I32, i64::from(start.area.ffi_code())),
                 s.iconst(I32, i64::from(start.byte)),
                 s.iconst(I32, i64::from(start.bit)),
-                s.depth,
+                s.func.call_depth,
                 n,
                 s.iconst(I32, i64::from(value)),
                 s.iconst(I32, i64::from(immediate)),
@@ -249,7 +249,7 @@ impl Lower<'_, '_> {
     /// Image offset (`i32`) of the current L frame.
     fn frame_off(&mut self) -> Value {
         let size = i64::from(self.env.layout.area_size(Area::L));
-        let d = self.b.ins().imul_imm_s(self.depth, size);
+        let d = self.b.ins().imul_imm_s(self.func.call_depth, size);
         self.b
             .ins()
             .iadd_imm_s(d, i64::from(self.env.layout.base(Area::L)))
@@ -320,7 +320,7 @@ impl Lower<'_, '_> {
                 s.iconst(I32, i64::from(start.area.ffi_code())),
                 s.iconst(I32, i64::from(start.byte)),
                 s.iconst(I32, i64::from(start.bit)),
-                s.depth,
+                s.func.call_depth,
                 n,
             ];
             let st = s.call_helper(Helper::ShiftRegister, &args);
