@@ -46,19 +46,12 @@ impl Lower<'_, '_> {
             }
             _ => {
                 let c = pf.cond(&mut self.b);
-                let taken = self.b.create_block();
-                let cont = self.b.create_block();
-                self.b.ins().brif(c, taken, &[], cont, &[]);
-                self.b.seal_block(taken);
-                self.b.seal_block(cont);
-                self.b.switch_to_block(taken);
-                let saved = self.block.cache.clone();
-                if backward {
-                    self.loop_tick();
-                }
-                self.jump_to_op(target);
-                self.block.cache = saved;
-                self.b.switch_to_block(cont);
+                self.side_exit(c, false, |s| {
+                    if backward {
+                        s.loop_tick();
+                    }
+                    s.jump_to_op(target);
+                });
             }
         }
     }
@@ -73,15 +66,7 @@ impl Lower<'_, '_> {
             }
             _ => {
                 let c = pf.cond(&mut self.b);
-                let (t, cont) = (self.b.create_block(), self.b.create_block());
-                self.b.ins().brif(c, t, &[], cont, &[]);
-                self.b.seal_block(t);
-                self.b.seal_block(cont);
-                self.b.switch_to_block(t);
-                let saved = self.block.cache.clone();
-                self.ret_ok();
-                self.block.cache = saved;
-                self.b.switch_to_block(cont);
+                self.side_exit(c, false, Self::ret_ok);
             }
         }
     }
@@ -284,15 +269,8 @@ impl Lower<'_, '_> {
                     let d1 = s.b.ins().iadd_imm_s(s.func.call_depth, 1);
                     let call = s.b.ins().call(fref, &[s.func.image, d1]);
                     let status = s.b.inst_results(call)[0];
-                    let exit = s.b.create_block();
-                    let cont = s.b.create_block();
-                    s.b.set_cold_block(exit);
-                    s.b.ins().brif(status, exit, &[], cont, &[]);
-                    s.b.seal_block(exit);
-                    s.b.seal_block(cont);
-                    s.b.switch_to_block(exit);
-                    s.return_status(status);
-                    s.b.switch_to_block(cont);
+                    // A callee's fatal error ends this POU too.
+                    s.side_exit(status, true, |s| s.return_status(status));
                 },
             );
         });

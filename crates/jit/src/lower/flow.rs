@@ -1,8 +1,11 @@
-//! Control flow inside one op: two-armed diamonds and the frame every box instruction runs in.
+//! Control flow inside one op: side exits, two-armed diamonds and the frame every box
+//! instruction runs in.
 //!
-//! Both keep the byte cache across the op: every arm starts from a copy of the cache at the
-//! branch, and the join keeps only the entries no arm replaced ([`Cache::meet`]). The logic stack and the gate are untouched by these
-//! ops, so their compile-time values stay valid after the join.
+//! All keep the byte cache across the op: a side exit (a conditional jump, return or fatal
+//! exit) runs on a copy of the cache and the fall-through continues with the original; the
+//! arms of a diamond or box start from a copy of the cache at the branch, and the join keeps
+//! only the entries no arm replaced ([`Cache::meet`]). The logic stack and the gate are
+//! untouched by these ops, so their compile-time values stay valid after the join.
 
 use super::Lower;
 use super::cache::Cache;
@@ -49,6 +52,26 @@ impl Lower<'_, '_> {
         self.b.seal_block(arms.join);
         self.b.switch_to_block(arms.join);
         self.block.cache = Cache::meet(&arms.ends);
+    }
+
+    /// `if cond { exit }`, where `exit` leaves for good (a jump to another block, a return, a
+    /// fatal exit) and `cold` marks it rarely taken. Code continues in a fresh block whose
+    /// only predecessor is the branch, so the block state carries on as it was before the
+    /// exit: the exit starts from a copy of the cache and whatever it forgets stays forgotten
+    /// only there.
+    pub(crate) fn side_exit(&mut self, cond: Value, cold: bool, exit: impl FnOnce(&mut Self)) {
+        let (out, cont) = (self.b.create_block(), self.b.create_block());
+        if cold {
+            self.b.set_cold_block(out);
+        }
+        self.b.ins().brif(cond, out, &[], cont, &[]);
+        self.b.seal_block(out);
+        self.b.seal_block(cont);
+        self.b.switch_to_block(out);
+        let kept = self.block.cache.clone();
+        exit(self);
+        self.block.cache = kept;
+        self.b.switch_to_block(cont);
     }
 
     /// `if cond { then } else { other }` with the cache kept across.

@@ -338,20 +338,9 @@ impl<'e, 'f> Lower<'e, 'f> {
         }
     }
 
-    /// Branches to a fatal exit when `cond` (non-zero) holds; code continues in a fresh block
-    /// that keeps the cache (its only predecessor is this branch).
+    /// Branches to a (cold) fatal exit when `cond` (non-zero) holds.
     pub(crate) fn fatal_if(&mut self, cond: Value, code: FatalCode) {
-        let exit = self.b.create_block();
-        let cont = self.b.create_block();
-        self.b.set_cold_block(exit);
-        self.b.ins().brif(cond, exit, &[], cont, &[]);
-        self.b.seal_block(exit);
-        self.b.seal_block(cont);
-        self.b.switch_to_block(exit);
-        let saved = self.block.cache.clone();
-        self.fatal_here(code);
-        self.block.cache = saved;
-        self.b.switch_to_block(cont);
+        self.side_exit(cond, true, |s| s.fatal_here(code));
     }
 
     // ---- blocks ------------------------------------------------------------------------------
