@@ -5,6 +5,8 @@
 
 use crate::analysis::{self, ChunkPlan};
 use crate::helpers::{Helper, HelperIds};
+use crate::lower::cache::StoreLog;
+use crate::lower::state::{BlockState, FnState};
 use crate::lower::value::Stack;
 use crate::lower::{Env, Lower};
 use crate::{JitError, JitOptions, OptLevel};
@@ -240,40 +242,37 @@ fn lower_fn(
     let (image, depth) = (params[0], params[1]);
     let st = b.declare_var(I32);
     let lbase = frame_base(env, &mut b, pou, image, depth);
-    let mut l = Lower {
-        env,
-        module,
-        b,
+    let func = FnState {
         pou: stljit_core::PouId(pou as u32),
+        chunk,
         image,
         lbase,
-        depth,
+        call_depth: depth,
         st,
-        stack: initial_stack(env, pou),
-        entry_st: None,
-        gate: crate::lower::value::B::K(true),
-        cache: Default::default(),
         leaders: HashMap::new(),
         fnrefs: HashMap::new(),
         pou_refs: HashMap::new(),
-        op: 0,
-        live: true,
-        unsupported: None,
-        pred: None,
-        pred_reads: Vec::new(),
-        free_box: false,
-        chunk,
-        stores: crate::lower::cache::StoreLog::new(
+        stores: StoreLog::new(
             env.layout.size,
             env.layout.area_size(stljit_core::Area::L),
             env.hot_ops,
         ),
+        unsupported: None,
+    };
+    let mut l = Lower {
+        env,
+        module,
+        b,
+        func,
+        block: BlockState::function_entry(initial_stack(env, pou)),
+        in_box: Default::default(),
+        op: 0,
     };
     match chunk {
         None => l.lower_pou(),
         Some(k) => l.lower_chunk(k, params[2], params[3]),
     }
-    let unsupported = l.unsupported.take();
+    let unsupported = l.func.unsupported.take();
     l.b.seal_all_blocks();
     let fc = l.module.isa().frontend_config();
     l.b.finalize(fc);

@@ -72,14 +72,14 @@ impl Lower<'_, '_> {
     ///
     /// [`StoreLog`]: super::cache::StoreLog
     fn write_bit_folded(&mut self, a: Addr, pos: u8, v: Value, from: u8) -> bool {
-        if a.local || self.cache.get(a).is_some() || !self.cold_window(a) {
+        if a.local || self.block.cache.get(a).is_some() || !self.cold_window(a) {
             return false;
         }
         let s = super::value::align(&mut self.b, v, from, pos);
         let first = self.load_window(a);
         let diff = self.b.ins().bxor(s, first);
         let diff = self.b.ins().band_imm_s(diff, 1i64 << pos);
-        let pair = self.b.ins().iconcat(self.image, self.image);
+        let pair = self.b.ins().iconcat(self.func.image, self.func.image);
         let (image, _) = self.b.ins().isplit(pair);
         let second = self.b.ins().load(I32, super::mf(), image, Self::off32(a));
         let new = self.b.ins().bxor(diff, second);
@@ -145,13 +145,13 @@ impl Lower<'_, '_> {
     pub(crate) fn load(&mut self, c: &Contact) {
         let (v, neg) = self.contact(c);
         let v = if neg { v.not(&mut self.b) } else { v };
-        self.stack.push(v);
+        self.block.stack.push(v);
     }
 
     /// `A`/`AN`/`O`/`ON` (and the contact forms): combines the contact into S0.
     pub(crate) fn combine(&mut self, c: &Contact, and: bool) {
         let (v, neg) = self.contact(c);
-        let top = self.stack.top();
+        let top = self.block.stack.top();
         let r = match (and, neg) {
             (true, false) => top.and(&mut self.b, v),
             (true, true) => top.and_not(&mut self.b, v),
@@ -159,52 +159,56 @@ impl Lower<'_, '_> {
             (false, true) => top.or_not(&mut self.b, v),
         };
         let r = self.anchor(r);
-        self.stack.set_top(r);
+        self.block.stack.set_top(r);
     }
 
     /// `NOT`.
     pub(crate) fn not(&mut self) {
-        let t = self.stack.top().not(&mut self.b);
-        self.stack.set_top(t);
+        let t = self.block.stack.top().not(&mut self.b);
+        self.block.stack.set_top(t);
     }
 
     /// `ALD`/`OLD`: pops S0 and combines it into the new S0.
     pub(crate) fn combine_block(&mut self, and: bool) {
-        let s0 = self.stack.pop();
-        let s1 = self.stack.top();
+        let s0 = self.block.stack.pop();
+        let s1 = self.block.stack.top();
         let r = if and {
             s0.and(&mut self.b, s1)
         } else {
             s0.or(&mut self.b, s1)
         };
         let r = self.anchor(r);
-        self.stack.set_top(r);
+        self.block.stack.set_top(r);
     }
 
     /// `LPS`.
     pub(crate) fn dup(&mut self) {
-        let t = self.stack.top();
-        self.stack.push(t);
+        let t = self.block.stack.top();
+        self.block.stack.push(t);
     }
 
     /// `LRD`.
     pub(crate) fn read_second(&mut self) {
-        let s1 = self.stack.level(1);
-        self.stack.set_top(s1);
+        let s1 = self.block.stack.level(1);
+        self.block.stack.set_top(s1);
     }
 
     /// `LDS n`.
     pub(crate) fn pick(&mut self, n: u8) {
-        let v = self.stack.level(usize::from(n));
-        self.stack.push(v);
+        let v = self.block.stack.level(usize::from(n));
+        self.block.stack.push(v);
     }
 
     /// `AENO`.
     pub(crate) fn and_eno(&mut self) {
         let a = self.sched(Sched::ENO);
         let v = self.byte(a);
-        let t = self.stack.top().and(&mut self.b, B::Bit { v, pos: 0 });
-        self.stack.set_top(t);
+        let t = self
+            .block
+            .stack
+            .top()
+            .and(&mut self.b, B::Bit { v, pos: 0 });
+        self.block.stack.set_top(t);
     }
 
     /// `=`/`=I`: the coil writes PF.
@@ -253,7 +257,7 @@ impl Lower<'_, '_> {
             return x;
         }
         let wide = self.b.ins().uextend(I64, v);
-        let pair = self.b.ins().iconcat(wide, self.image);
+        let pair = self.b.ins().iconcat(wide, self.func.image);
         let (lo, _) = self.b.ins().isplit(pair);
         let v = self.b.ins().ireduce(I32, lo);
         if neg {
@@ -267,20 +271,20 @@ impl Lower<'_, '_> {
     /// [`SCR_POLICY`] and the first-scan switch of [`Rules`](stljit_runtime::rules::Rules).
     pub(crate) fn edge(&mut self, slot: u16, falling: bool) {
         if slot >= self.env.layout.profile.profile().max_edges {
-            self.stack.set_top(B::K(false));
+            self.block.stack.set_top(B::K(false));
             return;
         }
         let (v, frozen_unless) = match SCR_POLICY {
             // A closed gate is an input of 0: `v = S0 AND gate`, the memory takes it.
             GatePolicy::S7Scr => (self.pf(), None),
             // A closed gate freezes the memory and outputs 0.
-            GatePolicy::OmronInterlock => match self.gate {
+            GatePolicy::OmronInterlock => match self.block.gate {
                 B::K(false) => {
-                    self.stack.set_top(B::K(false));
+                    self.block.stack.set_top(B::K(false));
                     return;
                 }
-                B::K(true) => (self.stack.top(), None),
-                g => (self.stack.top(), Some(g)),
+                B::K(true) => (self.block.stack.top(), None),
+                g => (self.block.stack.top(), Some(g)),
             },
         };
         // The input as a clean 0/1 first: the edge byte stores it, and at bit 0, where the
@@ -312,7 +316,7 @@ impl Lower<'_, '_> {
             }
         };
         self.set_byte(at, new_mem);
-        self.stack.set_top(out);
+        self.block.stack.set_top(out);
     }
 
     /// `S`/`R`/`SI`/`RI`: inline when the count is a constant; otherwise the runtime does it.
@@ -414,7 +418,7 @@ impl Lower<'_, '_> {
     /// bits) in the byte at `a`. The old byte is a folded 32-bit load where the four bytes
     /// from `a` are cold and uncached (the `or`/`andn` takes it as its memory operand).
     fn merge_mask(&mut self, a: Addr, m: Value, value: bool) {
-        let folded = self.cache.get(a).is_none() && self.cold_window(a);
+        let folded = self.block.cache.get(a).is_none() && self.cold_window(a);
         let old = if folded {
             self.load_window(a)
         } else {

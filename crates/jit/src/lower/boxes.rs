@@ -10,6 +10,7 @@
 use super::Lower;
 use super::cache::Addr;
 use super::mem::{OnFail, Place};
+use super::state::BoxState;
 use super::value::B;
 use crate::helpers::Helper;
 use cranelift_codegen::ir::{
@@ -102,9 +103,9 @@ impl Lower<'_, '_> {
     }
 
     pub(crate) fn lower_box(&mut self, bx: &BoxOp) {
-        self.free_box = self.branch_free(bx);
+        self.in_box = BoxState::new(self.branch_free(bx));
         self.lower_box_op(bx);
-        self.free_box = false;
+        self.in_box = BoxState::default();
     }
 
     fn lower_box_op(&mut self, bx: &BoxOp) {

@@ -61,6 +61,14 @@ pub(crate) struct Cache {
 }
 
 impl Cache {
+    /// An empty cache whose op clock is at `now`.
+    pub(crate) fn at(now: usize) -> Cache {
+        Cache {
+            map: BTreeMap::new(),
+            now,
+        }
+    }
+
     /// The cached value of a byte, if recent enough.
     pub(crate) fn get(&self, a: Addr) -> Option<Value> {
         self.map

@@ -42,23 +42,16 @@ impl Lower<'_, '_> {
                     self.loop_tick();
                 }
                 self.jump_to_op(target);
-                self.live = false;
+                self.block.open = false;
             }
             _ => {
                 let c = pf.cond(&mut self.b);
-                let taken = self.b.create_block();
-                let cont = self.b.create_block();
-                self.b.ins().brif(c, taken, &[], cont, &[]);
-                self.b.seal_block(taken);
-                self.b.seal_block(cont);
-                self.b.switch_to_block(taken);
-                let saved = self.cache.clone();
-                if backward {
-                    self.loop_tick();
-                }
-                self.jump_to_op(target);
-                self.cache = saved;
-                self.b.switch_to_block(cont);
+                self.side_exit(c, false, |s| {
+                    if backward {
+                        s.loop_tick();
+                    }
+                    s.jump_to_op(target);
+                });
             }
         }
     }
@@ -69,19 +62,11 @@ impl Lower<'_, '_> {
             B::K(false) => {}
             B::K(true) => {
                 self.ret_ok();
-                self.live = false;
+                self.block.open = false;
             }
             _ => {
                 let c = pf.cond(&mut self.b);
-                let (t, cont) = (self.b.create_block(), self.b.create_block());
-                self.b.ins().brif(c, t, &[], cont, &[]);
-                self.b.seal_block(t);
-                self.b.seal_block(cont);
-                self.b.switch_to_block(t);
-                let saved = self.cache.clone();
-                self.ret_ok();
-                self.cache = saved;
-                self.b.switch_to_block(cont);
+                self.side_exit(c, false, Self::ret_ok);
             }
         }
     }
@@ -96,11 +81,11 @@ impl Lower<'_, '_> {
         let cont = self.b.create_block();
         self.b.ins().jump(cont, &[]);
         self.b.seal_block(cont);
-        let saved = std::mem::take(&mut self.cache);
+        let saved = std::mem::take(&mut self.block.cache);
         self.b.switch_to_block(err);
         self.record_error(code);
         self.jump_to_op(past);
-        self.cache = saved;
+        self.block.cache = saved;
         self.b.switch_to_block(cont);
         err
     }
@@ -112,7 +97,7 @@ impl Lower<'_, '_> {
         let pf = self.pf();
         let not_pf = pf.not(&mut self.b);
         self.branch_if(not_pf, past, false);
-        if !self.live {
+        if !self.block.open {
             return;
         }
         let err = self.loop_fail_block(past);
@@ -128,16 +113,16 @@ impl Lower<'_, '_> {
         let l16 = self.b.ins().ireduce(I16, last);
         let over = self.b.ins().icmp(IntCC::SignedGreaterThan, f16, l16);
         let over = self.b.ins().uextend(I32, over);
-        let top = self.stack.top();
-        self.stack.set_top(B::K(true));
+        let top = self.block.stack.top();
+        self.block.stack.set_top(B::K(true));
         self.branch_if(B::Bit { v: over, pos: 0 }, past, false);
-        self.stack.set_top(top);
+        self.block.stack.set_top(top);
     }
 
     /// `NEXT` (interpreter `exec_next`): S0 = 1; INDX += 1 (wrapping); loop back (counting the
     /// budget) while INDX <= FINAL; an operand error records it and leaves the loop.
     fn lower_next(&mut self, index: &Operand, limit: &Operand, body: usize) {
-        self.stack.set_top(B::K(true));
+        self.block.stack.set_top(B::K(true));
         let past = self.op + 1;
         let err = self.loop_fail_block(past);
         let fail = OnFail::Branch(err);
@@ -158,7 +143,7 @@ impl Lower<'_, '_> {
 
     /// `JMP n`: to the label's op if PF (a backward jump counts a loop event).
     pub(crate) fn jump(&mut self, l: LabelId) {
-        let target = self.env.prog.pou(self.pou).label_target(l).index();
+        let target = self.env.prog.pou(self.func.pou).label_target(l).index();
         let pf = self.pf();
         self.branch_if(pf, target, target <= self.op);
     }
@@ -204,7 +189,7 @@ impl Lower<'_, '_> {
 
     /// `NEXT` of the `FOR` at op `head`.
     pub(crate) fn next(&mut self, head: usize) {
-        let pou = self.env.prog.pou(self.pou);
+        let pou = self.env.prog.pou(self.func.pou);
         if let Some(Op::For { index, limit, .. }) = pou.ops.get(head) {
             self.lower_next(index, limit, head + 1)
         }
@@ -216,8 +201,8 @@ impl Lower<'_, '_> {
         let a = self.sched(Sched::SCR_ENABLE);
         let v01 = v.to01(&mut self.b);
         self.set_byte(a, v01);
-        self.gate = v;
-        self.stack.push(v);
+        self.block.gate = v;
+        self.block.stack.push(v);
     }
 
     /// `SCRT`: if PF, sets `to` and resets `from`.
@@ -246,7 +231,7 @@ impl Lower<'_, '_> {
         let a = self.sched(Sched::SCR_ENABLE);
         let one = self.iconst(I32, 1);
         self.set_byte(a, one);
-        self.gate = B::K(true);
+        self.block.gate = B::K(true);
     }
 
     /// `CALL`: if PF, the callee runs one frame deeper with a fresh stack (its own function);
@@ -262,41 +247,34 @@ impl Lower<'_, '_> {
             .info
             .get(callee.index())
             .is_some_and(|i| i.exits_one);
-        let fref = match self.pou_refs.get(&callee) {
+        let fref = match self.func.pou_refs.get(&callee) {
             Some(f) => *f,
             None => {
                 let id = self.env.pou_funcs[callee.index()];
                 let f = self.module.declare_func_in_func(id, self.b.func);
-                self.pou_refs.insert(callee, f);
+                self.func.pou_refs.insert(callee, f);
                 f
             }
         };
-        let gate_before = self.gate;
+        let gate_before = self.block.gate;
         self.guarded(pf, |s| {
             let too_deep =
                 s.b.ins()
-                    .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, s.depth, max);
+                    .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, s.func.call_depth, max);
             s.diamond(
                 too_deep,
                 |s| s.record_error_k(ErrorCode::CallNesting),
                 |s| {
                     s.forget_all();
-                    let d1 = s.b.ins().iadd_imm_s(s.depth, 1);
-                    let call = s.b.ins().call(fref, &[s.image, d1]);
+                    let d1 = s.b.ins().iadd_imm_s(s.func.call_depth, 1);
+                    let call = s.b.ins().call(fref, &[s.func.image, d1]);
                     let status = s.b.inst_results(call)[0];
-                    let exit = s.b.create_block();
-                    let cont = s.b.create_block();
-                    s.b.set_cold_block(exit);
-                    s.b.ins().brif(status, exit, &[], cont, &[]);
-                    s.b.seal_block(exit);
-                    s.b.seal_block(cont);
-                    s.b.switch_to_block(exit);
-                    s.return_status(status);
-                    s.b.switch_to_block(cont);
+                    // A callee's fatal error ends this POU too.
+                    s.side_exit(status, true, |s| s.return_status(status));
                 },
             );
         });
-        self.gate = if exits_one {
+        self.block.gate = if exits_one {
             gate_before
         } else {
             self.gate_reload()

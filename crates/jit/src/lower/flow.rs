@@ -1,12 +1,16 @@
-//! Control flow inside one op: two-armed diamonds and the frame every box instruction runs in.
+//! Control flow inside one op: side exits, two-armed diamonds and the frame every box
+//! instruction runs in.
 //!
-//! Both keep the byte cache across the op: every arm starts from a copy of the cache at the
-//! branch, and the join keeps only the entries no arm replaced ([`Cache::meet`]). The logic stack and the gate are untouched by these
-//! ops, so their compile-time values stay valid after the join.
+//! All keep the byte cache across the op: a side exit (a conditional jump, return or fatal
+//! exit) runs on a copy of the cache and the fall-through continues with the original; the
+//! arms of a diamond or box start from a copy of the cache at the branch, and the join keeps
+//! only the entries no arm replaced ([`Cache::meet`]). The logic stack and the gate are
+//! untouched by these ops, so their compile-time values stay valid after the join.
 
 use super::Lower;
 use super::cache::Cache;
 use super::mem::OnFail;
+use super::state::Pred;
 use super::value::B;
 use cranelift_codegen::ir::{Block, InstBuilder, Value, types::I32};
 
@@ -25,7 +29,7 @@ impl Lower<'_, '_> {
     /// [`Lower::join_arms`] continues at `join` with the entries no arm changed.
     pub(crate) fn fork(&self, join: Block) -> Arms {
         Arms {
-            start: self.cache.clone(),
+            start: self.block.cache.clone(),
             ends: Vec::with_capacity(3),
             join,
         }
@@ -34,12 +38,12 @@ impl Lower<'_, '_> {
     /// Continues in `block`, an arm, with the cache of the branch.
     pub(crate) fn start_arm(&mut self, arms: &Arms, block: Block) {
         self.b.switch_to_block(block);
-        self.cache = arms.start.clone();
+        self.block.cache = arms.start.clone();
     }
 
     /// Ends the current arm: remembers its cache and jumps to the join.
     pub(crate) fn end_arm(&mut self, arms: &mut Arms) {
-        arms.ends.push(std::mem::take(&mut self.cache));
+        arms.ends.push(std::mem::take(&mut self.block.cache));
         self.b.ins().jump(arms.join, &[]);
     }
 
@@ -47,7 +51,27 @@ impl Lower<'_, '_> {
     pub(crate) fn join_arms(&mut self, arms: Arms) {
         self.b.seal_block(arms.join);
         self.b.switch_to_block(arms.join);
-        self.cache = Cache::meet(&arms.ends);
+        self.block.cache = Cache::meet(&arms.ends);
+    }
+
+    /// `if cond { exit }`, where `exit` leaves for good (a jump to another block, a return, a
+    /// fatal exit) and `cold` marks it rarely taken. Code continues in a fresh block whose
+    /// only predecessor is the branch, so the block state carries on as it was before the
+    /// exit: the exit starts from a copy of the cache and whatever it forgets stays forgotten
+    /// only there.
+    pub(crate) fn side_exit(&mut self, cond: Value, cold: bool, exit: impl FnOnce(&mut Self)) {
+        let (out, cont) = (self.b.create_block(), self.b.create_block());
+        if cold {
+            self.b.set_cold_block(out);
+        }
+        self.b.ins().brif(cond, out, &[], cont, &[]);
+        self.b.seal_block(out);
+        self.b.seal_block(cont);
+        self.b.switch_to_block(out);
+        let kept = self.block.cache.clone();
+        exit(self);
+        self.block.cache = kept;
+        self.b.switch_to_block(cont);
     }
 
     /// `if cond { then } else { other }` with the cache kept across.
@@ -85,7 +109,7 @@ impl Lower<'_, '_> {
             self.set_eno(B::K(false));
             return;
         }
-        if self.free_box {
+        if self.in_box.free {
             self.boxed_free(pf, run);
             return;
         }
@@ -145,16 +169,14 @@ impl Lower<'_, '_> {
     /// leaves exactly the bytes of the branching form without splitting the block, so the byte
     /// cache stays valid across the box.
     fn boxed_free(&mut self, pf: B, run: impl FnOnce(&mut Self, OnFail) -> B) {
-        self.pred = match pf {
+        self.in_box.pred = match pf {
             B::K(_) => None,
-            B::Bit { .. } | B::Not { .. } => Some(pf.cond(&mut self.b)),
+            B::Bit { .. } | B::Not { .. } => Some(Pred::new(pf.cond(&mut self.b))),
         };
-        self.pred_reads.clear();
         // No operand is a pointer, so nothing takes this failure path; a compare's fatal code
         // is only a placeholder.
         let ok = run(self, OnFail::Fatal(stljit_core::FatalCode::CompareIndirect));
-        self.pred = None;
-        self.pred_reads.clear();
+        self.in_box.pred = None;
         let eno = pf.and(&mut self.b, ok);
         self.set_eno(eno);
     }

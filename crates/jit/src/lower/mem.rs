@@ -49,7 +49,7 @@ impl Lower<'_, '_> {
             return self.byte(a);
         }
         let n = width.bytes();
-        if (0..n).all(|i| self.cache.get(a.plus(i)).is_some()) {
+        if (0..n).all(|i| self.block.cache.get(a.plus(i)).is_some()) {
             // All bytes are in registers (typically just written): assemble them.
             let mut acc = self.byte(a);
             for i in 1..n {
@@ -59,15 +59,15 @@ impl Lower<'_, '_> {
             }
             return acc;
         }
-        if self.pred.is_some()
-            && let Some(&(_, _, v)) = self.pred_reads.iter().find(|r| r.0 == a && r.1 == width)
+        if let Some(pred) = &self.in_box.pred
+            && let Some(&(_, _, v)) = pred.reads.iter().find(|r| r.0 == a && r.1 == width)
         {
             return v;
         }
         let base = self.base(a);
         let v = self.load_be(base, a.off as i32, width);
-        if self.pred.is_some() {
-            self.pred_reads.push((a, width, v));
+        if let Some(pred) = &mut self.in_box.pred {
+            pred.reads.push((a, width, v));
         }
         v
     }
@@ -107,7 +107,7 @@ impl Lower<'_, '_> {
     /// Writes the low `width` bytes of `v` (an `i32`) big-endian at a static address.
     /// Inside a branch-free box the write keeps the old value where PF is 0.
     pub(crate) fn write_static(&mut self, a: Addr, width: Width, v: Value) {
-        let v = match self.pred {
+        let v = match self.in_box.pf() {
             Some(p) => {
                 let old = self.read_static(a, width);
                 self.b.ins().select(p, v, old)
@@ -131,22 +131,24 @@ impl Lower<'_, '_> {
                         self.b.ins().ushr_imm_s(v, i64::from(sh))
                     };
                     let m = self.b.ins().band_imm_s(s, 0xFF);
-                    self.cache.put_clean(a.plus(i), m);
+                    self.block.cache.put_clean(a.plus(i), m);
                 }
-                self.stores.stored(a, n, self.cache.now);
+                self.func.stores.stored(a, n, self.block.cache.now);
                 let base = self.base(a);
                 self.store_be(base, a.off as i32, width, v);
             }
         }
         // A later read inside the same box must see this write, not a recorded old value.
-        self.pred_reads.clear();
+        if let Some(pred) = &mut self.in_box.pred {
+            pred.reads.clear();
+        }
     }
 
     /// Resolves a pointer held at `loc` for a `width` access; on failure takes `fail`.
     fn resolve(&mut self, loc: Loc, width: Width, write: bool, fail: OnFail) -> Value {
         let (off, _) = self.resolve_off(loc, width, write, fail);
         let off = self.b.ins().uextend(I64, off);
-        self.b.ins().iadd(self.image, off)
+        self.b.ins().iadd(self.func.image, off)
     }
 
     /// Resolves a pointer held at `loc`: its image offset (`i32`) and the raw pointer.

@@ -9,9 +9,11 @@
 //! Straight-line code between two block leaders (see [`crate::analysis`]) is lowered with the
 //! logic stack as compile-time booleans ([`value::Stack`]), packed into the stack register (its
 //! live levels only) where a block ends, and with recently read or written image bytes reused
-//! from SSA values ([`cache::Cache`]); writes are stored at once. Both carry across the cuts of
-//! long straight runs, which are entered only by falling through. The submodules lower the instruction groups: bit logic, boxes, control flow, memory
-//! operands and the stateful instructions that call the runtime.
+//! from SSA values ([`cache::Cache`]); writes are stored at once. Both are the block's
+//! [`BlockState`], which a block entered by a jump starts afresh and the cuts of long straight
+//! runs, entered only by falling through, keep ([`state`] groups the lowering's state by
+//! lifetime). The submodules lower the instruction groups: bit logic, boxes, control flow,
+//! memory operands and the stateful instructions that call the runtime.
 
 pub(crate) mod bits;
 pub(crate) mod boxes;
@@ -19,25 +21,26 @@ pub(crate) mod cache;
 pub(crate) mod control;
 pub(crate) mod flow;
 pub(crate) mod mem;
+pub(crate) mod state;
 pub(crate) mod stateful;
 pub(crate) mod value;
 
 use crate::analysis::{ChunkPlan, PouInfo};
 use crate::helpers::{Helper, HelperIds};
-use cache::{Addr, Cache, StoreLog};
+use cache::Addr;
 use cranelift_codegen::ir::{
-    Block, FuncRef, InstBuilder, MemFlagsData, SourceLoc, Type, Value,
+    Block, InstBuilder, MemFlagsData, SourceLoc, Type, Value,
     types::{I16, I32, I64},
 };
-use cranelift_frontend::{FunctionBuilder, Variable};
+use cranelift_frontend::FunctionBuilder;
 use cranelift_jit::JITModule;
 use cranelift_module::{FuncId, Module};
-use std::collections::HashMap;
+use state::{BlockState, BoxState, FnState};
 use stljit_core::ir::{Op, Program};
 use stljit_core::layout::{Layout, Sched};
-use stljit_core::{Area, ErrorCode, FatalCode, PouId, ScanStatus};
+use stljit_core::{Area, ErrorCode, FatalCode, ScanStatus};
 use stljit_runtime::rules::Rules;
-use value::{B, Stack};
+use value::B;
 
 /// What all POU functions of one program share.
 pub(crate) struct Env<'a> {
@@ -64,62 +67,43 @@ pub(crate) fn mf() -> MemFlagsData {
     MemFlagsData::new().with_notrap()
 }
 
-/// The state of lowering one POU.
+/// The state of lowering one function (a POU, or one chunk of a split POU), one field per
+/// lifetime: the program's [`Env`] and module, the function's builder and [`FnState`], the
+/// current [`BlockState`], op and [`BoxState`].
 pub(crate) struct Lower<'e, 'f> {
     pub(crate) env: &'e Env<'e>,
     pub(crate) module: &'e mut JITModule,
     pub(crate) b: FunctionBuilder<'f>,
-    pub(crate) pou: PouId,
-    pub(crate) image: Value,
-    pub(crate) lbase: Value,
-    pub(crate) depth: Value,
-    pub(crate) st: Variable,
-    pub(crate) stack: Stack,
-    /// The block's entry value of `st`, to recognise an unchanged stack.
-    pub(crate) entry_st: Option<Value>,
-    pub(crate) gate: B,
-    pub(crate) cache: Cache,
-    pub(crate) leaders: HashMap<usize, Block>,
-    pub(crate) fnrefs: HashMap<Helper, FuncRef>,
-    pub(crate) pou_refs: HashMap<PouId, FuncRef>,
+    /// The function being built.
+    pub(crate) func: FnState,
+    /// The basic block being lowered.
+    pub(crate) block: BlockState,
     /// The op being lowered (recorded as the error site).
     pub(crate) op: usize,
-    /// False after an unconditional transfer until the next leader.
-    pub(crate) live: bool,
-    /// The first instruction this engine cannot compile, if any.
-    pub(crate) unsupported: Option<String>,
-    /// While a box is lowered branch-free: its power flow (non-zero = run). Writes of OUT and
-    /// SMB1 then keep the old value where it is zero (see [`Lower::set_byte_pred`]).
-    pub(crate) pred: Option<Value>,
-    /// Multi-byte values read during the current branch-free box, reused as the "old" value of
-    /// a predicated write (every write of such a box is a no-op when PF is 0, so any value read
-    /// inside it is the value at its start).
-    pub(crate) pred_reads: Vec<(Addr, stljit_core::Width, Value)>,
-    /// The box being lowered has no pointer operand and no static error: lower it branch-free.
-    pub(crate) free_box: bool,
-    /// Lowering one chunk of a split POU: its index in the POU's [`ChunkPlan`].
-    pub(crate) chunk: Option<usize>,
-    /// Recent stores, for [`Lower::test_byte`].
-    pub(crate) stores: StoreLog,
+    /// The box instruction being lowered.
+    pub(crate) in_box: BoxState,
 }
 
 impl<'e, 'f> Lower<'e, 'f> {
-    pub(crate) fn depth(&self) -> u8 {
+    /// The number of logic-stack levels (the program's `logic_stack_depth`).
+    pub(crate) fn stack_depth(&self) -> u8 {
         self.env.prog.logic_stack_depth
     }
 
     /// `PF = S0 AND gate`.
     pub(crate) fn pf(&mut self) -> B {
-        let top = self.stack.top();
-        let gate = self.gate;
-        top.and(&mut self.b, gate)
+        self.block.pf(&mut self.b)
     }
 
     // ---- raw memory --------------------------------------------------------------------------
 
     /// The base pointer of an address.
     pub(crate) fn base(&self, a: Addr) -> Value {
-        if a.local { self.lbase } else { self.image }
+        if a.local {
+            self.func.lbase
+        } else {
+            self.func.image
+        }
     }
 
     fn off32(a: Addr) -> i32 {
@@ -129,23 +113,23 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// A byte through the cache.
     pub(crate) fn byte(&mut self, a: Addr) -> Value {
-        if let Some(v) = self.cache.get(a) {
+        if let Some(v) = self.block.cache.get(a) {
             return v;
         }
         let base = self.base(a);
         let v = self.b.ins().uload8(I32, mf(), base, Self::off32(a));
-        self.cache.put_clean(a, v);
+        self.block.cache.put_clean(a, v);
         v
     }
 
     /// A byte for a bit test, as a value and the bit where the byte's bit 0 sits in it: the
     /// cached byte (at 0), or else a plain 32-bit load of four bytes around it that were not
-    /// stored recently (see [`StoreLog`]), which x86 folds into the consuming `and`/`or`/`andn`
+    /// stored recently (see [`StoreLog`](cache::StoreLog)), which x86 folds into the consuming `and`/`or`/`andn`
     /// (little-endian: the byte `k` bytes into the load is at bit `8 * k`; the other bytes
     /// are garbage to a [`B`]). The aligned word comes first, so that tests of neighbouring
     /// bytes share one load. Loads are not cached: the cache holds clean bytes.
     pub(crate) fn test_byte(&mut self, a: Addr) -> (Value, u8) {
-        if self.cache.get(a).is_none() {
+        if self.block.cache.get(a).is_none() {
             let aligned = a.off & !3;
             let starts = std::iter::once(aligned)
                 .chain((a.off.saturating_sub(3)..=a.off).filter(|&s| s != aligned));
@@ -164,7 +148,7 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// Whether a 32-bit load of the four bytes from `w` stays inside the image (or L frame),
     /// does not cross a 16-byte boundary of the image and overlaps no recent store (see
-    /// [`StoreLog`]). The system allocator aligns the image buffer to 16 bytes on the hosts we
+    /// [`StoreLog`](cache::StoreLog)). The system allocator aligns the image buffer to 16 bytes on the hosts we
     /// run on, so such a load never splits across cache lines; elsewhere it is only slower.
     pub(crate) fn cold_window(&self, w: Addr) -> bool {
         let room = if w.local {
@@ -172,7 +156,9 @@ impl<'e, 'f> Lower<'e, 'f> {
         } else {
             self.env.layout.size
         };
-        w.off % 16 <= 12 && w.off + 4 <= room && self.stores.is_cold(w, 4, self.cache.now)
+        w.off % 16 <= 12
+            && w.off + 4 <= room
+            && self.func.stores.is_cold(w, 4, self.block.cache.now)
     }
 
     /// A plain 32-bit load of the four bytes from `w` (foldable into the instruction that
@@ -184,8 +170,8 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// Stores the low byte of `v` (whose upper bits may be garbage, so it is not cached).
     pub(crate) fn store_low_byte(&mut self, a: Addr, v: Value) {
-        self.stores.stored(a, 1, self.cache.now);
-        self.cache.forget(a, 1);
+        self.func.stores.stored(a, 1, self.block.cache.now);
+        self.block.cache.forget(a, 1);
         let base = self.base(a);
         self.b.ins().istore8(mf(), v, base, Self::off32(a));
     }
@@ -194,16 +180,16 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// value stays cached: keeping writes in registers until the block ends made every value
     /// of the block live to its end, which the register allocator paid for with spills.
     pub(crate) fn set_byte(&mut self, a: Addr, v: Value) {
-        self.stores.stored(a, 1, self.cache.now);
+        self.func.stores.stored(a, 1, self.block.cache.now);
         let base = self.base(a);
         self.b.ins().istore8(mf(), v, base, Self::off32(a));
-        self.cache.put_clean(a, v);
+        self.block.cache.put_clean(a, v);
     }
 
     /// Writes a byte through the cache, keeping the old value where the current box predicate
     /// is zero.
     pub(crate) fn set_byte_pred(&mut self, a: Addr, v: Value) {
-        let v = match self.pred {
+        let v = match self.in_box.pf() {
             Some(p) => {
                 let old = self.byte(a);
                 self.b.ins().select(p, v, old)
@@ -216,8 +202,8 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// Forgets every cached byte and counts every byte as just stored (before code that may
     /// write anywhere).
     pub(crate) fn forget_all(&mut self) {
-        self.cache.clear();
-        self.stores.stored_anywhere(self.cache.now);
+        self.block.cache.clear();
+        self.func.stores.stored_anywhere(self.block.cache.now);
     }
 
     /// Loads `ty` in native byte order at a static address (scheduler fields).
@@ -229,8 +215,8 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// Stores `v` (of type `ty`) in native byte order at a static address.
     pub(crate) fn store_ne(&mut self, a: Addr, v: Value) {
         let ty = self.b.func.dfg.value_type(v);
-        self.cache.forget(a, ty.bytes());
-        self.stores.stored(a, ty.bytes(), self.cache.now);
+        self.block.cache.forget(a, ty.bytes());
+        self.func.stores.stored(a, ty.bytes(), self.block.cache.now);
         let base = self.base(a);
         self.b.ins().store(mf(), v, base, Self::off32(a));
     }
@@ -271,26 +257,26 @@ impl<'e, 'f> Lower<'e, 'f> {
     ) -> Value {
         let r = self.call_pure(h, args);
         for &(a, n) in ranges {
-            self.cache.forget(a, n);
-            self.stores.stored(a, n, self.cache.now);
+            self.block.cache.forget(a, n);
+            self.func.stores.stored(a, n, self.block.cache.now);
         }
         r
     }
 
     /// Calls a runtime shim that never touches the image.
     pub(crate) fn call_pure(&mut self, h: Helper, args: &[Value]) -> Value {
-        let fref = match self.fnrefs.get(&h) {
+        let fref = match self.func.fnrefs.get(&h) {
             Some(f) => *f,
             None => {
                 let id = self.env.helpers.id(h);
                 let f = self.module.declare_func_in_func(id, self.b.func);
-                self.fnrefs.insert(h, f);
+                self.func.fnrefs.insert(h, f);
                 f
             }
         };
         let mut all = Vec::with_capacity(args.len() + 2);
         if h.takes_image() {
-            all.push(self.image);
+            all.push(self.func.image);
             let layout = self.iconst(I64, self.env.layout_ptr);
             all.push(layout);
         }
@@ -310,7 +296,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     }
 
     fn record_site(&mut self) {
-        let pou = self.iconst(I16, i64::from(self.pou.0 as u16));
+        let pou = self.iconst(I16, i64::from(self.func.pou.0 as u16));
         let a = self.sched(Sched::ERR_POU);
         self.store_ne(a, pou);
         let op = self.iconst(I32, self.op as i64);
@@ -344,7 +330,7 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// Leaves the POU with `status` (an `i32`: 0 = continue, else the scan's status). A chunk
     /// function returns it as an `i64` whose upper half 0 means "the POU returns".
     pub(crate) fn return_status(&mut self, status: Value) {
-        if self.chunk.is_some() {
+        if self.func.chunk.is_some() {
             let r = self.b.ins().uextend(I64, status);
             self.b.ins().return_(&[r]);
         } else {
@@ -352,66 +338,41 @@ impl<'e, 'f> Lower<'e, 'f> {
         }
     }
 
-    /// Branches to a fatal exit when `cond` (non-zero) holds; code continues in a fresh block
-    /// that keeps the cache (its only predecessor is this branch).
+    /// Branches to a (cold) fatal exit when `cond` (non-zero) holds.
     pub(crate) fn fatal_if(&mut self, cond: Value, code: FatalCode) {
-        let exit = self.b.create_block();
-        let cont = self.b.create_block();
-        self.b.set_cold_block(exit);
-        self.b.ins().brif(cond, exit, &[], cont, &[]);
-        self.b.seal_block(exit);
-        self.b.seal_block(cont);
-        self.b.switch_to_block(exit);
-        let saved = self.cache.clone();
-        self.fatal_here(code);
-        self.cache = saved;
-        self.b.switch_to_block(cont);
+        self.side_exit(cond, true, |s| s.fatal_here(code));
     }
 
     // ---- blocks ------------------------------------------------------------------------------
 
-    /// Writes the stack register back (end of a block that continues at op `target`). Levels that are dead at `target` ([`crate::analysis::PouInfo`]'s
-    /// `stack_live`) are packed as 0: nothing reads them, and most of a long program's stack
-    /// is old rungs' results that later pushes drop off the bottom.
+    /// Writes the stack register back (end of a block that continues at op `target`), with
+    /// the levels live at `target` ([`crate::analysis::PouInfo`]'s `stack_live`).
     pub(crate) fn spill_state(&mut self, target: usize) {
-        let live = self.env.info[self.pou.index()]
+        let live = self.env.info[self.func.pou.index()]
             .stack_live
             .get(target)
             .copied()
             .unwrap_or(u32::MAX);
-        let stack = self.stack.keeping(live);
-        let unchanged = self.entry_st.is_some_and(|st| {
-            stack.lv.iter().enumerate().all(|(i, l)| {
-                live & (1 << i) == 0
-                    || *l
-                        == B::Bit {
-                            v: st,
-                            pos: i as u8,
-                        }
-            })
-        });
-        if !unchanged {
-            let r = stack.to_reg(&mut self.b);
-            self.b.def_var(self.st, r);
+        if let Some(r) = self.block.pack(live, &mut self.b) {
+            self.b.def_var(self.func.st, r);
         }
     }
 
-    /// Starts lowering in `block` with state reloaded from the image and the stack register.
-    pub(crate) fn enter(&mut self, block: Block, at_op: usize) {
+    /// Starts lowering in `blk`, a block reached by a jump (or an unreachable one), with a
+    /// fresh [`BlockState`]: the stack from the stack register, the gate from the analysis or
+    /// the image.
+    pub(crate) fn enter(&mut self, blk: Block, at_op: usize) {
         // Reached by a jump or as a function entry: earlier stores are not in the log.
-        self.stores.stored_anywhere(at_op);
-        self.b.switch_to_block(block);
-        self.cache.clear();
-        let st = self.b.use_var(self.st);
-        self.entry_st = Some(st);
-        self.stack = Stack::from_reg(st, self.depth());
-        self.gate = self.gate_at(at_op);
-        self.live = true;
+        self.func.stores.stored_anywhere(at_op);
+        self.b.switch_to_block(blk);
+        let st = self.b.use_var(self.func.st);
+        self.block = BlockState::unpack(st, self.stack_depth(), self.block.cache.now);
+        self.block.gate = self.gate_at(at_op);
     }
 
     /// The gate at the start of op `at` of this POU: 1 where the analysis proves it, else read.
     pub(crate) fn gate_at(&mut self, at: usize) -> B {
-        let known = self.env.info[self.pou.index()]
+        let known = self.env.info[self.func.pou.index()]
             .gate_one
             .get(at)
             .copied()
@@ -427,10 +388,10 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// Ends the current block with a jump to the leader at op `target`.
     pub(crate) fn jump_to_op(&mut self, target: usize) {
-        if let Some(&blk) = self.leaders.get(&target) {
+        if let Some(&blk) = self.func.leaders.get(&target) {
             self.spill_state(target);
             self.b.ins().jump(blk, &[]);
-        } else if let Some(k) = self.chunk {
+        } else if let Some(k) = self.func.chunk {
             self.exit_chunk_to(k, target);
         } else {
             // The analysis makes every target a leader; returning keeps codegen total anyway.
@@ -441,14 +402,14 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// Leaves chunk `k` to continue at op `target` of another chunk: returns
     /// `(target + 1) << 32 | stack register` to the POU's dispatcher.
     fn exit_chunk_to(&mut self, k: usize, target: usize) {
-        let plan = self.env.plans[self.pou.index()].as_ref();
+        let plan = self.env.plans[self.func.pou.index()].as_ref();
         let planned = plan.is_some_and(|p| p.entries[p.chunk_of(target)].contains(&target));
-        if !planned && self.unsupported.is_none() {
+        if !planned && self.func.unsupported.is_none() {
             // The plan lists every cross-chunk target; anything else is a bug in this crate.
-            self.unsupported = Some(format!("chunk {k}: unplanned exit to op {target}"));
+            self.func.unsupported = Some(format!("chunk {k}: unplanned exit to op {target}"));
         }
         self.spill_state(target);
-        let st = self.b.use_var(self.st);
+        let st = self.b.use_var(self.func.st);
         let st = self.b.ins().uextend(I64, st);
         let r = self.b.ins().bor_imm_s(st, ((target as i64) + 1) << 32);
         self.b.ins().return_(&[r]);
@@ -462,8 +423,8 @@ impl<'e, 'f> Lower<'e, 'f> {
 
     /// Lowers the whole POU as one function.
     pub(crate) fn lower_pou(&mut self) {
-        let pou = self.env.prog.pou(self.pou);
-        let info = &self.env.info[self.pou.index()];
+        let pou = self.env.prog.pou(self.func.pou);
+        let info = &self.env.info[self.func.pou.index()];
         // Op 0 needs a block only when a jump targets it (a loop to the top of the POU).
         let top_targeted = pou.ops.iter().any(|op| {
             matches!(op, Op::Jump(l) if pou.labels.get(l.index()).is_some_and(|t| t.index() == 0))
@@ -471,13 +432,13 @@ impl<'e, 'f> Lower<'e, 'f> {
         for (i, &lead) in info.leader.iter().enumerate() {
             if lead && (i != 0 || top_targeted) {
                 let blk = self.b.create_block();
-                self.leaders.insert(i, blk);
+                self.func.leaders.insert(i, blk);
             }
         }
         // The end of the op list is a leader too, for jumps past the last op.
         let end = pou.ops.len();
         let end_blk = self.b.create_block();
-        self.leaders.insert(end, end_blk);
+        self.func.leaders.insert(end, end_blk);
         self.lower_ops(0..end);
         self.lower_end(end);
     }
@@ -486,27 +447,27 @@ impl<'e, 'f> Lower<'e, 'f> {
     /// and `at` (the op to start at, one of the chunk's planned entries) come from the
     /// dispatcher; leaving the chunk's range returns to it (see [`Lower::exit_chunk_to`]).
     pub(crate) fn lower_chunk(&mut self, k: usize, st_in: Value, at: Value) {
-        let pou = self.env.prog.pou(self.pou);
+        let pou = self.env.prog.pou(self.func.pou);
         let n = pou.ops.len();
-        let Some(plan) = self.env.plans[self.pou.index()].as_ref() else {
-            self.unsupported = Some("chunk of an unsplit POU".into());
+        let Some(plan) = self.env.plans[self.func.pou.index()].as_ref() else {
+            self.func.unsupported = Some("chunk of an unsplit POU".into());
             return;
         };
         let range = plan.range(k, n);
         let last = k + 1 == plan.starts.len();
-        let info = &self.env.info[self.pou.index()];
+        let info = &self.env.info[self.func.pou.index()];
         for i in range.clone() {
             if info.leader[i] || i == range.start {
                 let blk = self.b.create_block();
-                self.leaders.insert(i, blk);
+                self.func.leaders.insert(i, blk);
             }
         }
         if last {
             let end_blk = self.b.create_block();
-            self.leaders.insert(n, end_blk);
+            self.func.leaders.insert(n, end_blk);
         }
-        self.b.def_var(self.st, st_in);
-        let start = self.leaders[&range.start];
+        self.b.def_var(self.func.st, st_in);
+        let start = self.func.leaders[&range.start];
         match plan.entries[k].as_slice() {
             [_] => {
                 self.b.ins().jump(start, &[]);
@@ -514,50 +475,50 @@ impl<'e, 'f> Lower<'e, 'f> {
             entries => {
                 let mut sw = cranelift_frontend::Switch::new();
                 for e in entries {
-                    sw.set_entry(*e as u128, self.leaders[e]);
+                    sw.set_entry(*e as u128, self.func.leaders[e]);
                 }
                 sw.emit(&mut self.b, at, start);
             }
         }
-        self.live = false;
+        self.block.open = false;
         self.lower_ops(range.clone());
         if last {
             self.lower_end(n);
-        } else if self.live {
+        } else if self.block.open {
             self.exit_chunk_to(k, range.end);
-            self.live = false;
+            self.block.open = false;
         }
     }
 
     /// The end of the POU: falls into (or is jumped to as) the final leader and returns 0.
     fn lower_end(&mut self, end: usize) {
-        let Some(&end_blk) = self.leaders.get(&end) else {
+        let Some(&end_blk) = self.func.leaders.get(&end) else {
             return;
         };
-        if self.live {
+        if self.block.open {
             self.spill_state(end);
             self.b.ins().jump(end_blk, &[]);
         }
         self.enter(end_blk, end);
         self.b.set_srcloc(SourceLoc::default());
         self.ret_ok();
-        self.live = false;
+        self.block.open = false;
     }
 
     /// Lowers the ops in `range`, starting a new block at every leader.
     fn lower_ops(&mut self, range: std::ops::Range<usize>) {
-        let pou = self.env.prog.pou(self.pou);
+        let pou = self.env.prog.pou(self.func.pou);
         for i in range {
             let op = &pou.ops[i];
-            if let Some(&blk) = self.leaders.get(&i) {
-                let cut = self.env.info[self.pou.index()].cut[i];
-                if self.live && cut {
-                    // Only this block falls into a cut: the logic stack, the gate and the
-                    // cached bytes carry over as they are.
+            if let Some(&blk) = self.func.leaders.get(&i) {
+                let cut = self.env.info[self.func.pou.index()].cut[i];
+                if self.block.open && cut {
+                    // Only this block falls into a cut: the block state (logic stack, gate,
+                    // cached bytes) carries over as it is.
                     self.b.ins().jump(blk, &[]);
                     self.b.switch_to_block(blk);
                 } else {
-                    if self.live {
+                    if self.block.open {
                         // (At op 0 this writes the initial stack into the register.)
                         self.spill_state(i);
                         self.b.ins().jump(blk, &[]);
@@ -565,14 +526,14 @@ impl<'e, 'f> Lower<'e, 'f> {
                     self.enter(blk, i);
                 }
             }
-            if !self.live {
+            if !self.block.open {
                 // Unreachable ops after an unconditional transfer: lower them into a block
                 // without predecessors so that every op still has CLIF (and a srcloc).
                 let blk = self.b.create_block();
                 self.enter(blk, i);
             }
             self.op = i;
-            self.cache.now = i;
+            self.block.cache.now = i;
             self.b.set_srcloc(SourceLoc::new(i as u32 + 1));
             if let Some(addr) = self.env.op_counter {
                 let a = self.iconst(I64, addr);
@@ -597,7 +558,7 @@ impl<'e, 'f> Lower<'e, 'f> {
             Op::Dup => self.dup(),
             Op::ReadSecond => self.read_second(),
             Op::Pop => {
-                self.stack.pop();
+                self.block.stack.pop();
             }
             Op::Pick(n) => self.pick(n),
             Op::AndEno => self.and_eno(),

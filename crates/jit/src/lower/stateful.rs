@@ -79,7 +79,7 @@ impl Lower<'_, '_> {
     /// `TON`/`TONR`/`TOF Tn, PT`.
     pub(crate) fn timer(&mut self, kind: TimerKind, n: u16, preset: &Operand) {
         self.with_preset(preset, |s, pv| {
-            let input = s.stack.top().to01(&mut s.b);
+            let input = s.block.stack.top().to01(&mut s.b);
             let ranges = s.timer_ranges(n);
             let calls = (Helper::timer_fast(kind), Helper::Timer);
             s.call_stateful(ranges, calls, (n, kind.code()), input, pv);
@@ -91,7 +91,7 @@ impl Lower<'_, '_> {
         self.with_preset(preset, |s, pv| {
             // `counter::execute` reads levels 0..=2 only; packing just those is cheaper.
             let levels = Stack {
-                lv: (0..3).map(|i| s.stack.level(i)).collect(),
+                lv: (0..3).map(|i| s.block.stack.level(i)).collect(),
             };
             let stack = levels.to_reg(&mut s.b);
             let ranges = s.counter_ranges(n);
@@ -110,7 +110,7 @@ impl Lower<'_, '_> {
     /// The gate word of the general timer and counter shims: the gate at bit 0 and the fixed
     /// bits.
     fn gate_word(&mut self) -> Value {
-        let open = self.gate.to01(&mut self.b);
+        let open = self.block.gate.to01(&mut self.b);
         match self.gate_word_fixed() {
             0 => open,
             fixed => self.b.ins().bor_imm_s(open, i64::from(fixed)),
@@ -120,7 +120,7 @@ impl Lower<'_, '_> {
     /// The `ctl` argument of the fast shims: `low` (bits 0–7: the inputs) | the SCR gate at
     /// [`CTL_GATE`]. Outside SCR segments the gate is a constant: one `or` or nothing.
     fn fast_ctl(&mut self, low: Value) -> Value {
-        match self.gate {
+        match self.block.gate {
             B::K(false) => low,
             B::K(true) => self.b.ins().bor_imm_s(low, i64::from(CTL_GATE)),
             g => {
@@ -134,7 +134,7 @@ impl Lower<'_, '_> {
     /// [`Lower::counter_ranges`] (image-relative, checked in range at compile time), `ctl`,
     /// the preset.
     fn fast_args(&mut self, r: &[(Addr, u32); 4], ctl: Value, preset: Value) -> [Value; 6] {
-        let image = self.image;
+        let image = self.func.image;
         let p = r.map(|(a, _)| {
             debug_assert!(!a.local, "timer and counter bytes are never in L");
             self.b.ins().iadd_imm_s(image, i64::from(a.off))
@@ -200,7 +200,7 @@ impl Lower<'_, '_> {
                 s.iconst(I32, i64::from(start.area.ffi_code())),
                 s.iconst(I32, i64::from(start.byte)),
                 s.iconst(I32, i64::from(start.bit)),
-                s.depth,
+                s.func.call_depth,
                 n,
                 s.iconst(I32, i64::from(value)),
                 s.iconst(I32, i64::from(immediate)),
@@ -249,7 +249,7 @@ impl Lower<'_, '_> {
     /// Image offset (`i32`) of the current L frame.
     fn frame_off(&mut self) -> Value {
         let size = i64::from(self.env.layout.area_size(Area::L));
-        let d = self.b.ins().imul_imm_s(self.depth, size);
+        let d = self.b.ins().imul_imm_s(self.func.call_depth, size);
         self.b
             .ins()
             .iadd_imm_s(d, i64::from(self.env.layout.base(Area::L)))
@@ -320,7 +320,7 @@ impl Lower<'_, '_> {
                 s.iconst(I32, i64::from(start.area.ffi_code())),
                 s.iconst(I32, i64::from(start.byte)),
                 s.iconst(I32, i64::from(start.bit)),
-                s.depth,
+                s.func.call_depth,
                 n,
             ];
             let st = s.call_helper(Helper::ShiftRegister, &args);
