@@ -258,7 +258,7 @@ impl Lower<'_, '_> {
                 ref src,
                 ref dst,
             } => {
-                let (sw, dw) = stljit_runtime::convert::widths(conv);
+                let (sw, dw) = conv.widths();
                 self.value_box(ValueOp::Convert(conv), Some((src, sw)), dst, dw, false)
             }
             BoxOp::ImmediateRead { input, .. } | BoxOp::ImmediateWrite { output: input, .. }

@@ -1,6 +1,6 @@
 //! Value operands: constants, direct locations and pointers.
 //!
-//! Direct locations are range-checked by the front end against the same profile, so they become
+//! Direct locations are range-checked by the IR verifier against the same profile, so they become
 //! loads and stores at constant offsets (big-endian words through `bswap`). A pointer operand is
 //! read as a dword, resolved by the runtime's `pointer::resolve` (through its shim, so the rule
 //! exists once) and accessed at the resulting image offset; a failed resolution branches to the
