@@ -355,23 +355,23 @@ impl Gen<'_, '_> {
 
     /// `R T.., n` or `R C.., n`.
     fn reset_objects(&mut self, timers: bool) {
-        if timers {
-            let n = self.timer_no();
-            let room = u32::from(self.p.timers) - u32::from(n);
-            let count = self.count(room.min(8));
-            self.emit(Op::ResetTimers {
+        let (n, objects) = if timers {
+            (self.timer_no(), self.p.timers)
+        } else {
+            (self.counter_no(), self.p.counters)
+        };
+        let count = self.count((u32::from(objects) - u32::from(n)).min(8));
+        self.emit(if timers {
+            Op::ResetTimers {
                 first: TimerId(n),
                 count,
-            });
+            }
         } else {
-            let n = self.counter_no();
-            let room = u32::from(self.p.counters) - u32::from(n);
-            let count = self.count(room.min(8));
-            self.emit(Op::ResetCounters {
+            Op::ResetCounters {
                 first: CounterId(n),
                 count,
-            });
-        }
+            }
+        });
     }
 
     /// A timer instruction; the number keeps the kind it was first used with.
