@@ -304,11 +304,7 @@ impl Gen<'_, '_> {
                 let b = self.box_op();
                 self.emit(Op::Box(b));
                 self.emit(Op::AndEno);
-                let bit = self.bit_out(false);
-                self.emit(Op::Assign {
-                    bit,
-                    immediate: false,
-                });
+                self.assign_out();
             }
         }
         let _ = ctx;
@@ -351,6 +347,15 @@ impl Gen<'_, '_> {
 
     fn bits_left(&self, b: BitLoc) -> u32 {
         (self.p.area_size(b.area) - b.byte) * 8 - u32::from(b.bit)
+    }
+
+    /// `= bit` to a fresh output bit (not immediate).
+    fn assign_out(&mut self) {
+        let bit = self.bit_out(false);
+        self.emit(Op::Assign {
+            bit,
+            immediate: false,
+        });
     }
 
     /// `R T.., n` or `R C.., n`.
@@ -442,11 +447,7 @@ impl Gen<'_, '_> {
         });
         if self.c.chance(1, 3) {
             self.emit(Op::Pop);
-            let bit = self.bit_out(false);
-            self.emit(Op::Assign {
-                bit,
-                immediate: false,
-            });
+            self.assign_out();
         }
     }
 
@@ -469,11 +470,7 @@ impl Gen<'_, '_> {
         self.emit(Op::Box(b));
         if self.c.chance(1, 2) {
             self.emit(Op::AndEno);
-            let bit = self.bit_out(false);
-            self.emit(Op::Assign {
-                bit,
-                immediate: false,
-            });
+            self.assign_out();
         }
         let flag = sm(1, self.c.below(8) as u8);
         self.emit(Op::Load(on(flag)));
@@ -482,11 +479,7 @@ impl Gen<'_, '_> {
             let negated = self.c.chance(1, 2);
             self.emit(Op::Or(Contact::Bit { bit, negated }));
         }
-        let bit = self.bit_out(false);
-        self.emit(Op::Assign {
-            bit,
-            immediate: false,
-        });
+        self.assign_out();
     }
 
     /// Pointers: `MOVD &x, cell`, stepping with `+D`/`INCD`, use through `*cell`.
@@ -581,11 +574,7 @@ impl Gen<'_, '_> {
             };
             self.emit(op);
         }
-        let bit = self.bit_out(false);
-        self.emit(Op::Assign {
-            bit,
-            immediate: false,
-        });
+        self.assign_out();
     }
 
     /// `LPS` / `LRD` / `LPP` branches, each with its own contacts and outputs.
