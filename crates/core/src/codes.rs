@@ -3,57 +3,65 @@
 
 use std::fmt;
 
-/// Result of executing one scan.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(u8)]
-pub enum ScanStatus {
-    /// The scan completed; the PLC stays in RUN.
-    Ok = 0,
-    /// The scan completed and a `STOP` instruction executed: the PLC is now in STOP.
-    Stopped = 1,
-    /// A fatal error aborted the scan (no output write); the PLC is in STOP. The code is in the
-    /// image's `Sched::FATAL` field.
-    Fatal = 2,
+/// Declares a `#[repr]` code enum, its `TryFrom` for the way back and its `ALL` list from the
+/// same lines, so that each value is written once.
+macro_rules! code_enum {
+    (
+        $(#[$doc:meta])*
+        $name:ident: $repr:ty {
+            $( $(#[$variant_doc:meta])* $variant:ident = $code:literal, )+
+        }
+    ) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        #[repr($repr)]
+        pub enum $name {
+            $( $(#[$variant_doc])* $variant = $code, )+
+        }
+
+        impl $name {
+            /// Every value, in declaration order.
+            pub const ALL: &'static [$name] = &[$($name::$variant),+];
+        }
+
+        impl TryFrom<$repr> for $name {
+            type Error = $repr;
+            fn try_from(v: $repr) -> Result<Self, $repr> {
+                match v {
+                    $( $code => Ok($name::$variant), )+
+                    other => Err(other),
+                }
+            }
+        }
+    };
 }
 
-impl TryFrom<u8> for ScanStatus {
-    type Error = u8;
-    fn try_from(v: u8) -> Result<Self, u8> {
-        match v {
-            0 => Ok(ScanStatus::Ok),
-            1 => Ok(ScanStatus::Stopped),
-            2 => Ok(ScanStatus::Fatal),
-            other => Err(other),
-        }
+code_enum! {
+    /// Result of executing one scan.
+    ScanStatus: u8 {
+        /// The scan completed; the PLC stays in RUN.
+        Ok = 0,
+        /// The scan completed and a `STOP` instruction executed: the PLC is now in STOP.
+        Stopped = 1,
+        /// A fatal error aborted the scan (no output write); the PLC is in STOP. The code is in
+        /// the image's `Sched::FATAL` field.
+        Fatal = 2,
     }
 }
 
-/// Non-fatal run-time errors (spec §2.5): the instruction is skipped, ENO = 0, and the code is
-/// stored in `Sched::LAST_ERR`. The values are the S7-200's.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(u16)]
-pub enum ErrorCode {
-    /// Illegal indirect address (bad pointer, out of range, or a read-only target).
-    IndirectAddress = 0x0006,
-    /// Subroutine nesting exceeded.
-    CallNesting = 0x0008,
-    /// Operand out of range (an S/R/BM* count runs past the area end).
-    OperandRange = 0x0091,
-    /// Bad count field (SHRB length 0 or above 64). Block-move and FILL counts use
-    /// [`ErrorCode::OperandRange`] (spec §4.7).
-    CountField = 0x0092,
-}
-
-impl TryFrom<u16> for ErrorCode {
-    type Error = u16;
-    fn try_from(v: u16) -> Result<Self, u16> {
-        match v {
-            0x0006 => Ok(ErrorCode::IndirectAddress),
-            0x0008 => Ok(ErrorCode::CallNesting),
-            0x0091 => Ok(ErrorCode::OperandRange),
-            0x0092 => Ok(ErrorCode::CountField),
-            other => Err(other),
-        }
+code_enum! {
+    /// Non-fatal run-time errors (spec §2.5): the instruction is skipped, ENO = 0, and the code
+    /// is stored in `Sched::LAST_ERR`. The values are the S7-200's.
+    ErrorCode: u16 {
+        /// Illegal indirect address (bad pointer, out of range, or a read-only target).
+        IndirectAddress = 0x0006,
+        /// Subroutine nesting exceeded.
+        CallNesting = 0x0008,
+        /// Operand out of range (an S/R/BM* count runs past the area end).
+        OperandRange = 0x0091,
+        /// Bad count field (SHRB length 0 or above 64). Block-move and FILL counts use
+        /// [`ErrorCode::OperandRange`] (spec §4.7).
+        CountField = 0x0092,
     }
 }
 
@@ -69,28 +77,16 @@ impl fmt::Display for ErrorCode {
     }
 }
 
-/// Fatal run-time errors: the scan aborts without writing outputs and the PLC enters STOP.
-/// The S7-200 does not document numbers for these; the values are stljit's own.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(u16)]
-pub enum FatalCode {
-    /// The loop budget of the scan ran out (spec §2.5).
-    Watchdog = 0x0101,
-    /// A compare instruction read through an illegal pointer.
-    CompareIndirect = 0x0102,
-    /// A real compare saw a NaN operand.
-    CompareNaN = 0x0103,
-}
-
-impl TryFrom<u16> for FatalCode {
-    type Error = u16;
-    fn try_from(v: u16) -> Result<Self, u16> {
-        match v {
-            0x0101 => Ok(FatalCode::Watchdog),
-            0x0102 => Ok(FatalCode::CompareIndirect),
-            0x0103 => Ok(FatalCode::CompareNaN),
-            other => Err(other),
-        }
+code_enum! {
+    /// Fatal run-time errors: the scan aborts without writing outputs and the PLC enters STOP.
+    /// The S7-200 does not document numbers for these; the values are stljit's own.
+    FatalCode: u16 {
+        /// The loop budget of the scan ran out (spec §2.5).
+        Watchdog = 0x0101,
+        /// A compare instruction read through an illegal pointer.
+        CompareIndirect = 0x0102,
+        /// A real compare saw a NaN operand.
+        CompareNaN = 0x0103,
     }
 }
 
@@ -111,24 +107,16 @@ mod tests {
 
     #[test]
     fn codes_round_trip() {
-        for s in [ScanStatus::Ok, ScanStatus::Stopped, ScanStatus::Fatal] {
+        for &s in ScanStatus::ALL {
             assert_eq!(ScanStatus::try_from(s as u8), Ok(s));
         }
-        for e in [
-            ErrorCode::IndirectAddress,
-            ErrorCode::CallNesting,
-            ErrorCode::OperandRange,
-            ErrorCode::CountField,
-        ] {
+        for &e in ErrorCode::ALL {
             assert_eq!(ErrorCode::try_from(e as u16), Ok(e));
         }
-        for e in [
-            FatalCode::Watchdog,
-            FatalCode::CompareIndirect,
-            FatalCode::CompareNaN,
-        ] {
+        for &e in FatalCode::ALL {
             assert_eq!(FatalCode::try_from(e as u16), Ok(e));
         }
         assert_eq!(ScanStatus::try_from(9), Err(9));
+        assert_eq!(ErrorCode::try_from(0x0007), Err(0x0007));
     }
 }

@@ -19,8 +19,9 @@ impl Machine<'_> {
         o.ok()
     }
 
-    /// `OUT := f(OUT, IN1)` with `IN1` of `src_w` and `OUT` of `dst_w`.
-    fn two_op(
+    /// `OUT := f(OUT, IN)` with `IN` of `src_w` and `OUT` of `dst_w`; `f` gets 0 for OUT's old
+    /// value unless `READS_OUT` (the [`stljit_runtime::ffi::ValueOp::outcome`] convention).
+    fn compute<const READS_OUT: bool>(
         &mut self,
         src: &Operand,
         src_w: Width,
@@ -31,7 +32,8 @@ impl Machine<'_> {
     ) -> Result<bool, ErrorCode> {
         let a = self.resolve(src, src_w, frame, false)?;
         let d = self.resolve(dst, dst_w, frame, true)?;
-        let o = f(self.load(d, dst_w), self.load(a, src_w));
+        let out = if READS_OUT { self.load(d, dst_w) } else { 0 };
+        let o = f(out, self.load(a, src_w));
         Ok(self.finish(o, d, dst_w))
     }
 
@@ -48,27 +50,11 @@ impl Machine<'_> {
         Ok(self.finish(o, d, width))
     }
 
-    /// `OUT := f(IN)`.
-    fn unary(
-        &mut self,
-        src: &Operand,
-        src_w: Width,
-        dst: &Operand,
-        dst_w: Width,
-        frame: u32,
-        f: impl FnOnce(u32) -> Outcome,
-    ) -> Result<bool, ErrorCode> {
-        let a = self.resolve(src, src_w, frame, false)?;
-        let d = self.resolve(dst, dst_w, frame, true)?;
-        let o = f(self.load(a, src_w));
-        Ok(self.finish(o, d, dst_w))
-    }
-
     pub(crate) fn exec_box(&mut self, b: &BoxOp, frame: u32) -> Result<bool, ErrorCode> {
         use Width::{Byte, DWord, Word};
         match *b {
             BoxOp::Move { width, src, dst } => {
-                self.unary(&src, width, &dst, width, frame, Outcome::plain)
+                self.compute::<false>(&src, width, &dst, width, frame, |_, x| Outcome::plain(x))
             }
             BoxOp::Swap { dst } => self.in_place(&dst, Word, frame, |x| {
                 Outcome::plain(u32::from((x as u16).swap_bytes()))
@@ -95,22 +81,24 @@ impl Machine<'_> {
                 width,
                 src,
                 dst,
-            } => self.two_op(&src, width, &dst, width, frame, |o, i| {
+            } => self.compute::<true>(&src, width, &dst, width, frame, |o, i| {
                 arith::int_arith(op, width, o, i)
             }),
-            BoxOp::MulWide { src, dst } => {
-                self.two_op(&src, Word, &dst, DWord, frame, arith::mul_wide)
-            }
-            BoxOp::DivWide { src, dst } => {
-                self.two_op(&src, Word, &dst, DWord, frame, arith::div_wide)
+            BoxOp::MulWide { src, dst } | BoxOp::DivWide { src, dst } => {
+                let f = if matches!(b, BoxOp::MulWide { .. }) {
+                    arith::mul_wide
+                } else {
+                    arith::div_wide
+                };
+                self.compute::<true>(&src, Word, &dst, DWord, frame, f)
             }
             BoxOp::RealArith { op, src, dst } => {
-                self.two_op(&src, DWord, &dst, DWord, frame, |o, i| {
+                self.compute::<true>(&src, DWord, &dst, DWord, frame, |o, i| {
                     arith::real_arith(op, o, i)
                 })
             }
             BoxOp::RealFunc { func, src, dst } => {
-                self.unary(&src, DWord, &dst, DWord, frame, |x| {
+                self.compute::<false>(&src, DWord, &dst, DWord, frame, |_, x| {
                     arith::real_func(func, x)
                 })
             }
@@ -122,7 +110,7 @@ impl Machine<'_> {
                 width,
                 src,
                 dst,
-            } => self.two_op(&src, width, &dst, width, frame, |o, i| {
+            } => self.compute::<true>(&src, width, &dst, width, frame, |o, i| {
                 bitops::logic(op, width, o, i)
             }),
             BoxOp::Invert { width, dst } => {
@@ -133,18 +121,20 @@ impl Machine<'_> {
                 width,
                 dst,
                 count,
-            } => {
-                let n = self.read(&count, Byte, frame)? as u8;
-                self.in_place(&dst, width, frame, |x| bitops::shift(left, width, x, n))
             }
-            BoxOp::Rotate {
+            | BoxOp::Rotate {
                 left,
                 width,
                 dst,
                 count,
             } => {
+                let f = if matches!(b, BoxOp::Shift { .. }) {
+                    bitops::shift
+                } else {
+                    bitops::rotate
+                };
                 let n = self.read(&count, Byte, frame)? as u8;
-                self.in_place(&dst, width, frame, |x| bitops::rotate(left, width, x, n))
+                self.in_place(&dst, width, frame, |x| f(left, width, x, n))
             }
             BoxOp::ShiftRegister { data, start, len } => {
                 let d = self.bit(data, frame);
@@ -153,7 +143,7 @@ impl Machine<'_> {
             }
             BoxOp::Convert { conv, src, dst } => {
                 let (sw, dw) = convert::widths(conv);
-                self.unary(&src, sw, &dst, dw, frame, |x| convert::convert(conv, x))
+                self.compute::<false>(&src, sw, &dst, dw, frame, |_, x| convert::convert(conv, x))
             }
             BoxOp::ImmediateRead { input, dst } => {
                 if input >= self.layout.area_size(Area::I) {

@@ -52,6 +52,22 @@ fn is_element_area(area: Area) -> bool {
     matches!(area, Area::TimerBit | Area::CounterBit)
 }
 
+/// The numbers of the `count` timers or counters from `first` (`R Tn, N`, `R Cn, N`, or one
+/// object with `count = 1`), whose bits are `bits` ([`Area::TimerBit`] or [`Area::CounterBit`]):
+/// 0x0091 when the run passes the profile's last one (spec M11), empty for `count = 0` (M12).
+pub fn object_run(
+    layout: &Layout,
+    bits: Area,
+    first: u16,
+    count: u32,
+) -> Result<std::ops::Range<u16>, ErrorCode> {
+    let end = u32::from(first) + count;
+    if end > layout.area_size(bits) {
+        return Err(ErrorCode::OperandRange);
+    }
+    Ok(first..end as u16)
+}
+
 /// The bits `S/R start, N` writes: `count` consecutive bits from `start`, bit numbering
 /// continuing into the next byte, or on T/C bits one element (a whole 0/1 byte) per step.
 /// Computed by [`set_range_run`]; [`set_range_imm`] writes it, and the JIT inlines it for a
@@ -110,20 +126,8 @@ pub fn set_range_run(
 }
 
 /// `S/R bit, N` and `SI/RI`: writes `value` into the [`BitRun`] of `start` and `count`.
-/// `immediate` also writes the physical output copy (Q only). N = 0 is a no-op (M12); a run past
-/// the area end writes nothing and is 0x0091 (M11).
-pub fn set_range(
-    img: &mut [u8],
-    layout: &Layout,
-    start: BitLoc,
-    frame: u32,
-    count: u32,
-    value: bool,
-) -> Result<(), ErrorCode> {
-    set_range_imm(img, layout, start, frame, count, value, false)
-}
-
-/// [`set_range`] with the immediate flag of `SI`/`RI`.
+/// `immediate` (`SI`/`RI`) also writes the physical output copy (Q only). N = 0 is a no-op
+/// (M12); a run past the area end writes nothing and is 0x0091 (M11).
 pub fn set_range_imm(
     img: &mut [u8],
     layout: &Layout,

@@ -26,10 +26,10 @@ fn set_range_continues_into_next_byte() {
     let mut im = img();
     let (b, l) = im.split_mut();
     // §4.1: S Q0.6, 3 sets Q0.6, Q0.7, Q1.0.
-    set_range(b, l, q(0, 6), 0, 3, true).unwrap();
+    set_range_imm(b, l, q(0, 6), 0, 3, true, false).unwrap();
     assert_eq!((byte(&im, Area::Q, 0), byte(&im, Area::Q, 1)), (0xC0, 0x01));
     let (b, l) = im.split_mut();
-    set_range(b, l, q(0, 7), 0, 1, false).unwrap();
+    set_range_imm(b, l, q(0, 7), 0, 1, false, false).unwrap();
     assert_eq!(byte(&im, Area::Q, 0), 0x40);
 }
 
@@ -39,17 +39,17 @@ fn set_range_limits() {
     let before = im.clone();
     let (b, l) = im.split_mut();
     assert_eq!(
-        set_range(b, l, q(15, 6), 0, 3, true),
+        set_range_imm(b, l, q(15, 6), 0, 3, true, false),
         Err(ErrorCode::OperandRange)
     );
     assert_eq!(
-        set_range(b, l, q(15, 6), 0, 0, true),
+        set_range_imm(b, l, q(15, 6), 0, 0, true, false),
         Ok(()),
         "N = 0: no-op (M12)"
     );
     assert_eq!(im, before, "M11: nothing written");
     let (b, l) = im.split_mut();
-    assert_eq!(set_range(b, l, q(15, 6), 0, 2, true), Ok(()));
+    assert_eq!(set_range_imm(b, l, q(15, 6), 0, 2, true, false), Ok(()));
 }
 
 #[test]
@@ -61,8 +61,11 @@ fn set_range_on_timer_bits_and_immediate() {
         byte: 62,
         bit: 0,
     };
-    set_range(b, l, t, 0, 2, true).unwrap();
-    assert_eq!(set_range(b, l, t, 0, 3, true), Err(ErrorCode::OperandRange));
+    set_range_imm(b, l, t, 0, 2, true, false).unwrap();
+    assert_eq!(
+        set_range_imm(b, l, t, 0, 3, true, false),
+        Err(ErrorCode::OperandRange)
+    );
     set_range_imm(b, l, q(2, 1), 0, 2, true, true).unwrap();
     assert!(im.timer_bit(62) && im.timer_bit(63) && !im.timer_bit(61));
     assert_eq!(im.phys_out()[2], 0x06);

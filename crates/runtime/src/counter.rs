@@ -7,8 +7,8 @@
 //! interpreter reaches them through [`execute`] (layout lookups, range check), the JIT through
 //! [`crate::ffi::stljit_rt_counter_fast`] (offsets fixed at compile time).
 
-use crate::mem;
 use crate::rules::{Gate, GatePolicy, Rules};
+use crate::{block, mem};
 use stljit_core::ir::CounterKind;
 use stljit_core::layout::Sched;
 use stljit_core::layout::{COUNTER_STATE_SIZE, CounterState, Layout};
@@ -148,9 +148,7 @@ pub fn execute(
     preset: i16,
     rules: Rules,
 ) -> Result<(), ErrorCode> {
-    if u32::from(n) >= layout.area_size(Area::CounterBit) {
-        return Err(ErrorCode::OperandRange);
-    }
+    block::object_run(layout, Area::CounterBit, n, 1)?;
     let [(v, _), (b, _), (st, _)] = layout.counter_bytes(n);
     let (mut value, mut state) = (mem::get_array(img, v), mem::get_array(img, st));
     let mut c = Counter::decode(value, &state);
@@ -173,19 +171,11 @@ pub fn reset_range(
     first: u16,
     count: u32,
 ) -> Result<(), ErrorCode> {
-    if u32::from(first) + count > layout.area_size(Area::CounterBit) {
-        return Err(ErrorCode::OperandRange);
-    }
-    for n in u32::from(first)..u32::from(first) + count {
-        mem::set_i16_be(img, value_at(layout, n as u16), 0);
-        mem::set_u8(img, bit_at(layout, n as u16), 0);
+    for n in block::object_run(layout, Area::CounterBit, first, count)? {
+        mem::set_i16_be(img, value_at(layout, n), 0);
+        mem::set_u8(img, bit_at(layout, n), 0);
     }
     Ok(())
-}
-
-/// Resets one counter.
-pub fn reset(img: &mut [u8], layout: &Layout, n: u16) -> Result<(), ErrorCode> {
-    reset_range(img, layout, n, 1)
 }
 
 #[cfg(test)]

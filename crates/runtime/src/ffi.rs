@@ -140,6 +140,38 @@ fn status(r: Result<(), ErrorCode>) -> u32 {
     }
 }
 
+/// Runs `f` on the image through [`with_image`] and returns its result as a status.
+///
+/// # Safety
+/// As [`with_image`].
+unsafe fn status_of(
+    image: *mut u8,
+    layout: *const Layout,
+    f: impl FnOnce(&mut [u8], &Layout) -> Result<(), ErrorCode>,
+) -> u32 {
+    // SAFETY: forwarded caller contract.
+    unsafe { with_image(image, layout, |b, l| status(f(b, l))) }.unwrap_or_else(|e| e)
+}
+
+/// The body of the `R Tn, N` / `R Cn, N` shims: `reset(first, count)` on the image; a first
+/// number beyond `u16` is past every profile's last object, 0x0091.
+///
+/// # Safety
+/// As [`with_image`].
+unsafe fn reset_shim(
+    image: *mut u8,
+    layout: *const Layout,
+    first: u32,
+    count: u32,
+    reset: fn(&mut [u8], &Layout, u16, u32) -> Result<(), ErrorCode>,
+) -> u32 {
+    let Ok(first) = u16::try_from(first) else {
+        return u32::from(ErrorCode::OperandRange as u16);
+    };
+    // SAFETY: forwarded caller contract.
+    unsafe { status_of(image, layout, |b, l| reset(b, l, first, count)) }
+}
+
 /// Packs a result for a `u64` return: bit 32 = success.
 pub fn pack(r: Result<u32, u32>) -> u64 {
     match r {
@@ -188,18 +220,9 @@ impl FfiCode for Area {
     const ALL: &'static [Self] = &Area::ALL;
 }
 
-fn timer_kind(code: u32) -> Option<TimerKind> {
-    TimerKind::ALL
-        .iter()
-        .copied()
-        .find(|k| u32::from(k.code()) == code)
-}
-
-fn counter_kind(code: u32) -> Option<CounterKind> {
-    CounterKind::ALL
-        .iter()
-        .copied()
-        .find(|k| u32::from(k.code()) == code)
+/// The kind among `all` whose `code()` is `code` (timer and counter kinds travel as codes).
+fn kind_of<K: Copy>(all: &[K], code_of: fn(K) -> u8, code: u32) -> Option<K> {
+    all.iter().copied().find(|&k| u32::from(code_of(k)) == code)
 }
 
 /// [`scan::begin`]: 1 when the program must run, 0 when the PLC is in STOP.
@@ -242,24 +265,16 @@ pub unsafe extern "C" fn stljit_rt_timer(
     gate: u32,
     preset: i32,
 ) -> u32 {
-    let (Some(kind), Ok(n)) = (timer_kind(kind), u16::try_from(n)) else {
+    let kind = kind_of(TimerKind::ALL, TimerKind::code, kind);
+    let (Some(kind), Ok(n)) = (kind, u16::try_from(n)) else {
         return RT_BAD_ARGUMENT;
     };
+    let (gate, _) = decode_gate_word(gate);
     // SAFETY: forwarded caller contract.
     unsafe {
-        with_image(image, layout, |b, l| {
-            let (gate, _) = decode_gate_word(gate);
-            status(timer::execute(
-                b,
-                l,
-                n,
-                kind,
-                input != 0,
-                gate,
-                preset as i16,
-            ))
+        status_of(image, layout, |b, l| {
+            timer::execute(b, l, n, kind, input != 0, gate, preset as i16)
         })
-        .unwrap_or_else(|e| e)
     }
 }
 
@@ -273,16 +288,8 @@ pub unsafe extern "C" fn stljit_rt_timer_reset(
     first: u32,
     count: u32,
 ) -> u32 {
-    let Ok(first) = u16::try_from(first) else {
-        return u32::from(ErrorCode::OperandRange as u16);
-    };
     // SAFETY: forwarded caller contract.
-    unsafe {
-        with_image(image, layout, |b, l| {
-            status(timer::reset_range(b, l, first, count))
-        })
-        .unwrap_or_else(|e| e)
-    }
+    unsafe { reset_shim(image, layout, first, count, timer::reset_range) }
 }
 
 /// [`counter::execute`]; `stack` is the logic stack (bit i = S_i).
@@ -298,25 +305,16 @@ pub unsafe extern "C" fn stljit_rt_counter(
     gate: u32,
     preset: i32,
 ) -> u32 {
-    let (Some(kind), Ok(n)) = (counter_kind(kind), u16::try_from(n)) else {
+    let kind = kind_of(CounterKind::ALL, CounterKind::code, kind);
+    let (Some(kind), Ok(n)) = (kind, u16::try_from(n)) else {
         return RT_BAD_ARGUMENT;
     };
+    let (gate, rules) = decode_gate_word(gate);
     // SAFETY: forwarded caller contract.
     unsafe {
-        with_image(image, layout, |b, l| {
-            let (gate, rules) = decode_gate_word(gate);
-            status(counter::execute(
-                b,
-                l,
-                n,
-                kind,
-                stack as u16,
-                gate,
-                preset as i16,
-                rules,
-            ))
+        status_of(image, layout, |b, l| {
+            counter::execute(b, l, n, kind, stack as u16, gate, preset as i16, rules)
         })
-        .unwrap_or_else(|e| e)
     }
 }
 
@@ -330,16 +328,8 @@ pub unsafe extern "C" fn stljit_rt_counter_reset(
     first: u32,
     count: u32,
 ) -> u32 {
-    let Ok(first) = u16::try_from(first) else {
-        return u32::from(ErrorCode::OperandRange as u16);
-    };
     // SAFETY: forwarded caller contract.
-    unsafe {
-        with_image(image, layout, |b, l| {
-            status(counter::reset_range(b, l, first, count))
-        })
-        .unwrap_or_else(|e| e)
-    }
+    unsafe { reset_shim(image, layout, first, count, counter::reset_range) }
 }
 
 /// [`pointer::resolve`]: u64 result, the image offset of the access on success.

@@ -12,8 +12,8 @@
 //! [`crate::ffi::stljit_rt_timer_fast`] (offsets fixed at compile time), so both engines run the
 //! same rules on the same bytes.
 
-use crate::mem;
 use crate::rules::{Gate, GatePolicy};
+use crate::{block, mem};
 use stljit_core::ir::TimerKind;
 use stljit_core::layout::{Layout, Sched, TIMER_STATE_SIZE, TimerState};
 use stljit_core::{Area, ErrorCode};
@@ -197,11 +197,7 @@ impl Timer {
 }
 
 fn check(layout: &Layout, n: u16) -> Result<(), ErrorCode> {
-    if u32::from(n) < layout.area_size(Area::TimerBit) {
-        Ok(())
-    } else {
-        Err(ErrorCode::OperandRange)
-    }
+    block::object_run(layout, Area::TimerBit, n, 1).map(drop)
 }
 
 /// Executes `TON`/`TONR`/`TOF Tn, PT` (spec §5.2) on the image: [`Timer::step`] with the scan's
@@ -255,24 +251,16 @@ pub fn refresh(img: &mut [u8], layout: &Layout, n: u16) {
     t.store(img, layout, n);
 }
 
-/// Full reset of one timer (`R Tn`): CV 0, bit 0, timing stopped, TOF idle (spec §5.2).
-pub fn reset(img: &mut [u8], layout: &Layout, n: u16) -> Result<(), ErrorCode> {
-    reset_range(img, layout, n, 1)
-}
-
-/// `R Tn, N`: resets `count` timers from `first`. Past the last timer: 0x0091, nothing reset
-/// (spec M11); `count = 0` is a no-op (M12).
+/// `R Tn, N`: full reset of `count` timers from `first`: CV 0, bit 0, timing stopped, TOF idle
+/// (spec §5.2). Past the last timer: 0x0091, nothing reset (spec M11); `count = 0` is a no-op
+/// (M12).
 pub fn reset_range(
     img: &mut [u8],
     layout: &Layout,
     first: u16,
     count: u32,
 ) -> Result<(), ErrorCode> {
-    if u32::from(first) + count > layout.area_size(Area::TimerBit) {
-        return Err(ErrorCode::OperandRange);
-    }
-    for n in u32::from(first)..u32::from(first) + count {
-        let n = n as u16;
+    for n in block::object_run(layout, Area::TimerBit, first, count)? {
         let mut t = Timer::load(img, layout, n);
         t.cv = 0;
         t.bit = false;

@@ -52,7 +52,7 @@ fn t09_tonr_t3_with_reset() {
             execute(b, l, 3, Retentive, i0 == 1, Gate::scr(true), 100).unwrap();
             got.0 = state(b, l, 3).0;
             if i1 == 1 {
-                reset(b, l, 3).unwrap();
+                reset_range(b, l, 3, 1).unwrap();
             }
             got.1 = state(b, l, 3).1;
         });

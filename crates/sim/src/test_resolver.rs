@@ -1,9 +1,39 @@
 //! A small address resolver for the simulation's unit tests, so they do not depend on the front
 //! end: `I0.3`, `Q1.0`, `M2.1`, `V10.2`, `SM0.1`, `IB1`, `QB0`, `VB0`, `SMB0`, `MW4`, `VW100`,
-//! `VD50`, `AIW0`, `HC0`, `LB0`, `T37`, `C5`.
+//! `VD50`, `AIW0`, `HC0`, `LB0`, `T37`, `C5`; and the trace writers' test steps over it.
 
+use crate::driver::{Observer, ScanEvent};
+use crate::value::write_address;
+use crate::watch::WatchSpec;
 use stljit_core::ir::{Address, BitLoc, Loc};
-use stljit_core::{Area, Width};
+use stljit_core::{Area, ScanStatus, Width};
+use stljit_runtime::image::Image;
+
+/// The watches `specs` name, resolved by [`resolve`].
+pub(crate) fn watches(specs: &[&str]) -> Vec<WatchSpec> {
+    specs
+        .iter()
+        .map(|t| WatchSpec::parse(t, &resolve).unwrap())
+        .collect()
+}
+
+/// Writes `bits[i]` (raw bits) to the address of `watches[i]`.
+pub(crate) fn write_watches(img: &mut Image, watches: &[WatchSpec], bits: &[u32]) {
+    for (w, &v) in watches.iter().zip(bits) {
+        write_address(img, &w.address, v);
+    }
+}
+
+/// Shows `img` to `observer` as scan `k` at `10·k` ms, completed in RUN.
+pub(crate) fn observe_scan(observer: &mut impl Observer, img: &Image, k: usize) {
+    let e = ScanEvent {
+        scan: k as u64,
+        t_ms: 10 * k as u64,
+        image: img,
+        status: ScanStatus::Ok,
+    };
+    observer.observe(&e).unwrap();
+}
 
 pub(crate) fn resolve(name: &str) -> Result<Address, String> {
     let bad = || format!("no such address `{name}`");

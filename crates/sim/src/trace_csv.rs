@@ -48,34 +48,22 @@ impl<W: Write> Observer for CsvTrace<W> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_resolver::resolve;
-    use crate::value::write_address;
+    use crate::test_resolver::{observe_scan, resolve, watches, write_watches};
     use stljit_core::{ProfileId, ScanStatus};
     use stljit_runtime::image::Image;
 
     #[test]
     fn golden() {
-        let watches: Vec<_> = ["Q0.0", "VW0", "VD4:real", "VB8:hex"]
-            .iter()
-            .map(|t| WatchSpec::parse(t, &resolve).unwrap())
-            .collect();
+        let watches = watches(&["Q0.0", "VW0", "VD4:real", "VB8:hex"]);
         let mut trace = CsvTrace::new(Vec::new(), watches.clone()).unwrap();
         let mut img = Image::blank(ProfileId::A5);
         for (k, (q, vw, vd)) in [(0u32, 0u32, 0.0f32), (1, 0xFFFF, 2.5)]
             .into_iter()
             .enumerate()
         {
-            write_address(&mut img, &watches[0].address, q);
-            write_address(&mut img, &watches[1].address, vw);
-            write_address(&mut img, &watches[2].address, vd.to_bits());
-            write_address(&mut img, &watches[3].address, 0xA0 + k as u32);
-            let e = ScanEvent {
-                scan: k as u64,
-                t_ms: 10 * k as u64,
-                image: &img,
-                status: ScanStatus::Ok,
-            };
-            trace.observe(&e).unwrap();
+            let bits = [q, vw, vd.to_bits(), 0xA0 + k as u32];
+            write_watches(&mut img, &watches, &bits);
+            observe_scan(&mut trace, &img, k);
         }
         let text = String::from_utf8(trace.finish().unwrap()).unwrap();
         assert_eq!(

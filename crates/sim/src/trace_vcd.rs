@@ -135,9 +135,8 @@ impl<W: Write> Observer for VcdTrace<W> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_resolver::resolve;
-    use crate::value::write_address;
-    use stljit_core::{ProfileId, ScanStatus};
+    use crate::test_resolver::{observe_scan, watches, write_watches};
+    use stljit_core::ProfileId;
     use stljit_runtime::image::Image;
 
     #[test]
@@ -155,10 +154,7 @@ mod tests {
 
     #[test]
     fn golden() {
-        let watches: Vec<_> = ["I0.0", "VW0", "VD4:real", "VB8"]
-            .iter()
-            .map(|t| WatchSpec::parse(t, &resolve).unwrap())
-            .collect();
+        let watches = watches(&["I0.0", "VW0", "VD4:real", "VB8"]);
         let mut trace = VcdTrace::new(Vec::new(), watches.clone(), "t01").unwrap();
         let mut img = Image::blank(ProfileId::A5);
         let scans = [
@@ -167,21 +163,12 @@ mod tests {
             (1, 0xFFFF, -0.25, 3),
         ];
         for (k, (i, vw, vd, vb)) in scans.into_iter().enumerate() {
-            write_address(&mut img, &watches[0].address, i);
+            write_watches(&mut img, &watches, &[i, vw, vd.to_bits(), vb]);
             // I is driven through the physical copy; mirror it into the image the way a scan would.
             let l = img.layout().clone();
             let phys = img.bytes()[l.phys_in as usize];
             img.bytes_mut()[l.base(stljit_core::Area::I) as usize] = phys;
-            write_address(&mut img, &watches[1].address, vw);
-            write_address(&mut img, &watches[2].address, vd.to_bits());
-            write_address(&mut img, &watches[3].address, vb);
-            let e = ScanEvent {
-                scan: k as u64,
-                t_ms: 10 * k as u64,
-                image: &img,
-                status: ScanStatus::Ok,
-            };
-            trace.observe(&e).unwrap();
+            observe_scan(&mut trace, &img, k);
         }
         let text = String::from_utf8(trace.finish().unwrap()).unwrap();
         let want = "\

@@ -76,14 +76,15 @@ impl Class {
     };
 }
 
-const BYTE_AREAS: [Area; 7] = [
-    Area::I,
-    Area::Q,
-    Area::M,
-    Area::S,
-    Area::SM,
-    Area::V,
-    Area::L,
+/// The byte-addressed areas a direct operand is drawn from, each with its weight.
+const BYTE_AREAS: [(Area, u32); 7] = [
+    (Area::I, 2),
+    (Area::Q, 3),
+    (Area::M, 5),
+    (Area::S, 1),
+    (Area::SM, 1),
+    (Area::V, 8),
+    (Area::L, 3),
 ];
 
 /// Interesting finite reals (bit patterns); NaN and infinities arise at run time instead, because
@@ -364,7 +365,7 @@ impl Gen<'_, '_> {
 
     /// A direct operand in a byte-addressable area.
     pub(crate) fn direct(&mut self, w: Width, out: bool) -> Loc {
-        let area = BYTE_AREAS[self.c.weighted(&[2, 3, 5, 1, 1, 8, 3])];
+        let area = BYTE_AREAS[self.c.weighted(&BYTE_AREAS.map(|(_, weight)| weight))].0;
         // Most V traffic stays in the general region; pointer and real cells are still reachable.
         Loc {
             area,

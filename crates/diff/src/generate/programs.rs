@@ -304,11 +304,7 @@ impl Gen<'_, '_> {
                 let b = self.box_op();
                 self.emit(Op::Box(b));
                 self.emit(Op::AndEno);
-                let bit = self.bit_out(false);
-                self.emit(Op::Assign {
-                    bit,
-                    immediate: false,
-                });
+                self.assign_out();
             }
         }
         let _ = ctx;
@@ -353,25 +349,34 @@ impl Gen<'_, '_> {
         (self.p.area_size(b.area) - b.byte) * 8 - u32::from(b.bit)
     }
 
+    /// `= bit` to a fresh output bit (not immediate).
+    fn assign_out(&mut self) {
+        let bit = self.bit_out(false);
+        self.emit(Op::Assign {
+            bit,
+            immediate: false,
+        });
+    }
+
     /// `R T.., n` or `R C.., n`.
     fn reset_objects(&mut self, timers: bool) {
-        if timers {
-            let n = self.timer_no();
-            let room = u32::from(self.p.timers) - u32::from(n);
-            let count = self.count(room.min(8));
-            self.emit(Op::ResetTimers {
+        let (n, objects) = if timers {
+            (self.timer_no(), self.p.timers)
+        } else {
+            (self.counter_no(), self.p.counters)
+        };
+        let count = self.count((u32::from(objects) - u32::from(n)).min(8));
+        self.emit(if timers {
+            Op::ResetTimers {
                 first: TimerId(n),
                 count,
-            });
+            }
         } else {
-            let n = self.counter_no();
-            let room = u32::from(self.p.counters) - u32::from(n);
-            let count = self.count(room.min(8));
-            self.emit(Op::ResetCounters {
+            Op::ResetCounters {
                 first: CounterId(n),
                 count,
-            });
-        }
+            }
+        });
     }
 
     /// A timer instruction; the number keeps the kind it was first used with.
@@ -442,11 +447,7 @@ impl Gen<'_, '_> {
         });
         if self.c.chance(1, 3) {
             self.emit(Op::Pop);
-            let bit = self.bit_out(false);
-            self.emit(Op::Assign {
-                bit,
-                immediate: false,
-            });
+            self.assign_out();
         }
     }
 
@@ -469,11 +470,7 @@ impl Gen<'_, '_> {
         self.emit(Op::Box(b));
         if self.c.chance(1, 2) {
             self.emit(Op::AndEno);
-            let bit = self.bit_out(false);
-            self.emit(Op::Assign {
-                bit,
-                immediate: false,
-            });
+            self.assign_out();
         }
         let flag = sm(1, self.c.below(8) as u8);
         self.emit(Op::Load(on(flag)));
@@ -482,11 +479,7 @@ impl Gen<'_, '_> {
             let negated = self.c.chance(1, 2);
             self.emit(Op::Or(Contact::Bit { bit, negated }));
         }
-        let bit = self.bit_out(false);
-        self.emit(Op::Assign {
-            bit,
-            immediate: false,
-        });
+        self.assign_out();
     }
 
     /// Pointers: `MOVD &x, cell`, stepping with `+D`/`INCD`, use through `*cell`.
@@ -581,11 +574,7 @@ impl Gen<'_, '_> {
             };
             self.emit(op);
         }
-        let bit = self.bit_out(false);
-        self.emit(Op::Assign {
-            bit,
-            immediate: false,
-        });
+        self.assign_out();
     }
 
     /// `LPS` / `LRD` / `LPP` branches, each with its own contacts and outputs.

@@ -2,12 +2,22 @@
 //! moves, `FILL`, `SHRB`) and the end of a pointer's area. Part of [`crate::ffi`]; its
 //! conventions and table apply.
 
-use super::{FfiCode, RT_BAD_ARGUMENT, status, width_of, with_image};
+use super::{FfiCode, RT_BAD_ARGUMENT, status_of, width_of};
 use crate::block::{self, Span};
 use crate::pointer;
 use stljit_core::Area;
 use stljit_core::ir::BitLoc;
 use stljit_core::layout::Layout;
+
+/// The bit `area` (its [`FfiCode`]), `byte`, `bit` of a bit-run shim; a bit number above 7
+/// stays out of range (8) for the runtime to reject.
+fn bit_loc(area: u32, byte: u32, bit: u32) -> Option<BitLoc> {
+    Some(BitLoc {
+        area: Area::from_ffi(area)?,
+        byte,
+        bit: bit.min(8) as u8,
+    })
+}
 
 /// [`block::set_range_imm`] (`S/R/SI/RI`); the bit is `area` (its [`FfiCode`]), `byte`, `bit`.
 ///
@@ -25,29 +35,15 @@ pub unsafe extern "C" fn stljit_rt_set_range(
     value: u32,
     immediate: u32,
 ) -> u32 {
-    let Some(area) = Area::from_ffi(area) else {
+    let Some(start) = bit_loc(area, byte, bit) else {
         return RT_BAD_ARGUMENT;
-    };
-    let start = BitLoc {
-        area,
-        byte,
-        bit: bit.min(8) as u8,
     };
     // SAFETY: forwarded caller contract.
     unsafe {
-        with_image(image, layout, |b, l| {
-            status(block::set_range_imm(
-                b,
-                l,
-                start,
-                frame,
-                count,
-                value != 0,
-                immediate != 0,
-            ))
+        status_of(image, layout, |b, l| {
+            block::set_range_imm(b, l, start, frame, count, value != 0, immediate != 0)
         })
     }
-    .unwrap_or_else(|e| e)
 }
 
 /// [`block::block_move`]: spans as image offsets (start, area end).
@@ -70,7 +66,7 @@ pub unsafe extern "C" fn stljit_rt_block_move(
     };
     // SAFETY: forwarded caller contract.
     unsafe {
-        with_image(image, layout, |b, l| {
+        status_of(image, layout, |b, l| {
             // Ends beyond the image would let a bad span through the per-area check.
             let (s, d) = (
                 Span {
@@ -82,10 +78,9 @@ pub unsafe extern "C" fn stljit_rt_block_move(
                     end: dst_end.min(l.size),
                 },
             );
-            status(block::block_move(b, s, d, width, count))
+            block::block_move(b, s, d, width, count)
         })
     }
-    .unwrap_or_else(|e| e)
 }
 
 /// [`block::fill`].
@@ -102,15 +97,14 @@ pub unsafe extern "C" fn stljit_rt_fill(
 ) -> u32 {
     // SAFETY: forwarded caller contract.
     unsafe {
-        with_image(image, layout, |b, l| {
+        status_of(image, layout, |b, l| {
             let d = Span {
                 start: dst,
                 end: dst_end.min(l.size),
             };
-            status(block::fill(b, value as u16, d, count))
+            block::fill(b, value as u16, d, count)
         })
     }
-    .unwrap_or_else(|e| e)
 }
 
 /// [`block::shift_register`] (`SHRB`); `len` is the signed count.
@@ -128,28 +122,15 @@ pub unsafe extern "C" fn stljit_rt_shift_register(
     frame: u32,
     len: i32,
 ) -> u32 {
-    let Some(area) = Area::from_ffi(area) else {
+    let Some(start) = bit_loc(area, byte, bit) else {
         return RT_BAD_ARGUMENT;
-    };
-    let start = BitLoc {
-        area,
-        byte,
-        bit: bit.min(8) as u8,
     };
     // SAFETY: forwarded caller contract.
     unsafe {
-        with_image(image, layout, |b, l| {
-            status(block::shift_register(
-                b,
-                l,
-                data != 0,
-                start,
-                frame,
-                len as i8,
-            ))
+        status_of(image, layout, |b, l| {
+            block::shift_register(b, l, data != 0, start, frame, len as i8)
         })
     }
-    .unwrap_or_else(|e| e)
 }
 
 /// The image offset one past the end of the area a pointer designates (0 for a bad area code),
