@@ -383,21 +383,7 @@ impl<'s> Lowerer<'s> {
                     let c = self.cx.value(o[1], Val::input(Byte));
                     (d?, c?)
                 };
-                let b = if bytes[0] == b'S' {
-                    BoxOp::Shift {
-                        left,
-                        width,
-                        dst,
-                        count,
-                    }
-                } else {
-                    BoxOp::Rotate {
-                        left,
-                        width,
-                        dst,
-                        count,
-                    }
-                };
+                let b = BoxOp::shift_or_rotate(bytes[0] == b'R', left, width, dst, count);
                 return self.boxed(ps, b);
             }
             Group::ShiftRegister => {

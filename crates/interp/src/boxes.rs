@@ -6,8 +6,9 @@ use crate::exec::Machine;
 use crate::operand::Addr;
 use stljit_core::ir::{BoxOp, Operand};
 use stljit_core::{Area, ErrorCode, Width};
+use stljit_runtime::ffi::ValueBox;
 use stljit_runtime::flags::{Outcome, apply_flags};
-use stljit_runtime::{arith, bitops, block, convert, mem};
+use stljit_runtime::{bitops, block, mem};
 
 impl Machine<'_> {
     /// Writes `o`'s value (if any) to the already-resolved `dst` and applies its flags.
@@ -50,8 +51,26 @@ impl Machine<'_> {
         Ok(self.finish(o, d, width))
     }
 
+    /// A box that is one value computation ([`ValueBox`], the operand shape both engines use):
+    /// IN and OUT resolved in that order before anything is written, then the runtime's rule.
+    fn value_box(&mut self, vb: &ValueBox, frame: u32) -> Result<bool, ErrorCode> {
+        let input = match vb.input {
+            Some(u) => Some((self.resolve(&u.operand, u.width, frame, false)?, u.width)),
+            None => None,
+        };
+        let out_w = vb.out.width;
+        let d = self.resolve(&vb.out.operand, out_w, frame, true)?;
+        let out = if vb.reads_out() {
+            self.load(d, out_w)
+        } else {
+            0
+        };
+        let in1 = input.map_or(0, |(a, w)| self.load(a, w));
+        Ok(self.finish(vb.op.outcome(out, in1), d, out_w))
+    }
+
     pub(crate) fn exec_box(&mut self, b: &BoxOp, frame: u32) -> Result<bool, ErrorCode> {
-        use Width::{Byte, DWord, Word};
+        use Width::{Byte, Word};
         match *b {
             BoxOp::Move { width, src, dst } => {
                 self.compute::<false>(&src, width, &dst, width, frame, |_, x| Outcome::plain(x))
@@ -76,35 +95,6 @@ impl Machine<'_> {
                 let d = self.span(&dst, Word, frame, true)?;
                 block::fill(self.img, v as u16, d, n).map(|()| true)
             }
-            BoxOp::IntArith {
-                op,
-                width,
-                src,
-                dst,
-            } => self.compute::<true>(&src, width, &dst, width, frame, |o, i| {
-                arith::int_arith(op, width, o, i)
-            }),
-            BoxOp::MulWide { src, dst } | BoxOp::DivWide { src, dst } => {
-                let f = if matches!(b, BoxOp::MulWide { .. }) {
-                    arith::mul_wide
-                } else {
-                    arith::div_wide
-                };
-                self.compute::<true>(&src, Word, &dst, DWord, frame, f)
-            }
-            BoxOp::RealArith { op, src, dst } => {
-                self.compute::<true>(&src, DWord, &dst, DWord, frame, |o, i| {
-                    arith::real_arith(op, o, i)
-                })
-            }
-            BoxOp::RealFunc { func, src, dst } => {
-                self.compute::<false>(&src, DWord, &dst, DWord, frame, |_, x| {
-                    arith::real_func(func, x)
-                })
-            }
-            BoxOp::Step { width, up, dst } => {
-                self.in_place(&dst, width, frame, |x| arith::step(width, up, x))
-            }
             BoxOp::Logic {
                 op,
                 width,
@@ -116,35 +106,16 @@ impl Machine<'_> {
             BoxOp::Invert { width, dst } => {
                 self.in_place(&dst, width, frame, |x| bitops::invert(width, x))
             }
-            BoxOp::Shift {
-                left,
-                width,
-                dst,
-                count,
-            }
-            | BoxOp::Rotate {
-                left,
-                width,
-                dst,
-                count,
-            } => {
-                let f = if matches!(b, BoxOp::Shift { .. }) {
-                    bitops::shift
-                } else {
-                    bitops::rotate
-                };
-                let n = self.read(&count, Byte, frame)? as u8;
-                self.in_place(&dst, width, frame, |x| f(left, width, x, n))
-            }
             BoxOp::ShiftRegister { data, start, len } => {
                 let d = self.bit(data, frame);
                 let n = self.read(&len, Byte, frame)? as u8 as i8;
                 block::shift_register(self.img, self.layout, d, start, frame, n).map(|()| true)
             }
-            BoxOp::Convert { conv, src, dst } => {
-                let (sw, dw) = convert::widths(conv);
-                self.compute::<false>(&src, sw, &dst, dw, frame, |_, x| convert::convert(conv, x))
-            }
+            stljit_runtime::value_boxes!() => match ValueBox::of(b) {
+                Some(vb) => self.value_box(&vb, frame),
+                // `ValueBox::of` covers exactly these variants (the runtime's tests say so).
+                None => Err(ErrorCode::OperandRange),
+            },
             BoxOp::ImmediateRead { input, dst } => {
                 if input >= self.layout.area_size(Area::I) {
                     return Err(ErrorCode::OperandRange);

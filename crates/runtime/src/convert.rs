@@ -5,7 +5,6 @@
 //! unchanged, ENO = 0), 0 on success — as the spec states explicitly for ITB.
 
 use crate::flags::{BCD, OVERFLOW, Outcome, SmFlags};
-use stljit_core::Width;
 use stljit_core::ir::Conversion;
 
 /// 7-segment patterns (bit 0 = a … bit 6 = g) of 0–F (spec §4.12 SEG).
@@ -51,12 +50,6 @@ fn int_to_bcd(x: i16) -> Option<u32> {
     }
     let x = x as u32;
     Some(((x / 1000) << 12) | ((x / 100 % 10) << 8) | ((x / 10 % 10) << 4) | (x % 10))
-}
-
-/// The widths of a conversion's input and output operands ([`Conversion::widths`], core's one
-/// statement of them).
-pub fn widths(conv: Conversion) -> (Width, Width) {
-    conv.widths()
 }
 
 /// Executes a conversion on the input bits (for BCDI/IBCD, the current value of OUT).

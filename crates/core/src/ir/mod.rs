@@ -26,7 +26,7 @@ mod verify;
 pub use facts::{StackEffect, Successors, enclosing_loop, loop_entered_by};
 pub use op::{ArithOp, BoxOp, Conversion, LogicOp, Op, RealFn};
 pub use operand::{Address, BitLoc, CmpOp, CmpType, Contact, Loc, Operand};
-pub use uses::{Access, OperandUse};
+pub use uses::{Access, OperandUse, Uses};
 pub use verify::{MAX_STACK_DEPTH, OpRule, PouRule, VerifyError, verify};
 
 use crate::index::{CounterId, FileId, LabelId, OpIdx, PouId, TimerId};

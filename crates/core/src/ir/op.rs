@@ -391,3 +391,31 @@ pub enum BoxOp {
         output: u32,
     },
 }
+
+impl BoxOp {
+    /// `SLx`/`SRx` (`rotate` false) or `RLx`/`RRx` (`rotate` true): the two differ only in the
+    /// bits shifted in, so front ends and readers build them from one flag.
+    pub fn shift_or_rotate(
+        rotate: bool,
+        left: bool,
+        width: Width,
+        dst: Operand,
+        count: Operand,
+    ) -> BoxOp {
+        if rotate {
+            BoxOp::Rotate {
+                left,
+                width,
+                dst,
+                count,
+            }
+        } else {
+            BoxOp::Shift {
+                left,
+                width,
+                dst,
+                count,
+            }
+        }
+    }
+}

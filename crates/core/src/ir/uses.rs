@@ -30,6 +30,38 @@ pub struct OperandUse {
     pub access: Access,
 }
 
+/// The value operands of one op (at most three), kept inline so that an engine may ask for them
+/// per execution without allocating.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Uses {
+    items: [Option<OperandUse>; 3],
+}
+
+impl Uses {
+    fn of(list: &[OperandUse]) -> Uses {
+        let mut items = [None; 3];
+        for (slot, u) in items.iter_mut().zip(list) {
+            *slot = Some(*u);
+        }
+        Uses { items }
+    }
+
+    /// The operands in operand order.
+    pub fn iter(&self) -> impl Iterator<Item = OperandUse> + '_ {
+        self.items.iter().flatten().copied()
+    }
+
+    /// The operand the op reads as its input (the first read-only one), if any.
+    pub fn input(&self) -> Option<OperandUse> {
+        self.iter().find(|u| u.access == Access::Read)
+    }
+
+    /// The operand the op writes (its OUT), if any.
+    pub fn output(&self) -> Option<OperandUse> {
+        self.iter().find(|u| u.access != Access::Read)
+    }
+}
+
 impl Conversion {
     /// The widths of the conversion's input and output operands.
     pub fn widths(self) -> (Width, Width) {
@@ -70,76 +102,81 @@ fn update(operand: Operand, width: Width) -> OperandUse {
     }
 }
 
-fn contact_operands(c: &Contact) -> Vec<OperandUse> {
+fn contact_operands(c: &Contact) -> Uses {
     match c {
         Contact::Compare { ty, lhs, rhs, .. } => {
-            vec![read(*lhs, ty.width()), read(*rhs, ty.width())]
+            Uses::of(&[read(*lhs, ty.width()), read(*rhs, ty.width())])
         }
-        Contact::Bit { .. } | Contact::ImmediateInput { .. } => vec![],
+        Contact::Bit { .. } | Contact::ImmediateInput { .. } => Uses::of(&[]),
     }
 }
 
-fn box_operands(b: &BoxOp) -> Vec<OperandUse> {
-    use Width::{Byte, DWord, Word};
-    match *b {
-        BoxOp::Move { width, src, dst } => vec![read(src, width), write(dst, width)],
-        BoxOp::Swap { dst } => vec![update(dst, Word)],
-        // Only the first element of a block is a direct location; the rest is range-checked at
-        // run time with the count.
-        BoxOp::BlockMove {
-            width,
-            src,
-            dst,
-            count,
-        } => vec![read(src, width), write(dst, width), read(count, Byte)],
-        BoxOp::Fill { src, dst, count } => {
-            vec![read(src, Word), write(dst, Word), read(count, Byte)]
+impl BoxOp {
+    /// Every value operand of the box with its width and access, in operand order.
+    pub fn operand_uses(&self) -> Uses {
+        use Width::{Byte, DWord, Word};
+        match *self {
+            BoxOp::Move { width, src, dst } => Uses::of(&[read(src, width), write(dst, width)]),
+            BoxOp::Swap { dst } => Uses::of(&[update(dst, Word)]),
+            // Only the first element of a block is a direct location; the rest is range-checked at
+            // run time with the count.
+            BoxOp::BlockMove {
+                width,
+                src,
+                dst,
+                count,
+            } => Uses::of(&[read(src, width), write(dst, width), read(count, Byte)]),
+            BoxOp::Fill { src, dst, count } => {
+                Uses::of(&[read(src, Word), write(dst, Word), read(count, Byte)])
+            }
+            BoxOp::IntArith {
+                width, src, dst, ..
+            }
+            | BoxOp::Logic {
+                width, src, dst, ..
+            } => Uses::of(&[read(src, width), update(dst, width)]),
+            BoxOp::MulWide { src, dst } | BoxOp::DivWide { src, dst } => {
+                Uses::of(&[read(src, Word), update(dst, DWord)])
+            }
+            BoxOp::RealArith { src, dst, .. } => Uses::of(&[read(src, DWord), update(dst, DWord)]),
+            BoxOp::RealFunc { src, dst, .. } => Uses::of(&[read(src, DWord), write(dst, DWord)]),
+            BoxOp::Step { width, dst, .. } | BoxOp::Invert { width, dst } => {
+                Uses::of(&[update(dst, width)])
+            }
+            BoxOp::Shift {
+                width, dst, count, ..
+            }
+            | BoxOp::Rotate {
+                width, dst, count, ..
+            } => Uses::of(&[update(dst, width), read(count, Byte)]),
+            BoxOp::ShiftRegister { len, .. } => Uses::of(&[read(len, Byte)]),
+            BoxOp::Convert { conv, src, dst } => {
+                let (wi, wo) = conv.widths();
+                // BCDI/IBCD convert in place: `src == dst`.
+                Uses::of(&[read(src, wi), write(dst, wo)])
+            }
+            BoxOp::ImmediateRead { dst, .. } => Uses::of(&[write(dst, Byte)]),
+            BoxOp::ImmediateWrite { src, .. } => Uses::of(&[read(src, Byte)]),
         }
-        BoxOp::IntArith {
-            width, src, dst, ..
-        }
-        | BoxOp::Logic {
-            width, src, dst, ..
-        } => {
-            vec![read(src, width), update(dst, width)]
-        }
-        BoxOp::MulWide { src, dst } | BoxOp::DivWide { src, dst } => {
-            vec![read(src, Word), update(dst, DWord)]
-        }
-        BoxOp::RealArith { src, dst, .. } => vec![read(src, DWord), update(dst, DWord)],
-        BoxOp::RealFunc { src, dst, .. } => vec![read(src, DWord), write(dst, DWord)],
-        BoxOp::Step { width, dst, .. } | BoxOp::Invert { width, dst } => vec![update(dst, width)],
-        BoxOp::Shift {
-            width, dst, count, ..
-        }
-        | BoxOp::Rotate {
-            width, dst, count, ..
-        } => vec![update(dst, width), read(count, Byte)],
-        BoxOp::ShiftRegister { len, .. } => vec![read(len, Byte)],
-        BoxOp::Convert { conv, src, dst } => {
-            let (wi, wo) = conv.widths();
-            // BCDI/IBCD convert in place: `src == dst`.
-            vec![read(src, wi), write(dst, wo)]
-        }
-        BoxOp::ImmediateRead { dst, .. } => vec![write(dst, Byte)],
-        BoxOp::ImmediateWrite { src, .. } => vec![read(src, Byte)],
     }
 }
 
 impl Op {
     /// Every value operand of the op with its width and access, in operand order.
-    pub fn operand_uses(&self) -> Vec<OperandUse> {
+    pub fn operand_uses(&self) -> Uses {
         use Width::{Byte, Word};
         match self {
             Op::Load(c) | Op::And(c) | Op::Or(c) => contact_operands(c),
             Op::SetRange { count, .. }
             | Op::ResetTimers { count, .. }
-            | Op::ResetCounters { count, .. } => vec![read(*count, Byte)],
-            Op::Timer { preset, .. } | Op::Counter { preset, .. } => vec![read(*preset, Word)],
-            Op::Box(b) => box_operands(b),
+            | Op::ResetCounters { count, .. } => Uses::of(&[read(*count, Byte)]),
+            Op::Timer { preset, .. } | Op::Counter { preset, .. } => {
+                Uses::of(&[read(*preset, Word)])
+            }
+            Op::Box(b) => b.operand_uses(),
             Op::For {
                 index, init, limit, ..
-            } => vec![write(*index, Word), read(*init, Word), read(*limit, Word)],
+            } => Uses::of(&[write(*index, Word), read(*init, Word), read(*limit, Word)]),
             Op::Not
             | Op::AndBlock
             | Op::OrBlock
@@ -162,7 +199,7 @@ impl Op {
             | Op::ScrBegin { .. }
             | Op::ScrTransition { .. }
             | Op::ScrCondEnd { .. }
-            | Op::ScrEnd => vec![],
+            | Op::ScrEnd => Uses::of(&[]),
         }
     }
 
@@ -208,7 +245,7 @@ mod tests {
             dst: vw(2),
         });
         assert_eq!(
-            op.operand_uses(),
+            op.operand_uses().iter().collect::<Vec<_>>(),
             vec![read(vw(0), Width::Word), update(vw(2), Width::Word)]
         );
         let conv = Op::Box(BoxOp::Convert {
@@ -216,6 +253,8 @@ mod tests {
             src: vw(0),
             dst: vw(4),
         });
-        assert_eq!(conv.operand_uses()[1].width, Width::DWord);
+        let uses = conv.operand_uses();
+        assert_eq!(uses.output().map(|u| u.width), Some(Width::DWord));
+        assert_eq!(uses.input().map(|u| u.width), Some(Width::Word));
     }
 }

@@ -243,7 +243,7 @@ fn locations(program: &Program, layout: &Layout, op: &Op) -> Result<(), OpRule> 
             Err(OpRule::OutOfArea { area, offset, len })
         }
     };
-    for u in op.operand_uses() {
+    for u in op.operand_uses().iter() {
         match u.operand {
             Operand::Mem(l) => inside(l.area, l.offset, u.width.bytes())?,
             Operand::Indirect(l) => inside(l.area, l.offset, Width::DWord.bytes())?,

@@ -469,21 +469,7 @@ fn box_op(line: &mut Line<'_>) -> Result<BoxOp> {
             let width = width(line)?;
             let dst = line.field("dst")?.operand()?;
             let count = line.field("count")?.operand()?;
-            if key.text == "shift" {
-                BoxOp::Shift {
-                    left,
-                    width,
-                    dst,
-                    count,
-                }
-            } else {
-                BoxOp::Rotate {
-                    left,
-                    width,
-                    dst,
-                    count,
-                }
-            }
+            BoxOp::shift_or_rotate(key.text == "rotate", left, width, dst, count)
         }
         "shift_register" => BoxOp::ShiftRegister {
             data: line.field("data")?.bit()?,

@@ -304,24 +304,21 @@ impl Gen<'_, '_> {
 
     fn convert(&mut self) -> BoxOp {
         let conv = self.c.pick(Conversion::ALL);
-        let (wi, wo, ri, ro) = match conv {
-            Conversion::ByteToInt | Conversion::Decode => (Width::Byte, Width::Word, false, false),
-            Conversion::IntToByte | Conversion::Encode => (Width::Word, Width::Byte, false, false),
-            Conversion::IntToDInt => (Width::Word, Width::DWord, false, false),
-            Conversion::DIntToInt => (Width::DWord, Width::Word, false, false),
-            Conversion::DIntToReal => (Width::DWord, Width::DWord, false, true),
-            Conversion::Round | Conversion::Trunc => (Width::DWord, Width::DWord, true, false),
-            Conversion::Segment => (Width::Byte, Width::Byte, false, false),
-            Conversion::BcdToInt | Conversion::IntToBcd => {
-                // In place: the front end lowers `BCDI OUT` to src == dst.
-                let dst = self.value(Width::Word, Class::OUT);
-                return BoxOp::Convert {
-                    conv,
-                    src: dst,
-                    dst,
-                };
-            }
-        };
+        if matches!(conv, Conversion::BcdToInt | Conversion::IntToBcd) {
+            // In place: the front end lowers `BCDI OUT` to src == dst.
+            let dst = self.value(Width::Word, Class::OUT);
+            return BoxOp::Convert {
+                conv,
+                src: dst,
+                dst,
+            };
+        }
+        let (wi, wo) = conv.widths();
+        // Which side is a real (drawn from the real-valued operand classes).
+        let (ri, ro) = (
+            matches!(conv, Conversion::Round | Conversion::Trunc),
+            conv == Conversion::DIntToReal,
+        );
         let src = self.value(wi, if ri { Class::REAL_IN } else { Class::IN });
         let dst = self.value(wo, if ro { Class::REAL_OUT } else { Class::OUT });
         BoxOp::Convert { conv, src, dst }

@@ -486,13 +486,7 @@ impl Gen<'_, '_> {
     fn pointer_network(&mut self) {
         self.emit(Op::Load(on(sm(0, 0))));
         if self.c.chance(1, 3) {
-            let target = self.address_target();
-            let cell = self.pointer_cell();
-            self.emit(Op::Box(BoxOp::Move {
-                width: Width::DWord,
-                src: Operand::AddressOf(target),
-                dst: Operand::Mem(cell),
-            }));
+            self.point_somewhere();
         }
         let cell = self.pointer_cell();
         let step = match self.c.weighted(&[3, 2, 1, 1]) {
@@ -540,17 +534,22 @@ impl Gen<'_, '_> {
         self.emit(Op::Box(op));
     }
 
+    /// `MOVD &target, cell`: a pointer cell aimed at a random target.
+    fn point_somewhere(&mut self) {
+        let target = self.address_target();
+        let cell = self.pointer_cell();
+        self.emit(Op::Box(BoxOp::Move {
+            width: Width::DWord,
+            src: Operand::AddressOf(target),
+            dst: Operand::Mem(cell),
+        }));
+    }
+
     /// Initial pointers, so that `*` operands mostly point somewhere.
     fn pointer_setup(&mut self) {
         self.emit(Op::Load(on(sm(0, 1))));
         for _ in 0..self.c.range(1, 3) {
-            let target = self.address_target();
-            let cell = self.pointer_cell();
-            self.emit(Op::Box(BoxOp::Move {
-                width: Width::DWord,
-                src: Operand::AddressOf(target),
-                dst: Operand::Mem(cell),
-            }));
+            self.point_somewhere();
         }
     }
 

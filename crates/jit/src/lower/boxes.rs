@@ -21,7 +21,7 @@ use cranelift_codegen::ir::{
 use stljit_core::ir::{ArithOp, BoxOp, LogicOp, Operand};
 use stljit_core::{Area, Width};
 use stljit_runtime::ffi::{
-    OUTCOME_CLEAR_SHIFT, OUTCOME_HAS_VALUE_SHIFT, OUTCOME_SET_SHIFT, ValueOp,
+    OUTCOME_CLEAR_SHIFT, OUTCOME_HAS_VALUE_SHIFT, OUTCOME_SET_SHIFT, ValueBox,
 };
 use stljit_runtime::flags;
 
@@ -65,39 +65,28 @@ impl Lower<'_, '_> {
     /// Whether a box can be lowered branch-free: no pointer operand (so no run-time error),
     /// no static error, and no shim that touches the image (the value shim is pure).
     fn branch_free(&self, bx: &BoxOp) -> bool {
-        let direct = |o: &Operand| !Self::is_indirect(o);
+        let direct = bx
+            .operand_uses()
+            .iter()
+            .all(|u| !Self::is_indirect(&u.operand));
         match *bx {
-            BoxOp::Move {
-                ref src, ref dst, ..
+            BoxOp::Move { .. }
+            | BoxOp::IntArith { .. }
+            | BoxOp::MulWide { .. }
+            | BoxOp::DivWide { .. }
+            | BoxOp::RealArith { .. }
+            | BoxOp::RealFunc { .. }
+            | BoxOp::Logic { .. }
+            | BoxOp::Convert { .. }
+            | BoxOp::Shift { .. }
+            | BoxOp::Rotate { .. }
+            | BoxOp::Swap { .. }
+            | BoxOp::Step { .. }
+            | BoxOp::Invert { .. } => direct,
+            BoxOp::ImmediateRead { input: n, .. } | BoxOp::ImmediateWrite { output: n, .. } => {
+                n < self.io_limit(bx) && direct
             }
-            | BoxOp::IntArith {
-                ref src, ref dst, ..
-            }
-            | BoxOp::MulWide { ref src, ref dst }
-            | BoxOp::DivWide { ref src, ref dst }
-            | BoxOp::RealArith {
-                ref src, ref dst, ..
-            }
-            | BoxOp::RealFunc {
-                ref src, ref dst, ..
-            }
-            | BoxOp::Logic {
-                ref src, ref dst, ..
-            }
-            | BoxOp::Convert {
-                ref src, ref dst, ..
-            } => direct(src) && direct(dst),
-            BoxOp::Shift {
-                ref dst, ref count, ..
-            }
-            | BoxOp::Rotate {
-                ref dst, ref count, ..
-            } => direct(dst) && direct(count),
-            BoxOp::Swap { ref dst }
-            | BoxOp::Step { ref dst, .. }
-            | BoxOp::Invert { ref dst, .. } => direct(dst),
-            BoxOp::ImmediateRead { input, ref dst } => input < self.io_limit(bx) && direct(dst),
-            BoxOp::ImmediateWrite { ref src, output } => output < self.io_limit(bx) && direct(src),
+            // Their shims touch the image and check the element range at run time.
             BoxOp::BlockMove { .. } | BoxOp::Fill { .. } | BoxOp::ShiftRegister { .. } => false,
         }
     }
@@ -135,22 +124,13 @@ impl Lower<'_, '_> {
                 width,
                 ref src,
                 ref dst,
-            } => self.boxed(|s, f| {
-                let a = s.read_operand(src, width, f);
-                let p = s.dst_place(dst, width, f);
-                let d = s.read_place(p, width);
-                s.add_sub(op == ArithOp::Add, width, p, d, a)
-            }),
+            } => self.inline_add_sub(op == ArithOp::Add, width, Some(src), dst),
+            // INC/DEC of a word or dword is +1/-1 with the same flag rule.
             BoxOp::Step {
                 width: width @ (Width::Word | Width::DWord),
                 up,
                 ref dst,
-            } => self.boxed(|s, f| {
-                let p = s.dst_place(dst, width, f);
-                let d = s.read_place(p, width);
-                let one = s.iconst(I32, 1);
-                s.add_sub(up, width, p, d, one)
-            }),
+            } => self.inline_add_sub(up, width, None, dst),
             BoxOp::Logic {
                 op,
                 width,
@@ -178,89 +158,11 @@ impl Lower<'_, '_> {
                 s.zero_flag(r);
                 B::K(true)
             }),
-            BoxOp::IntArith {
-                op,
-                width,
-                ref src,
-                ref dst,
-            } => self.value_box(
-                ValueOp::IntArith(op, width),
-                Some((src, width)),
-                dst,
-                width,
-                true,
-            ),
-            BoxOp::Step { width, up, ref dst } => {
-                self.value_box(ValueOp::Step { width, up }, None, dst, width, true)
-            }
-            BoxOp::MulWide { ref src, ref dst } => self.value_box(
-                ValueOp::MulWide,
-                Some((src, Width::Word)),
-                dst,
-                Width::DWord,
-                true,
-            ),
-            BoxOp::DivWide { ref src, ref dst } => self.value_box(
-                ValueOp::DivWide,
-                Some((src, Width::Word)),
-                dst,
-                Width::DWord,
-                true,
-            ),
-            BoxOp::RealArith {
-                op,
-                ref src,
-                ref dst,
-            } => self.value_box(
-                ValueOp::RealArith(op),
-                Some((src, Width::DWord)),
-                dst,
-                Width::DWord,
-                true,
-            ),
-            BoxOp::RealFunc {
-                func,
-                ref src,
-                ref dst,
-            } => self.value_box(
-                ValueOp::RealFunc(func),
-                Some((src, Width::DWord)),
-                dst,
-                Width::DWord,
-                false,
-            ),
-            BoxOp::Shift {
-                left,
-                width,
-                ref dst,
-                ref count,
-            } => self.value_box(
-                ValueOp::Shift { left, width },
-                Some((count, Width::Byte)),
-                dst,
-                width,
-                true,
-            ),
-            BoxOp::Rotate {
-                left,
-                width,
-                ref dst,
-                ref count,
-            } => self.value_box(
-                ValueOp::Rotate { left, width },
-                Some((count, Width::Byte)),
-                dst,
-                width,
-                true,
-            ),
-            BoxOp::Convert {
-                conv,
-                ref src,
-                ref dst,
-            } => {
-                let (sw, dw) = conv.widths();
-                self.value_box(ValueOp::Convert(conv), Some((src, sw)), dst, dw, false)
-            }
+            stljit_runtime::value_boxes!() => match ValueBox::of(bx) {
+                Some(vb) => self.value_box(vb),
+                // `ValueBox::of` covers exactly these variants (the runtime's tests say so).
+                None => self.func.unsupported = Some(format!("{bx:?} is no value box")),
+            },
             BoxOp::ImmediateRead { input, .. } | BoxOp::ImmediateWrite { output: input, .. }
                 if input >= self.io_limit(bx) =>
             {
@@ -371,22 +273,34 @@ impl Lower<'_, '_> {
     /// A box computed by the runtime (value shim): reads IN1 (`src`) and OUT, calls, applies the
     /// SMB1 masks, writes OUT when the outcome has a value. `read_out` is false for boxes whose
     /// OUT is not an input (the shim then sees 0).
-    fn value_box(
-        &mut self,
-        vop: ValueOp,
-        src: Option<(&Operand, Width)>,
-        dst: &Operand,
-        dw: Width,
-        read_out: bool,
-    ) {
+    /// `OUT := OUT ± IN` inlined (IN `None`: the constant 1 of INC/DEC), the runtime's flag rule
+    /// through [`Lower::add_sub`].
+    fn inline_add_sub(&mut self, add: bool, width: Width, src: Option<&Operand>, dst: &Operand) {
         self.boxed(|s, f| {
-            let in1 = match src {
-                Some((o, w)) => s.read_operand(o, w, f),
+            let a = src.map(|src| s.read_operand(src, width, f));
+            let p = s.dst_place(dst, width, f);
+            let d = s.read_place(p, width);
+            let a = a.unwrap_or_else(|| s.iconst(I32, 1));
+            s.add_sub(add, width, p, d, a)
+        })
+    }
+
+    /// A box that is one value computation ([`ValueBox`]): IN and OUT read, the runtime's pure
+    /// value shim called, its packed outcome applied to OUT and SMB1.
+    fn value_box(&mut self, vb: ValueBox) {
+        let (vop, dw) = (vb.op, vb.out.width);
+        self.boxed(|s, f| {
+            let in1 = match vb.input {
+                Some(u) => s.read_operand(&u.operand, u.width, f),
                 None => s.iconst(I32, 0),
             };
-            let p = s.dst_place(dst, dw, f);
+            let p = s.dst_place(&vb.out.operand, dw, f);
             let old = s.read_place(p, dw);
-            let out = if read_out { old } else { s.iconst(I32, 0) };
+            let out = if vb.reads_out() {
+                old
+            } else {
+                s.iconst(I32, 0)
+            };
             let (opc, sub) = vop.encode();
             let opc = s.iconst(I32, i64::from(opc));
             let subv = s.iconst(I32, i64::from(sub));

@@ -6,12 +6,15 @@
 //! own stores, so the call touches no memory and the byte cache survives it. [`ValueOp`] is the
 //! one place that knows the encoding: [`ValueOp::encode`] for the JIT, [`ValueOp::decode`] for
 //! the shim, and [`ValueOp::outcome`] for the dispatch, an exhaustive match.
+//!
+//! [`ValueBox`] says which boxes are one value computation and with which operands (read from
+//! core's [`BoxOp::operand_uses`]), so both engines dispatch those boxes through it.
 
 use crate::flags::Outcome;
 use crate::{arith, bitops, convert};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use stljit_core::Width;
-use stljit_core::ir::{ArithOp, Conversion, RealFn};
+use stljit_core::ir::{Access, ArithOp, BoxOp, Conversion, OperandUse, RealFn};
 
 use super::{FfiCode, width_of};
 
@@ -83,7 +86,7 @@ impl ValueOp {
             ValueOp::RealFunc(f) => (REAL_FUNC, sub(Width::DWord, f.ffi_code())),
             ValueOp::Shift { left, width } => (if left { SHIFT_L } else { SHIFT_R }, sub(width, 0)),
             ValueOp::Rotate { left, width } => (if left { ROT_L } else { ROT_R }, sub(width, 0)),
-            ValueOp::Convert(c) => (CONVERT, sub(convert::widths(c).1, c.ffi_code())),
+            ValueOp::Convert(c) => (CONVERT, sub(c.widths().1, c.ffi_code())),
         }
     }
 
@@ -134,6 +137,73 @@ impl ValueOp {
             ValueOp::Rotate { left, width } => bitops::rotate(left, width, out, in1 as u8),
             ValueOp::Convert(c) => convert::convert(c, in1),
         }
+    }
+}
+
+/// The pattern of every [`BoxOp`] variant that is a [`ValueBox`], the one list of them, for the
+/// engines' exhaustive matches: `stljit_runtime::value_boxes!() => ...`.
+#[macro_export]
+macro_rules! value_boxes {
+    () => {
+        ::stljit_core::ir::BoxOp::IntArith { .. }
+            | ::stljit_core::ir::BoxOp::MulWide { .. }
+            | ::stljit_core::ir::BoxOp::DivWide { .. }
+            | ::stljit_core::ir::BoxOp::RealArith { .. }
+            | ::stljit_core::ir::BoxOp::RealFunc { .. }
+            | ::stljit_core::ir::BoxOp::Step { .. }
+            | ::stljit_core::ir::BoxOp::Shift { .. }
+            | ::stljit_core::ir::BoxOp::Rotate { .. }
+            | ::stljit_core::ir::BoxOp::Convert { .. }
+    };
+}
+
+/// A box whose whole effect is one value computation: `OUT := op(OUT, IN)` and the SMB1 flags
+/// of the [`Outcome`]. The operands are core's statement of the box's operands.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ValueBox {
+    /// The computation.
+    pub op: ValueOp,
+    /// IN (for shifts and rotates the count); `None` for INC/DEC, which read only OUT.
+    pub input: Option<OperandUse>,
+    /// OUT; its access says whether its old value is an input ([`Access::ReadWrite`]).
+    pub out: OperandUse,
+}
+
+impl ValueBox {
+    /// The value computation box `b` is, or `None` for a box the engines handle otherwise
+    /// (moves, block moves, fills, word logic, inversion, SWAP, SHRB, immediate I/O).
+    pub fn of(b: &BoxOp) -> Option<ValueBox> {
+        let op = match *b {
+            BoxOp::IntArith { op, width, .. } => ValueOp::IntArith(op, width),
+            BoxOp::MulWide { .. } => ValueOp::MulWide,
+            BoxOp::DivWide { .. } => ValueOp::DivWide,
+            BoxOp::Step { width, up, .. } => ValueOp::Step { width, up },
+            BoxOp::RealArith { op, .. } => ValueOp::RealArith(op),
+            BoxOp::RealFunc { func, .. } => ValueOp::RealFunc(func),
+            BoxOp::Shift { left, width, .. } => ValueOp::Shift { left, width },
+            BoxOp::Rotate { left, width, .. } => ValueOp::Rotate { left, width },
+            BoxOp::Convert { conv, .. } => ValueOp::Convert(conv),
+            BoxOp::Move { .. }
+            | BoxOp::Swap { .. }
+            | BoxOp::BlockMove { .. }
+            | BoxOp::Fill { .. }
+            | BoxOp::Logic { .. }
+            | BoxOp::Invert { .. }
+            | BoxOp::ShiftRegister { .. }
+            | BoxOp::ImmediateRead { .. }
+            | BoxOp::ImmediateWrite { .. } => return None,
+        };
+        let uses = b.operand_uses();
+        Some(ValueBox {
+            op,
+            input: uses.input(),
+            out: uses.output()?,
+        })
+    }
+
+    /// Whether OUT's old value is an input of the computation.
+    pub fn reads_out(&self) -> bool {
+        self.out.access == Access::ReadWrite
     }
 }
 
@@ -188,6 +258,69 @@ mod tests {
         v.extend(RealFn::ALL.iter().map(|&f| ValueOp::RealFunc(f)));
         v.extend(Conversion::ALL.iter().map(|&c| ValueOp::Convert(c)));
         v
+    }
+
+    #[test]
+    fn value_boxes_take_core_operands_and_cover_the_value_variants() {
+        use stljit_core::ir::{Loc, LogicOp, Operand};
+        let v = |offset| {
+            Operand::Mem(Loc {
+                area: stljit_core::Area::V,
+                offset,
+            })
+        };
+        let (a, b) = (v(0), v(4));
+        let shift = ValueBox::of(&BoxOp::Shift {
+            left: true,
+            width: Width::Word,
+            dst: a,
+            count: b,
+        })
+        .expect("a value box");
+        assert_eq!(
+            shift.input.map(|u| (u.operand, u.width)),
+            Some((b, Width::Byte))
+        );
+        assert_eq!((shift.out.operand, shift.out.width), (a, Width::Word));
+        assert!(shift.reads_out());
+        let conv = BoxOp::Convert {
+            conv: Conversion::IntToDInt,
+            src: a,
+            dst: b,
+        };
+        let conv = ValueBox::of(&conv).expect("a value box");
+        assert!(!conv.reads_out());
+        assert_eq!(conv.out.width, Width::DWord);
+        let inc = ValueBox::of(&BoxOp::Step {
+            width: Width::Byte,
+            up: true,
+            dst: a,
+        })
+        .expect("a value box");
+        assert_eq!(inc.input, None);
+        let word_logic = BoxOp::Logic {
+            op: LogicOp::And,
+            width: Width::Word,
+            src: a,
+            dst: b,
+        };
+        assert_eq!(ValueBox::of(&word_logic), None);
+        // Every value computation is reachable from a box.
+        let boxes = [
+            BoxOp::MulWide { src: a, dst: b },
+            BoxOp::DivWide { src: a, dst: b },
+            BoxOp::RealArith {
+                op: ArithOp::Div,
+                src: a,
+                dst: b,
+            },
+            BoxOp::RealFunc {
+                func: RealFn::Ln,
+                src: a,
+                dst: b,
+            },
+        ];
+        assert!(boxes.iter().all(|b| ValueBox::of(b).is_some()));
     }
 
     #[test]
