@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::coverage::Coverage;
+use stljit_core::ir::{BoxOp, Operand};
 
 fn structure_ok(p: &Program) -> Result<(), String> {
     for pou in &p.pous {
@@ -93,6 +94,52 @@ fn programs_are_well_structured() {
             "seed {seed}: time goes back"
         );
     }
+}
+
+#[test]
+fn generated_programs_pass_the_verifier() {
+    let cfg = GenConfig::default();
+    for seed in 0..2000 {
+        let case = case_from_seed(seed, &cfg);
+        if let Err(e) = stljit_core::ir::verify(&case.program) {
+            panic!("seed {seed}: {e}");
+        }
+    }
+}
+
+/// FOR loops whose INIT or FINAL overlaps INDX, and INDX written inside the body (issue 16: the
+/// order INDX := INIT, then FINAL, must stay covered by the differential fuzzer).
+#[test]
+fn for_operands_overlapping_the_index_are_generated() {
+    let overlaps = |a: &Operand, b: &Operand| match (a, b) {
+        (Operand::Mem(x), Operand::Mem(y)) => x.area == y.area && x.offset.abs_diff(y.offset) < 2,
+        _ => false,
+    };
+    let cfg = GenConfig::default();
+    let (mut init, mut limit, mut written) = (0, 0, 0);
+    for seed in 0..2000 {
+        for pou in &case_from_seed(seed, &cfg).program.pous {
+            for (i, op) in pou.ops.iter().enumerate() {
+                let Op::For {
+                    index,
+                    init: first,
+                    limit: last,
+                    ..
+                } = op
+                else {
+                    continue;
+                };
+                init += usize::from(overlaps(index, first));
+                limit += usize::from(overlaps(index, last));
+                let bumped = matches!(pou.ops.get(i + 2), Some(Op::Box(BoxOp::Step { dst, .. })) if dst == index);
+                written += usize::from(bumped);
+            }
+        }
+    }
+    assert!(
+        init > 0 && limit > 0 && written > 0,
+        "overlapping INIT {init}, FINAL {limit}, INDX written {written}"
+    );
 }
 
 #[test]
