@@ -10,7 +10,7 @@
 //! names a SCRE; edge slots exist, and the program has no more of them than its profile allows;
 //! every direct location an op names ([`Op::operand_uses`], [`Op::bit_uses`]) lies inside its
 //! area of the profile's layout, no op writes a constant, and every timer and counter an op runs
-//! is declared with that kind. Pointers are the only run-time-checked accesses.
+//! is declared with that kind; timers and counters are declared once each, within the profile. Pointers are the only run-time-checked accesses.
 
 use super::facts::loop_entered_by;
 use super::uses::Access;
@@ -31,6 +31,14 @@ pub enum VerifyError {
     StackDepth(u8),
     /// More edge slots than the profile's `max_edges`.
     TooManyEdges(usize),
+    /// A timer or counter declaration names an object the profile does not have, or one
+    /// declared twice.
+    BadDeclaration {
+        /// `TimerBit` for a timer, `CounterBit` for a counter.
+        area: Area,
+        /// Its number.
+        number: u16,
+    },
     /// A POU breaks a rule.
     Pou {
         /// POU index.
@@ -107,6 +115,12 @@ impl fmt::Display for VerifyError {
                 write!(f, "logic stack depth {d} not in 1..={MAX_STACK_DEPTH}")
             }
             VerifyError::TooManyEdges(n) => write!(f, "{n} edge slots exceed the profile's limit"),
+            VerifyError::BadDeclaration { area, number } => {
+                write!(
+                    f,
+                    "{area:?} {number} is declared twice or not in the profile"
+                )
+            }
             VerifyError::Pou { pou, rule } => {
                 let what = match rule {
                     PouRule::LocsLength => "one source location per op",
@@ -156,6 +170,7 @@ pub fn verify(program: &Program) -> Result<(), VerifyError> {
         return Err(VerifyError::TooManyEdges(program.edges.len()));
     }
     let layout = Layout::of(program.profile);
+    declarations(program, &layout)?;
     for (p, pou) in program.pous.iter().enumerate() {
         verify_pou(program, &layout, pou).map_err(|e| match e {
             Err(rule) => VerifyError::Pou { pou: p, rule },
@@ -225,6 +240,20 @@ fn verify_pou(
             if let Some((head, _)) = loop_entered_by(pou, i, target) {
                 return Err(Ok((i, OpRule::JumpIntoLoop { head })));
             }
+        }
+    }
+    Ok(())
+}
+
+/// Every declared timer and counter exists in the profile, once (the engines index their state
+/// blocks by the number).
+fn declarations(program: &Program, layout: &Layout) -> Result<(), VerifyError> {
+    let timers = program.timers.iter().map(|t| (Area::TimerBit, t.id.0));
+    let counters = program.counters.iter().map(|c| (Area::CounterBit, c.id.0));
+    let mut seen = std::collections::HashSet::new();
+    for (area, number) in timers.chain(counters) {
+        if u32::from(number) >= layout.area_size(area) || !seen.insert((area, number)) {
+            return Err(VerifyError::BadDeclaration { area, number });
         }
     }
     Ok(())
@@ -411,5 +440,29 @@ mod tests {
             op_rule(&program(vec![timer], vec![])),
             Some((0, OpRule::UndeclaredObject))
         );
+    }
+
+    #[test]
+    fn declarations_lie_within_the_profile() {
+        let mut p = program(vec![], vec![]);
+        p.timers.push(crate::ir::TimerDecl {
+            id: crate::TimerId(64),
+            kind: crate::ir::TimerKind::On,
+            resolution: crate::profile::Resolution::Ms100,
+        });
+        assert_eq!(
+            verify(&p),
+            Err(VerifyError::BadDeclaration {
+                area: Area::TimerBit,
+                number: 64
+            })
+        );
+        p.timers[0].id = crate::TimerId(63);
+        assert_eq!(verify(&p), Ok(()));
+        p.timers.push(p.timers[0]);
+        assert!(matches!(
+            verify(&p),
+            Err(VerifyError::BadDeclaration { number: 63, .. })
+        ));
     }
 }
