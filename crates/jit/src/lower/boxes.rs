@@ -70,18 +70,11 @@ impl Lower<'_, '_> {
             .iter()
             .all(|u| !Self::is_indirect(&u.operand));
         match *bx {
-            BoxOp::Move { .. }
-            | BoxOp::IntArith { .. }
-            | BoxOp::MulWide { .. }
-            | BoxOp::DivWide { .. }
-            | BoxOp::RealArith { .. }
-            | BoxOp::RealFunc { .. }
+            // The value boxes call only the pure value shim; the rest are inlined.
+            stljit_runtime::value_boxes!()
+            | BoxOp::Move { .. }
             | BoxOp::Logic { .. }
-            | BoxOp::Convert { .. }
-            | BoxOp::Shift { .. }
-            | BoxOp::Rotate { .. }
             | BoxOp::Swap { .. }
-            | BoxOp::Step { .. }
             | BoxOp::Invert { .. } => direct,
             BoxOp::ImmediateRead { input: n, .. } | BoxOp::ImmediateWrite { output: n, .. } => {
                 n < self.io_limit(bx) && direct
