@@ -4,6 +4,11 @@
 //! [`crate::layout::Layout`] turns that pair into an offset in the flat image. Multi-byte values
 //! are big-endian in every area, accumulators included, so that a byte write to an accumulator
 //! (offset `4n + 3`) replaces only its low byte (spec §1.5, item A5).
+//!
+//! The Omron CP areas (`Cio` … `Tr`) are 16-bit words stored big-endian at offset `2w`, so the
+//! word and bit operations of the IR work on them unchanged; `crate::omron` maps Omron's
+//! `word.bit` addresses (bit 00 = least significant) onto these bytes. S7 profiles give them
+//! size 0, so they change nothing in an S7 image.
 
 /// Access width of a value operand. Reals are `DWord`s whose bits are an IEEE-754 binary32.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -80,11 +85,27 @@ pub enum Area {
     HC,
     /// Accumulators, big-endian `u32` at offset `4n`.
     AC,
+    /// Omron CIO words (`100`, `100.01`) other than the input and output words, which are the
+    /// `I` and `Q` areas of an Omron profile (`crate::omron::word_loc`).
+    Cio,
+    /// Omron work words (`W`).
+    Work,
+    /// Omron holding words (`H`).
+    Holding,
+    /// Omron auxiliary words (`A`); the low words are read-only (profile).
+    Aux,
+    /// Omron data memory (`D`).
+    Dm,
+    /// Omron condition flags and system pulses (`P_EQ`, `P_On`, `P_1s`), one bit each at the
+    /// positions of `crate::omron::SystemBit`; read-only for the program.
+    Flags,
+    /// Omron temporary relays `TR0`–`TR15` (two bytes; a branch point, never retained).
+    Tr,
 }
 
 impl Area {
     /// Every area, in image order.
-    pub const ALL: [Area; 15] = [
+    pub const ALL: [Area; 22] = [
         Area::I,
         Area::Q,
         Area::M,
@@ -100,6 +121,13 @@ impl Area {
         Area::CounterBit,
         Area::HC,
         Area::AC,
+        Area::Cio,
+        Area::Work,
+        Area::Holding,
+        Area::Aux,
+        Area::Dm,
+        Area::Flags,
+        Area::Tr,
     ];
 
     /// The code a pointer (`&VB100`) carries in its top byte, for areas a pointer may address

@@ -15,7 +15,7 @@ use crate::area::Area;
 use crate::profile::{CpuProfile, ProfileId};
 
 /// Bytes of private state per timer (see [`TimerState`]).
-pub const TIMER_STATE_SIZE: u32 = 8;
+pub const TIMER_STATE_SIZE: u32 = 16;
 /// Bytes of private state per counter (see [`CounterState`]).
 pub const COUNTER_STATE_SIZE: u32 = 4;
 /// Bytes of the scan bookkeeping block (see [`Sched`]).
@@ -68,7 +68,8 @@ record_fields! {
     TimerState {
         /// TON/TONR timing active.
         RUN: u8 = 0;
-        /// TOF phase, see `TofPhase` in the runtime (0 idle, 1 on, 2 timing, 3 done).
+        /// TOF phase, see `TofPhase` in the runtime (0 idle, 1 on, 2 timing, 3 done); Omron
+        /// timers: the milliseconds not yet converted into PV units (below the unit).
         TOF: u8 = 1;
         /// The timer's kind (0 unused, 1 TON, 2 TONR, 3 TOF), written at cold start.
         KIND: u8 = 2;
@@ -76,6 +77,8 @@ record_fields! {
         RES: u8 = 3;
         /// Native-endian: the preset seen at the last execution, used by the clock refresh.
         PT_CACHE: i16 = 4;
+        /// Native-endian: Omron timers only, the virtual time (ms) of the last execution.
+        LAST: u64 = 8;
     }
 }
 

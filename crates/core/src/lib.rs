@@ -12,6 +12,7 @@ pub mod codes;
 pub mod index;
 pub mod ir;
 pub mod layout;
+pub mod omron;
 pub mod profile;
 pub mod text;
 
@@ -19,4 +20,4 @@ pub use area::{Area, Width};
 pub use codes::{ErrorCode, FatalCode, ScanStatus};
 pub use index::{CounterId, EdgeSlot, FileId, LabelId, OpIdx, PouId, TimerId};
 pub use layout::Layout;
-pub use profile::{CpuProfile, ProfileId};
+pub use profile::{CpuProfile, Family, GatePolicy, ProfileId};

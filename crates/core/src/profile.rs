@@ -15,17 +15,28 @@ pub enum ProfileId {
     A5,
     /// A classic Siemens S7-200 CPU 226.
     S7_200,
+    /// An Omron CP1H (and CP1L-M): the reference model of the Omron dialect.
+    Cp1h,
+    /// An Omron CP1E (its smaller ranges, spec omron-cp.md §1.1 / U9).
+    Cp1e,
 }
 
 impl ProfileId {
     /// Every profile, for `--cpu` help texts.
-    pub const ALL: [ProfileId; 2] = [ProfileId::A5, ProfileId::S7_200];
+    pub const ALL: [ProfileId; 4] = [
+        ProfileId::A5,
+        ProfileId::S7_200,
+        ProfileId::Cp1h,
+        ProfileId::Cp1e,
+    ];
 
-    /// The name used on the command line (`a5`, `s7-200`).
+    /// The name used on the command line (`a5`, `s7-200`, `cp1h`, `cp1e`).
     pub fn name(self) -> &'static str {
         match self {
             ProfileId::A5 => "a5",
             ProfileId::S7_200 => "s7-200",
+            ProfileId::Cp1h => "cp1h",
+            ProfileId::Cp1e => "cp1e",
         }
     }
 
@@ -41,8 +52,59 @@ impl ProfileId {
         match self {
             ProfileId::A5 => &A5,
             ProfileId::S7_200 => &S7_200,
+            ProfileId::Cp1h => &crate::omron::CP1H,
+            ProfileId::Cp1e => &crate::omron::CP1E,
         }
     }
+}
+
+/// The PLC family a profile belongs to. The rules that differ between the families' execution
+/// models (and not between models of one family) are methods here, so each is stated once.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Family {
+    /// S7-200 / A5: SMB0 system bits, SCR gating, 1-ms and 10-ms timers refreshed at scan start.
+    S7,
+    /// Omron CP: condition flags cleared at every task start, A200.11 and the clock pulses,
+    /// IL/ILC interlocks, timers updated only when they execute.
+    Omron,
+}
+
+impl Family {
+    /// What a closed power-flow gate does to timers, counters and edges: an inactive SCR segment
+    /// (S7) or an active interlock (Omron).
+    pub fn gate_policy(self) -> GatePolicy {
+        match self {
+            Family::S7 => GatePolicy::S7Scr,
+            Family::Omron => GatePolicy::OmronInterlock,
+        }
+    }
+
+    /// Whether the first scan only records edges (S7 spec TC7). Omron edge memories instead
+    /// start at their instance's initial value (omron-cp.md §2.6) and detect from scan 0 on.
+    pub fn first_scan_suppresses_edges(self) -> bool {
+        self == Family::S7
+    }
+
+    /// Whether 1-ms and 10-ms timers are refreshed by the clock at scan start (S7 spec §5.2).
+    /// Omron timers are updated only when their instruction executes (omron-cp.md §2.12).
+    pub fn clock_refreshed_timers(self) -> bool {
+        self == Family::S7
+    }
+}
+
+/// What a closed gate does to the stateful instructions inside it (the rules themselves are in
+/// `stljit_runtime::rules`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum GatePolicy {
+    /// S7 SCR segment not active (spec a5-stl.md §3.6): coils write 0, every timer, counter
+    /// and edge detector runs with its inputs seen as 0 (TON resets, TONR holds, TOF is forced
+    /// idle, counter inputs are 0, edge memories are updated with 0).
+    S7Scr,
+    /// Omron interlock active (omron-cp.md §2.7): OUT writes 0, an on-delay timer (TIM, here
+    /// `TimerKind::On` and the Omron TIM family) resets, everything else is not executed:
+    /// accumulating and off-delay timers, counters (value, bit and count-edge memories) and
+    /// edge memories stay as they are, and an edge detector outputs 0.
+    OmronInterlock,
 }
 
 impl fmt::Display for ProfileId {
@@ -96,11 +158,53 @@ pub struct TimerRange {
     pub resolution: Resolution,
 }
 
+/// The word areas of an Omron profile, in 16-bit words (all 0 on S7 profiles).
+#[derive(Clone, Copy, Debug)]
+pub struct OmronAreas {
+    /// CIO words `0` … `cio - 1` (the input and output words among them are areas `I`/`Q`).
+    pub cio: u32,
+    /// First CIO input word; the profile's `inputs` bytes hold the input words from here.
+    pub first_input_word: u32,
+    /// First CIO output word; the profile's `outputs` bytes hold the output words from here.
+    pub first_output_word: u32,
+    /// `W` words.
+    pub work: u32,
+    /// `H` words.
+    pub holding: u32,
+    /// `A` words.
+    pub aux: u32,
+    /// `A0` up to (excluding) this word is read-only for the program.
+    pub aux_read_only: u32,
+    /// `D` words.
+    pub dm: u32,
+    /// Highest jump number (`JMP`/`CJP`/`JME`).
+    pub max_jump: u16,
+}
+
+impl OmronAreas {
+    /// No Omron areas (the S7 profiles).
+    pub const NONE: OmronAreas = OmronAreas {
+        cio: 0,
+        first_input_word: 0,
+        first_output_word: 0,
+        work: 0,
+        holding: 0,
+        aux: 0,
+        aux_read_only: 0,
+        dm: 0,
+        max_jump: 0,
+    };
+}
+
 /// Everything that differs between PLC models. Sizes are in bytes unless stated.
 #[derive(Debug)]
 pub struct CpuProfile {
     /// The profile's identity.
     pub id: ProfileId,
+    /// The family, which fixes the execution model's rules ([`Family`]).
+    pub family: Family,
+    /// The Omron word areas ([`OmronAreas::NONE`] on S7 profiles).
+    pub omron: OmronAreas,
     /// Human-readable model name for messages.
     pub model: &'static str,
     /// Input image bytes (`I0.0`–`I{n-1}.7`).
@@ -152,6 +256,8 @@ const TONR: &[TimerKind] = &[TimerKind::Retentive];
 /// The A5 series (spec §1.1): every timer may be any kind; the number alone fixes the resolution.
 pub static A5: CpuProfile = CpuProfile {
     id: ProfileId::A5,
+    family: Family::S7,
+    omron: OmronAreas::NONE,
     model: "A5",
     inputs: 16,
     outputs: 16,
@@ -197,6 +303,8 @@ pub static A5: CpuProfile = CpuProfile {
 /// A classic S7-200 CPU 226: the number fixes both the kind family and the resolution.
 pub static S7_200: CpuProfile = CpuProfile {
     id: ProfileId::S7_200,
+    family: Family::S7,
+    omron: OmronAreas::NONE,
     model: "S7-200 CPU 226",
     inputs: 16,
     outputs: 16,
@@ -313,6 +421,19 @@ impl CpuProfile {
             Area::CounterBit => u32::from(self.counters),
             Area::HC => 4 * u32::from(self.high_speed_counters),
             Area::AC => 4 * u32::from(self.accumulators),
+            Area::Cio => 2 * self.omron.cio,
+            Area::Work => 2 * self.omron.work,
+            Area::Holding => 2 * self.omron.holding,
+            Area::Aux => 2 * self.omron.aux,
+            Area::Dm => 2 * self.omron.dm,
+            Area::Flags => match self.family {
+                Family::S7 => 0,
+                Family::Omron => crate::omron::FLAG_BYTES,
+            },
+            Area::Tr => match self.family {
+                Family::S7 => 0,
+                Family::Omron => 2,
+            },
         }
     }
 

@@ -162,6 +162,12 @@ pub fn mnemonic(op: &Op) -> &'static str {
         Op::ScrTransition { .. } => "SCRT",
         Op::ScrCondEnd { .. } => "CSCRE",
         Op::ScrEnd => "SCRE",
+        // The Omron ops by their Omron mnemonic families (their own coverage: issue 12).
+        Op::Interlock => "IL",
+        Op::InterlockEnd => "ILC",
+        Op::OmronTimer { .. } => "TIM",
+        Op::OmronCounter { .. } => "CNT",
+        Op::Omron(_) => "MOV/CMP/+",
     }
 }
 

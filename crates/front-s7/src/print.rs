@@ -331,6 +331,12 @@ pub fn print_op(program: &Program, pou: &Pou, op: &Op) -> String {
         Op::ScrTransition { to, .. } => format!("SCRT {}", bit(*to)),
         Op::ScrCondEnd { .. } => "CSCRE".into(),
         Op::ScrEnd => "SCRE".into(),
+        // The verifier rejects these on S7 profiles, so no S7 program holds one.
+        Op::Interlock
+        | Op::InterlockEnd
+        | Op::OmronTimer { .. }
+        | Op::OmronCounter { .. }
+        | Op::Omron(_) => format!("// not S7: {op:?}"),
     }
 }
 

@@ -21,6 +21,15 @@ pub fn area_prefix(area: Area) -> &'static str {
         Area::CounterValue | Area::CounterBit => "C",
         Area::HC => "HC",
         Area::AC => "AC",
+        // Omron areas have size 0 on every S7 profile, so no S7 program names them; these
+        // spellings only keep messages about a foreign IR readable.
+        Area::Cio => "CIO",
+        Area::Work => "W",
+        Area::Holding => "H",
+        Area::Aux => "A",
+        Area::Dm => "D",
+        Area::Flags => "P_",
+        Area::Tr => "TR",
     }
 }
 

@@ -66,9 +66,13 @@ impl<'a> Machine<'a> {
         mem::sched_u8(self.img, self.layout, Sched::SCR_ENABLE) != 0
     }
 
-    /// The gate timers, counters and edges run under: the SCR enable, with the S7 policy.
+    /// The gate timers, counters and edges run under: the gate byte (SCR enable or Omron
+    /// interlock), with the policy of the program's family.
     fn stateful_gate(&self) -> Gate {
-        Gate::scr(self.gate())
+        Gate::with(
+            self.gate(),
+            self.layout.profile.profile().family.gate_policy(),
+        )
     }
 
     fn set_gate(&mut self, v: bool) {
@@ -322,7 +326,10 @@ impl<'a> Machine<'a> {
             Op::ScrTransition { .. } => {}
             Op::ScrCondEnd { end } if pf => return Step::Goto(end.index()),
             Op::ScrCondEnd { .. } => {}
-            Op::ScrEnd => self.set_gate(true),
+            Op::ScrEnd | Op::InterlockEnd => self.set_gate(true),
+            Op::Interlock => self.set_gate(pf),
+            // Wired to the runtime's Omron rules in the next step; no front end emits them yet.
+            Op::OmronTimer { .. } | Op::OmronCounter { .. } | Op::Omron(_) => {}
         }
         Step::Next
     }

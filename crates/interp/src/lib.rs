@@ -40,7 +40,7 @@ impl Interpreter {
             program: program.clone(),
             stack_mask: ((1u32 << program.logic_stack_depth) - 1) as u16,
             max_call_depth: u32::from(program.profile.profile().max_call_depth),
-            rules: Rules::IN_FORCE,
+            rules: Rules::in_force(program.profile.profile().family),
         })
     }
 

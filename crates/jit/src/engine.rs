@@ -33,7 +33,12 @@ pub struct JitProgram {
 impl JitProgram {
     /// Compiles `program` for the host CPU.
     pub fn compile(program: &Program, opts: &JitOptions) -> Result<JitProgram, JitError> {
-        Self::compile_with(program, opts, false, Rules::IN_FORCE)
+        Self::compile_with(
+            program,
+            opts,
+            false,
+            Rules::in_force(program.profile.profile().family),
+        )
     }
 
     /// Compiles `program` following `rules` instead of [`Rules::IN_FORCE`] (for tests that flip
@@ -49,7 +54,12 @@ impl JitProgram {
     /// Compiles an instrumented build that counts every executed op (slower; for `bench`'s
     /// per-instruction figures). Read the count with [`JitProgram::executed_ops`].
     pub fn compile_counting(program: &Program, opts: &JitOptions) -> Result<JitProgram, JitError> {
-        Self::compile_with(program, opts, true, Rules::IN_FORCE)
+        Self::compile_with(
+            program,
+            opts,
+            true,
+            Rules::in_force(program.profile.profile().family),
+        )
     }
 
     /// Ops executed so far by an instrumented build (`None` for a normal build).

@@ -9,6 +9,8 @@
 //!   power flow `S0 AND gate`, which is the same under both policies (a coil writes 0, a box
 //!   does not run); the stateful instructions differ, and their rules read the policy here.
 
+use stljit_core::Family;
+
 /// What the first scan does with edges (spec TC7).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FirstScanEdges {
@@ -26,10 +28,23 @@ pub struct Rules {
 }
 
 impl Rules {
-    /// The rules stljit implements.
+    /// The rules stljit implements for S7 programs.
     pub const IN_FORCE: Rules = Rules {
         first_scan_edges: FirstScanEdges::Suppress,
     };
+
+    /// The rules in force for a program of `family`: [`Rules::IN_FORCE`] for S7; Omron edge
+    /// memories start at their instance's initial value instead of sitting out the first scan
+    /// ([`Family::first_scan_suppresses_edges`]).
+    pub fn in_force(family: Family) -> Rules {
+        Rules {
+            first_scan_edges: if family.first_scan_suppresses_edges() {
+                FirstScanEdges::Suppress
+            } else {
+                FirstScanEdges::Detect
+            },
+        }
+    }
 
     /// Whether edges are suppressed in a scan whose first-scan flag byte
     /// ([`stljit_core::layout::Sched::FIRST_SCAN`]) is `first_scan`.
@@ -52,22 +67,10 @@ impl Default for Rules {
     }
 }
 
-/// What a closed gate does to the stateful instructions inside it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum GatePolicy {
-    /// S7 SCR segment not active (spec a5-stl.md §3.6): coils write 0, every timer, counter
-    /// and edge detector runs with its inputs seen as 0 (TON resets, TONR holds, TOF is forced
-    /// idle, counter inputs are 0, edge memories are updated with 0).
-    S7Scr,
-    /// Omron interlock active (omron-cp.md §2.7): OUT writes 0, an on-delay timer (TIM, here
-    /// `TimerKind::On`) resets, everything else is not executed: accumulating and off-delay
-    /// timers, counters (value, bit and count-edge memories) and edge memories stay as they
-    /// are, and an edge detector outputs 0.
-    OmronInterlock,
-}
+pub use stljit_core::GatePolicy;
 
-/// The policy of the S7 SCR gate (`Sched::SCR_ENABLE`), the only gate front ends emit today;
-/// both engines read it from here.
+/// The policy of the S7 SCR gate (`Sched::SCR_ENABLE`); an Omron program's gate (the same
+/// byte, set by IL/ILC) follows [`Family::gate_policy`] instead.
 pub const SCR_POLICY: GatePolicy = GatePolicy::S7Scr;
 
 /// The gate a timer, counter or edge detector executes under.

@@ -16,8 +16,10 @@
 
 use crate::mem;
 use crate::timer;
+use stljit_core::ir::Loc;
 use stljit_core::layout::{Layout, Sched, TimerState};
-use stljit_core::{Area, ErrorCode, FatalCode, ScanStatus};
+use stljit_core::omron::{self, SystemBit};
+use stljit_core::{Area, ErrorCode, Family, FatalCode, ScanStatus};
 
 /// Steps 1–4 of a scan plus the resets of step 5. Returns `false` (and does only the STOP rule
 /// of the module doc) when the image is in STOP; the program must then not run.
@@ -56,25 +58,33 @@ pub fn begin(img: &mut [u8], layout: &Layout, t_ms: u64) -> bool {
         mem::set_u8(img, dst + i, b);
     }
 
-    // Step 3: SMB0 (spec §2.3). SMB1 keeps its bits.
-    let scan_no = mem::get_u64_ne(img, layout.sched(Sched::SCAN_NO));
-    let lost = mem::sched_u8(img, layout, Sched::RETENTIVE_LOST) != 0;
-    let smb0 = 1
-        | u8::from(first) << 1
-        | u8::from(first && lost) << 2
-        | u8::from(first) << 3
-        | u8::from(t_ms % 60_000 < 30_000) << 4
-        | u8::from(t_ms % 1000 < 500) << 5
-        | u8::from(scan_no.is_multiple_of(2)) << 6
-        | 1 << 7;
-    mem::set_u8(img, layout.base(Area::SM), smb0);
+    let profile = layout.profile.profile();
+    match profile.family {
+        Family::S7 => {
+            // Step 3: SMB0 (spec §2.3). SMB1 keeps its bits.
+            let scan_no = mem::get_u64_ne(img, layout.sched(Sched::SCAN_NO));
+            let lost = mem::sched_u8(img, layout, Sched::RETENTIVE_LOST) != 0;
+            let smb0 = 1
+                | u8::from(first) << 1
+                | u8::from(first && lost) << 2
+                | u8::from(first) << 3
+                | u8::from(t_ms % 60_000 < 30_000) << 4
+                | u8::from(t_ms % 1000 < 500) << 5
+                | u8::from(scan_no.is_multiple_of(2)) << 6
+                | 1 << 7;
+            mem::set_u8(img, layout.base(Area::SM), smb0);
+        }
+        Family::Omron => omron_system_bits(img, layout, t_ms, first),
+    }
 
     // Step 4: clock-driven refresh of the 1-ms and 10-ms timers in use.
-    let timers = layout.area_size(Area::TimerBit);
-    for n in 0..timers {
-        let n = n as u16;
-        if mem::get_u8(img, layout.timer_state(n) + TimerState::KIND) != 0 {
-            timer::refresh(img, layout, n);
+    if profile.family.clock_refreshed_timers() {
+        let timers = layout.area_size(Area::TimerBit);
+        for n in 0..timers {
+            let n = n as u16;
+            if mem::get_u8(img, layout.timer_state(n) + TimerState::KIND) != 0 {
+                timer::refresh(img, layout, n);
+            }
         }
     }
 
@@ -84,6 +94,36 @@ pub fn begin(img: &mut [u8], layout: &Layout, t_ms: u64) -> bool {
     mem::set_sched_u8(img, layout, Sched::STOP_REQ, 0);
     mem::set_sched_u32(img, layout, Sched::LOOP_COUNT, 0);
     true
+}
+
+/// The Omron system bits at the start of the (single cyclic) task, omron-cp.md §2.2 step 3 and
+/// §2.3: every condition flag cleared, `P_On` = 1, `P_Off` = 0, the clock pulses from `t_ms`
+/// (50 % duty, ON half first, §2.12) and `A200.11` (`P_First_Cycle`) ON in the first cycle only.
+fn omron_system_bits(img: &mut [u8], layout: &Layout, t_ms: u64, first: bool) {
+    let mut bits: u32 = 1 << SystemBit::On.index();
+    for (pulse, period) in SystemBit::PULSES {
+        if t_ms % period < period / 2 {
+            bits |= 1 << pulse.index();
+        }
+    }
+    let base = layout.base(Area::Flags);
+    for (i, b) in bits.to_le_bytes().into_iter().enumerate() {
+        mem::set_u8(img, base + i as u32, b);
+    }
+    let (word, bit) = omron::FIRST_CYCLE;
+    let at = omron::bit_of_word(
+        Loc {
+            area: Area::Aux,
+            offset: 2 * word,
+        },
+        bit,
+    );
+    if at.byte < layout.area_size(Area::Aux) {
+        let a = layout.base(Area::Aux) + at.byte;
+        let old = mem::get_u8(img, a);
+        let mask = 1 << at.bit;
+        mem::set_u8(img, a, if first { old | mask } else { old & !mask });
+    }
 }
 
 /// Steps 6–8: unless `status` is [`ScanStatus::Fatal`], copy Q to the physical outputs; a STOP

@@ -166,6 +166,8 @@ impl Op {
                 CounterKind::Up | CounterKind::Down => 0b11,
                 CounterKind::UpDown => 0b111,
             }),
+            Op::OmronTimer { kind, .. } => StackEffect::uses((1 << kind.conditions()) - 1),
+            Op::OmronCounter { kind, .. } => StackEffect::uses((1 << kind.conditions()) - 1),
             // FOR sets S0 = 1 only when it skips the loop; S0 is its power flow anyway.
             Op::Assign { .. }
             | Op::SetRange { .. }
@@ -179,7 +181,9 @@ impl Op {
             | Op::Wdr
             | Op::For { .. }
             | Op::ScrTransition { .. }
-            | Op::ScrCondEnd { .. } => StackEffect::CONSUMER,
+            | Op::ScrCondEnd { .. }
+            | Op::Interlock
+            | Op::Omron(_) => StackEffect::CONSUMER,
             Op::Return { conditional } | Op::End { conditional } => {
                 if *conditional {
                     StackEffect::CONSUMER
@@ -187,7 +191,7 @@ impl Op {
                     StackEffect::NONE
                 }
             }
-            Op::Label(_) | Op::Nop | Op::ScrEnd => StackEffect::NONE,
+            Op::Label(_) | Op::Nop | Op::ScrEnd | Op::InterlockEnd => StackEffect::NONE,
         }
     }
 }

@@ -16,6 +16,7 @@
 //! Consumers (coils, boxes, timers, jumps, ...) read `PF`; no consumer pops the stack.
 
 mod facts;
+mod omron;
 mod op;
 mod operand;
 #[cfg(test)]
@@ -24,6 +25,7 @@ mod uses;
 mod verify;
 
 pub use facts::{StackEffect, Successors, enclosing_loop, loop_entered_by};
+pub use omron::{OmronArith, OmronBox, OmronCounterKind, OmronTimerKind};
 pub use op::{ArithOp, BoxOp, Conversion, LogicOp, Op, RealFn};
 pub use operand::{Address, BitLoc, CmpOp, CmpType, Contact, Loc, Operand};
 pub use uses::{Access, OperandUse, Uses};
@@ -205,4 +207,10 @@ all_variants! {
     CmpOp: [Eq, Ne, Ge, Le, Gt, Lt];
     TimerKind: [On, Retentive, Off];
     CounterKind: [Up, Down, UpDown];
+    OmronTimerKind: [Tim, TimX, TimH, TimHX, Tmhh, TmhhX, Ttim, TtimX];
+    OmronCounterKind: [Cnt, CntX, Cntr, CntrX];
+    OmronArith: [
+        Add, AddL, AddC, AddCL, AddB, AddBL, AddBC, AddBCL, Sub, SubL, SubC, SubCL, SubB, SubBL,
+        SubBC, SubBCL, Mul, MulL, MulU, MulUL, MulB, MulBL, Div, DivL, DivU, DivUL, DivB, DivBL,
+    ];
 }

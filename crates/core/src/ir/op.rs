@@ -1,7 +1,7 @@
 //! The instructions: [`Op`] and the box operations [`BoxOp`] with their small enums.
 
 use super::operand::{BitLoc, Contact, Operand};
-use super::{CounterKind, TimerKind};
+use super::{CounterKind, OmronBox, OmronCounterKind, OmronTimerKind, TimerKind};
 use crate::area::Width;
 use crate::index::{CounterId, EdgeSlot, LabelId, OpIdx, PouId, TimerId};
 
@@ -157,6 +157,35 @@ pub enum Op {
     },
     /// `SCRE`: gate := 1.
     ScrEnd,
+
+    // ---- Omron CP ----------------------------------------------------------------------------
+    /// `IL(002)`: gate := PF, so an IL whose condition is OFF interlocks everything up to the
+    /// next [`Op::InterlockEnd`], and a later IL cannot lift an earlier one (omron-cp.md §2.7).
+    Interlock,
+    /// `ILC(003)`: gate := 1.
+    InterlockEnd,
+    /// An Omron timer: TIM family `EC = S0`; TTIM timer input `S1`, reset `S0`. The gate's
+    /// policy (interlock) is applied by the runtime.
+    OmronTimer {
+        /// Which instruction.
+        kind: OmronTimerKind,
+        /// Which timer (PV in `TimerValue`, completion flag in `TimerBit`).
+        timer: TimerId,
+        /// The set value, a word operand.
+        set_value: Operand,
+    },
+    /// An Omron counter: CNT count `S1`, reset `S0`; CNTR increment `S2`, decrement `S1`, reset
+    /// `S0`.
+    OmronCounter {
+        /// Which instruction.
+        kind: OmronCounterKind,
+        /// Which counter.
+        counter: CounterId,
+        /// The set value, a word operand.
+        set_value: Operand,
+    },
+    /// An Omron data, compare or arithmetic box: runs when PF.
+    Omron(OmronBox),
 }
 
 /// Integer arithmetic operation.

@@ -5,7 +5,7 @@
 //! [`Conversion::widths`].
 
 use super::{BitLoc, Operand};
-use super::{BoxOp, Contact, Conversion, Op};
+use super::{BoxOp, Contact, Conversion, OmronBox, Op};
 use crate::area::Width;
 
 /// How an op uses a location.
@@ -30,16 +30,16 @@ pub struct OperandUse {
     pub access: Access,
 }
 
-/// The value operands of one op (at most three), kept inline so that an engine may ask for them
+/// The value operands of one op (at most four), kept inline so that an engine may ask for them
 /// per execution without allocating.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Uses {
-    items: [Option<OperandUse>; 3],
+    items: [Option<OperandUse>; 4],
 }
 
 impl Uses {
     fn of(list: &[OperandUse]) -> Uses {
-        let mut items = [None; 3];
+        let mut items = [None; 4];
         for (slot, u) in items.iter_mut().zip(list) {
             *slot = Some(*u);
         }
@@ -161,6 +161,51 @@ impl BoxOp {
     }
 }
 
+/// The width of an Omron operand of `words` words (1 or 2; a four-word result is two uses).
+fn omron_width(words: u32) -> Width {
+    if words == 1 {
+        Width::Word
+    } else {
+        Width::DWord
+    }
+}
+
+/// The location four bytes (two Omron words) after `operand`, for the upper half of a
+/// four-word result; an operand that is not a location has none.
+fn upper_half(operand: Operand) -> Option<Operand> {
+    match operand {
+        Operand::Mem(loc) => Some(Operand::Mem(super::Loc {
+            offset: loc.offset + 4,
+            ..loc
+        })),
+        _ => None,
+    }
+}
+
+fn omron_uses(b: &OmronBox) -> Uses {
+    match *b {
+        OmronBox::Move { double, src, dst } => {
+            let w = omron_width(if double { 2 } else { 1 });
+            Uses::of(&[read(src, w), write(dst, w)])
+        }
+        OmronBox::Compare {
+            double, lhs, rhs, ..
+        } => {
+            let w = omron_width(if double { 2 } else { 1 });
+            Uses::of(&[read(lhs, w), read(rhs, w)])
+        }
+        OmronBox::Arith { op, lhs, rhs, dst } => {
+            let w = omron_width(op.operand_words());
+            let r = op.result_words();
+            let first = write(dst, omron_width(r.min(2)));
+            match upper_half(dst).filter(|_| r == 4) {
+                Some(hi) => Uses::of(&[read(lhs, w), read(rhs, w), first, write(hi, Width::DWord)]),
+                None => Uses::of(&[read(lhs, w), read(rhs, w), first]),
+            }
+        }
+    }
+}
+
 impl Op {
     /// Every value operand of the op with its width and access, in operand order.
     pub fn operand_uses(&self) -> Uses {
@@ -174,6 +219,10 @@ impl Op {
                 Uses::of(&[read(*preset, Word)])
             }
             Op::Box(b) => b.operand_uses(),
+            Op::OmronTimer { set_value, .. } | Op::OmronCounter { set_value, .. } => {
+                Uses::of(&[read(*set_value, Word)])
+            }
+            Op::Omron(b) => omron_uses(b),
             Op::For {
                 index, init, limit, ..
             } => Uses::of(&[write(*index, Word), read(*init, Word), read(*limit, Word)]),
@@ -199,7 +248,9 @@ impl Op {
             | Op::ScrBegin { .. }
             | Op::ScrTransition { .. }
             | Op::ScrCondEnd { .. }
-            | Op::ScrEnd => Uses::of(&[]),
+            | Op::ScrEnd
+            | Op::Interlock
+            | Op::InterlockEnd => Uses::of(&[]),
         }
     }
 

@@ -17,6 +17,7 @@ use super::uses::Access;
 use super::{Op, Operand, Pou, Program};
 use crate::area::{Area, Width};
 use crate::layout::Layout;
+use crate::profile::Family;
 use std::fmt;
 
 /// The deepest logic stack an engine supports (the interpreter keeps it in a `u16`).
@@ -105,6 +106,9 @@ pub enum OpRule {
     WriteToConstant,
     /// A timer or counter op whose object is not declared with that kind.
     UndeclaredObject,
+    /// An op of one PLC family's execution model (Omron interlocks, timers, counters and
+    /// flag boxes; S7 SCR segments) in a program for a profile of the other.
+    WrongFamily,
 }
 
 impl fmt::Display for VerifyError {
@@ -149,6 +153,9 @@ impl fmt::Display for VerifyError {
                     OpRule::WriteToConstant => f.write_str("writes a constant"),
                     OpRule::UndeclaredObject => {
                         f.write_str("timer or counter not declared with this kind")
+                    }
+                    OpRule::WrongFamily => {
+                        f.write_str("op of another PLC family than the program's profile")
                     }
                 }
             }
@@ -299,7 +306,34 @@ fn locations(program: &Program, layout: &Layout, op: &Op) -> Result<(), OpRule> 
         }
         inside(b.area, b.byte, 1)?;
     }
+    let family = layout.profile.profile().family;
+    let op_family = match op {
+        Op::Interlock
+        | Op::InterlockEnd
+        | Op::OmronTimer { .. }
+        | Op::OmronCounter { .. }
+        | Op::Omron(_) => Some(Family::Omron),
+        Op::ScrBegin { .. }
+        | Op::ScrTransition { .. }
+        | Op::ScrCondEnd { .. }
+        | Op::ScrEnd
+        | Op::Timer { .. }
+        | Op::Counter { .. }
+        | Op::Box(_) => Some(Family::S7),
+        _ => None,
+    };
+    if op_family.is_some_and(|f| f != family) {
+        return Err(OpRule::WrongFamily);
+    }
     let declared = match op {
+        Op::OmronTimer { timer, .. } => {
+            inside(Area::TimerBit, u32::from(timer.0), 1)?;
+            true
+        }
+        Op::OmronCounter { counter, .. } => {
+            inside(Area::CounterBit, u32::from(counter.0), 1)?;
+            true
+        }
         Op::Timer { kind, timer, .. } => program
             .timers
             .iter()

@@ -9,7 +9,8 @@ use crate::area::Width;
 use crate::index::{CounterId, EdgeSlot, FileId, LabelId, OpIdx, PouId, TimerId};
 use crate::ir::{
     ArithOp, BoxOp, CmpOp, CmpType, Contact, Conversion, CounterDecl, CounterKind, EdgeDecl,
-    LogicOp, Op, Operand, Pou, PouKind, Program, RealFn, TimerDecl, TimerKind,
+    LogicOp, OmronArith, OmronBox, OmronCounterKind, OmronTimerKind, Op, Operand, Pou, PouKind,
+    Program, RealFn, TimerDecl, TimerKind,
 };
 use crate::profile::{ProfileId, Resolution};
 use std::fmt;
@@ -351,7 +352,50 @@ fn op(line: &mut Line<'_>) -> Result<Op> {
             end: op_index(line.field("end")?)?,
         },
         "scr_end" => Op::ScrEnd,
+        "interlock" => Op::Interlock,
+        "interlock_end" => Op::InterlockEnd,
+        "omron_timer" => Op::OmronTimer {
+            kind: line
+                .field("kind")?
+                .choice(OmronTimerKind::ALL, "Omron timer kind")?,
+            timer: TimerId(line.field("timer")?.index(TimerId(0), "timer")?),
+            set_value: line.field("set_value")?.operand()?,
+        },
+        "omron_counter" => Op::OmronCounter {
+            kind: line
+                .field("kind")?
+                .choice(OmronCounterKind::ALL, "Omron counter kind")?,
+            counter: CounterId(line.field("counter")?.index(CounterId(0), "counter")?),
+            set_value: line.field("set_value")?.operand()?,
+        },
+        "omron" => Op::Omron(omron_box(line)?),
         _ => return Err(key.unknown("op")),
+    })
+}
+
+fn omron_box(line: &mut Line<'_>) -> Result<OmronBox> {
+    let key = line.word("an Omron box op")?;
+    Ok(match key.text {
+        "move" => {
+            let double = line.field("double")?.flag()?;
+            let (src, dst) = src_dst(line)?;
+            OmronBox::Move { double, src, dst }
+        }
+        "compare" => OmronBox::Compare {
+            double: line.field("double")?.flag()?,
+            signed: line.field("signed")?.flag()?,
+            lhs: line.field("lhs")?.operand()?,
+            rhs: line.field("rhs")?.operand()?,
+        },
+        "arith" => OmronBox::Arith {
+            op: line
+                .field("op")?
+                .choice(OmronArith::ALL, "Omron arithmetic op")?,
+            lhs: line.field("lhs")?.operand()?,
+            rhs: line.field("rhs")?.operand()?,
+            dst: line.field("dst")?.operand()?,
+        },
+        _ => return Err(key.unknown("Omron box op")),
     })
 }
 

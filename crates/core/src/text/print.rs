@@ -3,7 +3,9 @@
 
 use super::{MAGIC, VERSION};
 use crate::index::{EdgeSlot, FileId, LabelId, OpIdx, PouId};
-use crate::ir::{BitLoc, BoxOp, Contact, Loc, Op, Operand, Pou, PouKind, Program, SrcLoc};
+use crate::ir::{
+    BitLoc, BoxOp, Contact, Loc, OmronBox, Op, Operand, Pou, PouKind, Program, SrcLoc,
+};
 use std::fmt::{self, Write as _};
 
 /// The whole program as IR text; [`super::parse`] reads it back to an equal program.
@@ -166,6 +168,62 @@ fn write_op(out: &mut String, op: &Op) -> fmt::Result {
         }
         Op::ScrCondEnd { end } => write!(out, "scr_cond_end end={end}"),
         Op::ScrEnd => out.write_str("scr_end"),
+        Op::Interlock => out.write_str("interlock"),
+        Op::InterlockEnd => out.write_str("interlock_end"),
+        Op::OmronTimer {
+            kind,
+            timer,
+            set_value,
+        } => write!(
+            out,
+            "omron_timer kind={kind:?} timer={timer} set_value={}",
+            Opd(*set_value)
+        ),
+        Op::OmronCounter {
+            kind,
+            counter,
+            set_value,
+        } => write!(
+            out,
+            "omron_counter kind={kind:?} counter={counter} set_value={}",
+            Opd(*set_value)
+        ),
+        Op::Omron(b) => {
+            out.write_str("omron ")?;
+            write_omron(out, b)
+        }
+    }
+}
+
+fn write_omron(out: &mut String, b: &OmronBox) -> fmt::Result {
+    match *b {
+        OmronBox::Move { double, src, dst } => write!(
+            out,
+            "move double={} src={} dst={}",
+            Flag(double),
+            Opd(src),
+            Opd(dst)
+        ),
+        OmronBox::Compare {
+            double,
+            signed,
+            lhs,
+            rhs,
+        } => write!(
+            out,
+            "compare double={} signed={} lhs={} rhs={}",
+            Flag(double),
+            Flag(signed),
+            Opd(lhs),
+            Opd(rhs)
+        ),
+        OmronBox::Arith { op, lhs, rhs, dst } => write!(
+            out,
+            "arith op={op:?} lhs={} rhs={} dst={}",
+            Opd(lhs),
+            Opd(rhs),
+            Opd(dst)
+        ),
     }
 }
 

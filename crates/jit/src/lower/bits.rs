@@ -16,7 +16,7 @@ use stljit_core::ir::{BitLoc, CmpOp, CmpType, Contact, Operand};
 use stljit_core::layout::Sched;
 use stljit_core::{Area, FatalCode, Width};
 use stljit_runtime::block::set_range_run;
-use stljit_runtime::rules::{GatePolicy, SCR_POLICY};
+use stljit_runtime::rules::GatePolicy;
 
 impl Lower<'_, '_> {
     /// The cached byte and bit of a bit location.
@@ -268,13 +268,13 @@ impl Lower<'_, '_> {
     }
 
     /// `EU`/`ED` inline with the runtime's rules (`edge::execute`): the gate policy of
-    /// [`SCR_POLICY`] and the first-scan switch of [`Rules`](stljit_runtime::rules::Rules).
+    /// the program family's gate policy and the first-scan switch of [`Rules`](stljit_runtime::rules::Rules).
     pub(crate) fn edge(&mut self, slot: u16, falling: bool) {
         if slot >= self.env.layout.profile.profile().max_edges {
             self.block.stack.set_top(B::K(false));
             return;
         }
-        let (v, frozen_unless) = match SCR_POLICY {
+        let (v, frozen_unless) = match self.gate_policy() {
             // A closed gate is an input of 0: `v = S0 AND gate`, the memory takes it.
             GatePolicy::S7Scr => (self.pf(), None),
             // A closed gate freezes the memory and outputs 0.

@@ -234,6 +234,15 @@ impl Lower<'_, '_> {
         self.block.gate = B::K(true);
     }
 
+    /// `IL(002)`: gate := PF (an interlock cannot be lifted by a later IL, omron-cp.md §2.7).
+    pub(crate) fn interlock(&mut self) {
+        let pf = self.pf();
+        let a = self.sched(Sched::SCR_ENABLE);
+        let v01 = pf.to01(&mut self.b);
+        self.set_byte(a, v01);
+        self.block.gate = pf;
+    }
+
     /// `CALL`: if PF, the callee runs one frame deeper with a fresh stack (its own function);
     /// nesting beyond the profile's limit is error 0x0008 and the call is skipped.
     pub(crate) fn call(&mut self, callee: PouId) {

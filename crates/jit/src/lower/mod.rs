@@ -603,7 +603,11 @@ impl<'e, 'f> Lower<'e, 'f> {
             Op::ScrBegin { bit } => self.scr_begin(bit),
             Op::ScrTransition { to, from } => self.scr_transition(to, from),
             Op::ScrCondEnd { end } => self.scr_cond_end(end.index()),
-            Op::ScrEnd => self.scr_end(),
+            Op::ScrEnd | Op::InterlockEnd => self.scr_end(),
+            Op::Interlock => self.interlock(),
+            Op::OmronTimer { .. } | Op::OmronCounter { .. } | Op::Omron(_) => {
+                self.func.unsupported = Some(format!("Omron op {op:?} (not compiled yet)"));
+            }
         }
     }
 }

@@ -11,7 +11,6 @@ use stljit_core::ir::{BitLoc, CounterKind, Operand, TimerKind};
 use stljit_core::layout::Sched;
 use stljit_core::{Area, ErrorCode, Width};
 use stljit_runtime::ffi::{CTL_GATE, FfiCode, fast_shims_apply, gate_word_fixed};
-use stljit_runtime::rules::SCR_POLICY;
 
 impl Lower<'_, '_> {
     /// Records a non-zero runtime status as a non-fatal error (a diamond, rarely taken).
@@ -101,10 +100,15 @@ impl Lower<'_, '_> {
     }
 
     /// The bits of the gate word ([`stljit_runtime::ffi::decode_gate_word`]) that do not
-    /// depend on the gate's state: the SCR policy and the rules (0 for S7 under the rules in
+    /// depend on the gate's state: the gate policy and the rules (0 for S7 under the rules in
     /// force).
     fn gate_word_fixed(&self) -> u32 {
-        gate_word_fixed(SCR_POLICY, self.env.rules)
+        gate_word_fixed(self.gate_policy(), self.env.rules)
+    }
+
+    /// What a closed gate does in this program: its family's policy (S7 SCR or Omron IL).
+    pub(crate) fn gate_policy(&self) -> stljit_runtime::rules::GatePolicy {
+        self.env.layout.profile.profile().family.gate_policy()
     }
 
     /// The gate word of the general timer and counter shims: the gate at bit 0 and the fixed

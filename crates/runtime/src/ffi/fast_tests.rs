@@ -4,6 +4,7 @@
 use super::*;
 use crate::image::Image;
 use crate::rules::{Gate, Rules};
+use crate::timer::STATE_BYTES;
 use crate::timer::TofPhase::{self, Done, Idle, On as TofOn, Timing};
 use crate::{counter, mem, timer};
 use stljit_core::Area;
@@ -53,11 +54,11 @@ const TIMER_ROWS: &[TimerRow] = {
 struct TimerBytes {
     value: [u8; 2],
     bit: u8,
-    state: [u8; 8],
+    state: [u8; STATE_BYTES],
 }
 
 fn timer_bytes(kind: TimerKind, res: u8, t: T) -> TimerBytes {
-    let mut state = [0xA5; 8]; // bytes 6–7 unused: must survive
+    let mut state = [0xA5; STATE_BYTES]; // bytes 6.. unused by S7 timers: must survive
     state[TimerState::KIND as usize] = kind.code();
     state[TimerState::RES as usize] = res;
     let mut b = TimerBytes {

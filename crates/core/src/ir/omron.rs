@@ -1,0 +1,180 @@
+//! The Omron CP instructions' own enums: timer and counter kinds, and the data, compare and
+//! arithmetic boxes whose flags go to the condition-flag area (omron-cp.md §3.3–§3.6). Their
+//! rules are in `stljit_runtime::omron`; this module only names them.
+
+use crate::profile::Resolution;
+
+/// An Omron timer instruction (spec §3.3): the TIM family counts down from the set value, TTIM
+/// accumulates up to it. `X` kinds take binary set values, the others BCD.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum OmronTimerKind {
+    /// `TIM`: 100 ms, BCD.
+    Tim,
+    /// `TIMX(550)`: 100 ms, binary.
+    TimX,
+    /// `TIMH(015)`: 10 ms, BCD.
+    TimH,
+    /// `TIMHX(551)`: 10 ms, binary.
+    TimHX,
+    /// `TMHH(540)`: 1 ms, BCD.
+    Tmhh,
+    /// `TMHHX(552)`: 1 ms, binary.
+    TmhhX,
+    /// `TTIM(087)`: accumulating, 100 ms, BCD; timer input `S1`, reset `S0`.
+    Ttim,
+    /// `TTIMX(555)`: accumulating, 100 ms, binary.
+    TtimX,
+}
+
+impl OmronTimerKind {
+    /// The time unit.
+    pub fn unit(self) -> Resolution {
+        use OmronTimerKind::*;
+        match self {
+            Tim | TimX | Ttim | TtimX => Resolution::Ms100,
+            TimH | TimHX => Resolution::Ms10,
+            Tmhh | TmhhX => Resolution::Ms1,
+        }
+    }
+
+    /// Whether set value and PV are BCD (else unsigned binary).
+    pub fn bcd(self) -> bool {
+        use OmronTimerKind::*;
+        matches!(self, Tim | TimH | Tmhh | Ttim)
+    }
+
+    /// Whether this is an accumulating timer with a reset input (`TTIM`, `TTIMX`).
+    pub fn totalizing(self) -> bool {
+        matches!(self, OmronTimerKind::Ttim | OmronTimerKind::TtimX)
+    }
+
+    /// How many execution conditions the instruction takes (1, or 2 for TTIM).
+    pub fn conditions(self) -> u8 {
+        if self.totalizing() { 2 } else { 1 }
+    }
+}
+
+/// An Omron counter instruction (spec §3.3). `X` kinds take binary set values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum OmronCounterKind {
+    /// `CNT`: count `S1`, reset `S0`; counts down from the set value, BCD.
+    Cnt,
+    /// `CNTX(546)`: binary.
+    CntX,
+    /// `CNTR(012)`: ring counter, increment `S2`, decrement `S1`, reset `S0`; BCD.
+    Cntr,
+    /// `CNTRX(548)`: binary.
+    CntrX,
+}
+
+impl OmronCounterKind {
+    /// Whether set value and PV are BCD.
+    pub fn bcd(self) -> bool {
+        matches!(self, OmronCounterKind::Cnt | OmronCounterKind::Cntr)
+    }
+
+    /// Whether this is the reversible ring counter.
+    pub fn ring(self) -> bool {
+        matches!(self, OmronCounterKind::Cntr | OmronCounterKind::CntrX)
+    }
+
+    /// How many execution conditions the instruction takes (2, or 3 for CNTR).
+    pub fn conditions(self) -> u8 {
+        if self.ring() { 3 } else { 2 }
+    }
+}
+
+/// The arithmetic instructions of spec §3.6.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[allow(missing_docs)] // each variant is the instruction of its name: `AddL` is `+L(401)`
+pub enum OmronArith {
+    Add,
+    AddL,
+    AddC,
+    AddCL,
+    AddB,
+    AddBL,
+    AddBC,
+    AddBCL,
+    Sub,
+    SubL,
+    SubC,
+    SubCL,
+    SubB,
+    SubBL,
+    SubBC,
+    SubBCL,
+    Mul,
+    MulL,
+    MulU,
+    MulUL,
+    MulB,
+    MulBL,
+    Div,
+    DivL,
+    DivU,
+    DivUL,
+    DivB,
+    DivBL,
+}
+
+impl OmronArith {
+    /// Words of each source operand (1, or 2 for the `L` forms).
+    pub fn operand_words(self) -> u32 {
+        use OmronArith::*;
+        match self {
+            AddL | AddCL | AddBL | AddBCL | SubL | SubCL | SubBL | SubBCL | MulL | MulUL
+            | MulBL | DivL | DivUL | DivBL => 2,
+            _ => 1,
+        }
+    }
+
+    /// Words of the result: products and quotient + remainder are twice the operand width.
+    pub fn result_words(self) -> u32 {
+        use OmronArith::*;
+        let double = matches!(
+            self,
+            Mul | MulL | MulU | MulUL | MulB | MulBL | Div | DivL | DivU | DivUL | DivB | DivBL
+        );
+        self.operand_words() * if double { 2 } else { 1 }
+    }
+}
+
+/// The data-memory boxes of the Omron dialect (run when `PF`; their flags go to the
+/// condition-flag area, never to `Sched::ENO`'s SM bits).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum OmronBox {
+    /// `MOV(021)` / `MOVL(498)`: `dst := src`; ER OFF, `=` and `N` from the value.
+    Move {
+        /// Two words (low word first) instead of one.
+        double: bool,
+        /// Source.
+        src: super::Operand,
+        /// Destination.
+        dst: super::Operand,
+    },
+    /// `CMP(020)` / `CMPL(060)` / `CPS(114)` / `CPSL(115)`, and the comparison contacts' flag
+    /// side (U2): the six comparison flags from `lhs` against `rhs`, ER OFF.
+    Compare {
+        /// Two words.
+        double: bool,
+        /// Signed instead of unsigned.
+        signed: bool,
+        /// First operand.
+        lhs: super::Operand,
+        /// Second operand.
+        rhs: super::Operand,
+    },
+    /// An arithmetic instruction: `dst := lhs op rhs` ([`OmronArith::result_words`] words from
+    /// `dst`); on ER nothing is written.
+    Arith {
+        /// Which instruction.
+        op: OmronArith,
+        /// First operand (augend, minuend, multiplicand, dividend).
+        lhs: super::Operand,
+        /// Second operand.
+        rhs: super::Operand,
+        /// First result word.
+        dst: super::Operand,
+    },
+}
