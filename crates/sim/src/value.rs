@@ -1,7 +1,7 @@
 //! Value literals of stimulus cells and expectations, and reading or writing an [`Address`] in an
 //! image the way a harness or an HMI does.
 //!
-//! Literals: bits `0`/`1`; integers in decimal (optionally signed), `16#` hex or `2#` binary;
+//! Literals: bits `0`/`1`; integers in decimal (optionally signed), `16#` or `#` (Omron) hex or `2#` binary;
 //! reals with a decimal point (`1.5`, `-2.0E+3`) for dwords only. Words and dwords accept both the
 //! signed and the unsigned range (`-1` and `65535` are the same word), bytes only 0…255.
 //! Every result is the raw bit pattern, zero-extended to `u32`.
@@ -104,7 +104,8 @@ pub fn parse_value(text: &str, kind: ValueKind) -> Result<u32, ValueError> {
         return Err(ValueError::Syntax);
     };
     let mask = u64::from(width.mask());
-    if let Some(digits) = t.strip_prefix("16#") {
+    // `16#` is S7's hex notation, `#` Omron's (`#00AA`, omron-cp.md §1.6).
+    if let Some(digits) = t.strip_prefix("16#").or_else(|| t.strip_prefix('#')) {
         return radix(digits, 16, mask, range);
     }
     if let Some(digits) = t.strip_prefix("2#") {
@@ -243,6 +244,7 @@ mod tests {
         assert_eq!(parse_value("x", ValueKind::Bit), Err(ValueError::Syntax));
         assert_eq!(parse_value("255", B), Ok(255));
         assert_eq!(parse_value("16#FF", B), Ok(255));
+        assert_eq!(parse_value("#00FF", B), Ok(255));
         assert_eq!(parse_value("2#1010", B), Ok(10));
         assert_eq!(
             parse_value("256", B),

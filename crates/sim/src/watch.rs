@@ -5,13 +5,17 @@
 //! (`2#` and every bit), `:real` (dwords only, the bits read as an IEEE-754 binary32). A timer or
 //! counter name (`T37`, `C5`) is its bit; with a numeric suffix (`T37:i`) it is its current value
 //! — the only way to name the word of a timer outside a program.
+//!
+//! Omron programs (`Family::Omron`, spec omron-cp.md §6 "Watched values") print words unsigned
+//! by default and `:hex` with Omron's `#` prefix (`#00AA`); [`WatchSpec::parse_for`] takes the
+//! family.
 
 use crate::Resolver;
 use crate::value::read_address;
 use std::fmt;
 use stljit_core::ir::{Address, Loc};
 use stljit_core::layout::Layout;
-use stljit_core::{Area, Width};
+use stljit_core::{Area, Family, Width};
 use stljit_runtime::image::{Image, bit_addr, loc_addr};
 
 /// How a watched value prints.
@@ -102,11 +106,22 @@ pub struct WatchSpec {
     pub address: Address,
     /// How it prints.
     pub format: Format,
+    /// Whose notation it prints in.
+    pub family: Family,
 }
 
 impl WatchSpec {
-    /// Parses `ADDR` or `ADDR:FORMAT`.
+    /// Parses `ADDR` or `ADDR:FORMAT` in S7 notation.
     pub fn parse(text: &str, resolve: Resolver<'_>) -> Result<WatchSpec, WatchError> {
+        WatchSpec::parse_for(text, resolve, Family::S7)
+    }
+
+    /// Parses `ADDR` or `ADDR:FORMAT`, printing in the notation of `family`.
+    pub fn parse_for(
+        text: &str,
+        resolve: Resolver<'_>,
+        family: Family,
+    ) -> Result<WatchSpec, WatchError> {
         let spec = text.trim();
         let (name, format) = match spec.rsplit_once(':') {
             Some((name, suffix)) => {
@@ -154,6 +169,7 @@ impl WatchSpec {
             text: spec.to_string(),
             address,
             format,
+            family,
         })
     }
 
@@ -198,10 +214,12 @@ impl WatchSpec {
             let shift = 32 - bits;
             (((raw << shift) as i32) >> shift).to_string()
         };
+        let omron = self.family == Family::Omron;
         match self.format {
-            Format::Default if bits <= 8 => raw.to_string(),
+            Format::Default if bits <= 8 || omron => raw.to_string(),
             Format::Default | Format::Signed => signed(),
             Format::Unsigned => raw.to_string(),
+            Format::Hex if omron => format!("#{:0w$X}", raw, w = (bits as usize).div_ceil(4)),
             Format::Hex => format!("16#{:0w$X}", raw, w = (bits as usize).div_ceil(4)),
             Format::Bin => format!("2#{:0w$b}", raw, w = bits as usize),
             Format::Real => format!("{:?}", f32::from_bits(raw)),
@@ -238,6 +256,11 @@ mod tests {
         assert_eq!(w("VW0:hex").format(0xAB), "16#00AB");
         assert_eq!(w("VB0:hex").format(0x5), "16#05");
         assert_eq!(w("VD0:hex").format(0x1234_5678), "16#12345678");
+        // Omron notation (omron-cp.md §6): words unsigned by default, `#` hex.
+        let o = |t| WatchSpec::parse_for(t, &resolve, Family::Omron).unwrap();
+        assert_eq!(o("VW0").format(0xFFED), "65517");
+        assert_eq!(o("VW0:hex").format(0xAA), "#00AA");
+        assert_eq!(o("VW0:i").format(0xFFED), "-19");
         assert_eq!(w("VB0:bin").format(5), "2#00000101");
         assert_eq!(w("VD50:real").format(1.5f32.to_bits()), "1.5");
         assert_eq!(w("VD50:real").format(100f32.to_bits()), "100.0");
@@ -299,6 +322,7 @@ mod tests {
                 bit: 0,
             }),
             format: Format::Default,
+            family: Family::S7,
         };
         assert!(bit.check(&layout).is_err());
     }

@@ -124,7 +124,7 @@ fn timer_fast_matches_execute_on_the_image() {
         let tb = timer_bytes(kind, res, before);
         buf[v..v + 2].copy_from_slice(&tb.value);
         buf[bt] = tb.bit;
-        buf[s..s + 8].copy_from_slice(&tb.state);
+        buf[s..s + STATE_BYTES].copy_from_slice(&tb.state);
         mem::set_u32_ne(buf, l.sched(Sched::D100), d100);
         let mut b = a.clone();
         let (buf, l) = a.split_mut();
