@@ -10,8 +10,9 @@ use std::io;
 use std::path::{Path, PathBuf};
 use stljit_core::ir::{Address, Program};
 use stljit_core::layout::{Block, Layout};
-use stljit_core::{Area, CpuProfile, FatalCode, ProfileId, ScanStatus};
+use stljit_core::{Area, Family, FatalCode, ProfileId, ScanStatus};
 use stljit_diff::engines::EngineKind;
+use stljit_front::{Dialect, Severity, SourceFile, render_human};
 use stljit_jit::OptLevel;
 use stljit_runtime::{Engine, Image};
 use stljit_sim::{
@@ -130,11 +131,18 @@ pub(crate) struct Summary {
 /// Runs every `*.toml` case in `dir` on `engines`.
 pub(crate) fn run_dir(dir: &Path, engines: &[EngineEntry]) -> Result<Summary, HarnessError> {
     let entries = std::fs::read_dir(dir).map_err(|e| HarnessError::Io(dir.to_path_buf(), e))?;
-    let mut files: Vec<PathBuf> = entries
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
+    let mut files: Vec<PathBuf> = Vec::new();
+    // The cases of a dialect other than S7 live one folder down (`omron/`).
+    for path in entries.flatten().map(|e| e.path()) {
+        if path.is_dir() {
+            let sub =
+                std::fs::read_dir(&path).map_err(|e| HarnessError::Io(path.to_path_buf(), e))?;
+            files.extend(sub.flatten().map(|e| e.path()));
+        } else {
+            files.push(path);
+        }
+    }
+    files.retain(|p| p.extension().is_some_and(|x| x == "toml"));
     files.sort();
     if files.is_empty() {
         return Err(HarnessError::NoCases(dir.to_path_buf()));
@@ -147,8 +155,10 @@ pub(crate) fn run_dir(dir: &Path, engines: &[EngineEntry]) -> Result<Summary, Ha
     };
     for path in files {
         let file = path
-            .file_name()
-            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+            .strip_prefix(dir)
+            .unwrap_or(&path)
+            .to_string_lossy()
+            .into_owned();
         let result = match std::fs::read_to_string(&path) {
             Ok(text) => run_case_text(&file, &text, engines),
             Err(e) => CaseResult {
@@ -206,6 +216,7 @@ enum Want {
 }
 
 struct Case {
+    dialect: Dialect,
     profile: ProfileId,
     scan_ms: u64,
     program: String,
@@ -429,41 +440,56 @@ impl Engine for Skew {
 
 // ---- case files ---------------------------------------------------------------------------
 
-fn resolver(profile: &'static CpuProfile) -> impl Fn(&str) -> Result<Address, String> {
-    move |name: &str| match stljit_front_s7::parse_address(name, profile, None) {
-        Ok(stljit_front_s7::Address::Bit(b)) => Ok(Address::Bit(b)),
-        Ok(stljit_front_s7::Address::Value { loc, width }) => Ok(Address::Value { loc, width }),
-        Err(e) => Err(e.message),
+fn resolver(dialect: Dialect, profile: ProfileId) -> impl Fn(&str) -> Result<Address, String> {
+    move |name: &str| {
+        dialect
+            .parse_address(name, profile, None)
+            .map_err(|e| e.message)
     }
 }
 
 fn compile(file: &str, case: &Case) -> Result<Program, String> {
-    let c = stljit_front_s7::compile_str(file, &case.program, case.profile);
+    let source = SourceFile {
+        name: file.to_string(),
+        bytes: case.program.as_bytes().to_vec(),
+    };
+    let c = case.dialect.compile(&[source], None, case.profile);
     match c.program {
         Some(p) => Ok(p),
         None => {
             let errors: Vec<String> = c
                 .diagnostics
                 .iter()
-                .filter(|d| d.severity == stljit_front_s7::Severity::Error)
-                .map(|d| stljit_front_s7::render_human(d, &c.sources))
+                .filter(|d| d.severity == Severity::Error)
+                .map(|d| render_human(d, &c.sources))
                 .collect();
             Err(format!("program does not compile:\n{}", errors.join("\n")))
         }
     }
 }
 
-/// The whole-input-image rule: every scan drives all of IB0.. (unlisted bits 0); other inputs
-/// become their own columns, set only in the scans that list them.
+/// The input rule: an S7 scan drives the whole input image (every I bit not listed is 0,
+/// spec a5-stl.md §7); an Omron scan changes only the input bits and words it lists, the rest
+/// keep the previous scan's value (omron-cp.md §6 "Stimulus"). Other inputs become their own
+/// columns, set only in the scans that list them.
 fn stimulus(case: &Case) -> Result<Stimulus, String> {
     let profile = case.profile.profile();
-    let resolve = resolver(profile);
+    let resolve = resolver(case.dialect, case.profile);
     let mut s = Stimulus::empty(TimeBase::Scan, profile);
     let bytes = profile.inputs as usize;
-    for i in 0..bytes {
-        s.add_column(&format!("IB{i}"), &resolve)
+    let held = profile.family == Family::Omron;
+    // One column per input byte (S7: `IB0` …) or per input word (Omron: CIO `0` …).
+    let unit = if held { 2 } else { 1 };
+    for i in 0..bytes / unit {
+        let name = if held {
+            format!("{}", profile.omron.first_input_word as usize + i)
+        } else {
+            format!("IB{i}")
+        };
+        s.add_column(&name, &resolve)
             .map_err(|e| format!("{e:?}"))?;
     }
+    let mut image = vec![0u8; bytes];
     let mut extra: Vec<(String, Address)> = Vec::new();
     for spec in &case.scans {
         for (name, address, _) in &spec.inputs {
@@ -475,13 +501,15 @@ fn stimulus(case: &Case) -> Result<Stimulus, String> {
         }
     }
     for (k, spec) in case.scans.iter().enumerate() {
-        let mut image = vec![0u8; bytes];
+        if !held {
+            image.iter_mut().for_each(|b| *b = 0);
+        }
         let mut cells = vec![None; extra.len()];
         for (name, address, raw) in &spec.inputs {
             match (input_area(address), address) {
                 (Some(_), Address::Bit(b)) => {
                     if let Some(byte) = image.get_mut(b.byte as usize) {
-                        *byte |= u8::from(*raw != 0) << b.bit;
+                        *byte = (*byte & !(1 << b.bit)) | u8::from(*raw != 0) << b.bit;
                     }
                 }
                 (Some(_), Address::Value { loc, width }) => {
@@ -503,7 +531,10 @@ fn stimulus(case: &Case) -> Result<Stimulus, String> {
                 }
             }
         }
-        let mut row: Vec<Option<u32>> = image.into_iter().map(|b| Some(u32::from(b))).collect();
+        let mut row: Vec<Option<u32>> = image
+            .chunks(unit)
+            .map(|c| Some(c.iter().fold(0, |w, &b| w << 8 | u32::from(b))))
+            .collect();
         row.extend(cells);
         s.push_row(k as u64, row).map_err(|e| e.to_string())?;
     }
@@ -520,6 +551,7 @@ fn input_area(address: &Address) -> Option<()> {
 
 const CASE_KEYS: &[&str] = &[
     "name",
+    "dialect",
     "spec",
     "cpu",
     "scan_ms",
@@ -567,13 +599,21 @@ fn parse_case(text: &str) -> Result<Case, String> {
             return Err(format!("missing `{key}`"));
         }
     }
-    let cpu = string(&t, "cpu")?.unwrap_or("a5");
-    let profile = ProfileId::from_name(cpu).ok_or(format!("unknown cpu `{cpu}`"))?;
+    let dialect_name = string(&t, "dialect")?.unwrap_or("s7");
+    let dialect =
+        Dialect::from_name(dialect_name).ok_or(format!("unknown dialect `{dialect_name}`"))?;
+    let profile = match string(&t, "cpu")? {
+        None => dialect.default_profile(),
+        Some(cpu) => ProfileId::from_name(cpu)
+            .filter(|p| dialect.profiles().contains(p))
+            .ok_or(format!("unknown cpu `{cpu}` for dialect `{dialect_name}`"))?,
+    };
     let scan_ms = uint(&t, "scan_ms", "case")?.unwrap_or(10);
     if scan_ms == 0 {
         return Err("`scan_ms` must be at least 1".to_string());
     }
-    let resolve = resolver(profile.profile());
+    let resolve = resolver(dialect, profile);
+    let family = profile.profile().family;
     let Some(Value::Array(rows)) = t.get("scan") else {
         return Err("no `[[scan]]` entries".to_string());
     };
@@ -585,7 +625,8 @@ fn parse_case(text: &str) -> Result<Case, String> {
         let Value::Table(row) = row else {
             return Err(format!("scan {k}: must be a table"));
         };
-        let spec = parse_scan(row, k, scan_ms, &resolve).map_err(|e| format!("scan {k}: {e}"))?;
+        let spec =
+            parse_scan(row, k, scan_ms, &resolve, family).map_err(|e| format!("scan {k}: {e}"))?;
         if let Some(prev) = scans.last().map(|s: &ScanSpec| s.status)
             && prev != ScanStatus::Ok
         {
@@ -596,6 +637,7 @@ fn parse_case(text: &str) -> Result<Case, String> {
         scans.push(spec);
     }
     Ok(Case {
+        dialect,
         profile,
         scan_ms,
         program: string(&t, "program")?.unwrap_or_default().to_string(),
@@ -609,6 +651,7 @@ fn parse_scan(
     k: usize,
     scan_ms: u64,
     resolve: &dyn Fn(&str) -> Result<Address, String>,
+    family: Family,
 ) -> Result<ScanSpec, String> {
     check_keys(row, SCAN_KEYS, "scan")?;
     if let Some(n) = uint(row, "scan", "scan")?
@@ -640,7 +683,8 @@ fn parse_scan(
     }
     let mut expect = Vec::new();
     for (name, v) in &table("expect")? {
-        let watch = WatchSpec::parse(name, resolve).map_err(|e| format!("expect: {e}"))?;
+        let watch =
+            WatchSpec::parse_for(name, resolve, family).map_err(|e| format!("expect: {e}"))?;
         let want = if watch.format == Format::Real {
             match v {
                 Value::Float(f) => Want::Real(*f as f32),
