@@ -262,7 +262,9 @@ pub static CP1H: CpuProfile = CpuProfile {
     special_memory: 0,
     special_memory_read_only: 0,
     variable_memory: 0,
-    local_frame: 0,
+    // Not an Omron area: the front end's private words (the FOR/NEXT loop counters), one frame
+    // per call level like S7's L memory; no Omron operand can name them.
+    local_frame: 32,
     analog_inputs: 0,
     analog_outputs: 0,
     timers: 4096,
@@ -272,7 +274,9 @@ pub static CP1H: CpuProfile = CpuProfile {
     max_edges: 8192,
     max_label: 1023,
     max_subroutine: 255,
-    max_call_depth: 16,
+    // SBS nesting: the image has `L_FRAMES - 1` call frames (CS/CJ allow 16 levels; the
+    // deeper ones are not modelled, a call beyond is skipped as on S7).
+    max_call_depth: 8,
     max_for_depth: 15,
     timer_table: OMRON_TIMERS,
 };
@@ -301,7 +305,9 @@ pub static CP1E: CpuProfile = CpuProfile {
     special_memory: 0,
     special_memory_read_only: 0,
     variable_memory: 0,
-    local_frame: 0,
+    // Not an Omron area: the front end's private words (the FOR/NEXT loop counters), one frame
+    // per call level like S7's L memory; no Omron operand can name them.
+    local_frame: 32,
     analog_inputs: 0,
     analog_outputs: 0,
     timers: 256,
@@ -311,7 +317,9 @@ pub static CP1E: CpuProfile = CpuProfile {
     max_edges: 4096,
     max_label: 1023,
     max_subroutine: 127,
-    max_call_depth: 16,
+    // SBS nesting: the image has `L_FRAMES - 1` call frames (CS/CJ allow 16 levels; the
+    // deeper ones are not modelled, a call beyond is skipped as on S7).
+    max_call_depth: 8,
     max_for_depth: 15,
     timer_table: OMRON_TIMERS,
 };
