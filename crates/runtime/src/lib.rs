@@ -22,6 +22,7 @@ pub mod ffi;
 pub mod flags;
 pub mod image;
 pub mod mem;
+pub mod omron;
 pub mod pointer;
 pub mod rules;
 pub mod scan;
