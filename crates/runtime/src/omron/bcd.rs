@@ -1,7 +1,7 @@
 //! Packed BCD (spec §1.6): one decimal digit per nibble, `#0000`–`#9999` in a word,
 //! `#00000000`–`#99999999` in a double word (16 digits for the `*BL` product).
 //!
-//! One pair of digit loops ([`decode`], [`encode`]) serves every width; the public functions
+//! One pair of digit loops (`decode`, `encode`) serves every width; the public functions
 //! only fix the digit count.
 
 /// The value of the `digits` low nibbles of `v` as decimal digits, or `None` if a nibble is

@@ -3,7 +3,7 @@
 //!
 //! [`OmronCounter`] is one counter's state: the PV word and Completion Flag the program sees,
 //! and the count inputs' edge memories. [`OmronCounter::step`] is one execution with every
-//! [design] detail of §3.3: edge memories start OFF (U7) and are updated by every execution
+//! detail §3.3 fixes by design: edge memories start OFF (U7) and are updated by every execution
 //! outside an active interlock, also when the execution is an error or a reset; an active
 //! interlock does not execute the counter at all (PV, flag and edge memories frozen, no flag
 //! change, U17). A closed gate under the S7 SCR policy (never the case for an Omron program)
