@@ -85,7 +85,7 @@ pub fn word_loc(profile: &CpuProfile, area: WordArea, word: u32) -> Option<Loc> 
 
 /// The inverse of [`word_loc`]: which Omron word a word-aligned location is.
 pub fn word_of(profile: &CpuProfile, loc: Loc) -> Option<(WordArea, u32)> {
-    if loc.offset % 2 != 0 {
+    if !loc.offset.is_multiple_of(2) {
         return None;
     }
     let w = loc.offset / 2;
@@ -115,7 +115,7 @@ pub fn bit_of_word(word: Loc, bit: u8) -> BitLoc {
 /// The inverse of [`bit_of_word`]: the word location and the bit number (0..=15).
 pub fn word_bit(bit: BitLoc) -> (Loc, u8) {
     let word = bit.byte & !1;
-    let high = bit.byte % 2 == 0;
+    let high = bit.byte.is_multiple_of(2);
     (
         Loc {
             area: bit.area,

@@ -2,7 +2,9 @@
 //! program body ([`scan`]), timers, counters and edge detectors ([`timer`], [`counter`],
 //! [`edge`]), pointer resolution ([`pointer`]), the intricate instructions ([`arith`], [`bitops`],
 //! [`block`], [`compare`], [`convert`], with the SMB1 rules in [`flags`]), the semantic switches
-//! and the gate policy ([`rules`]) and the [`Engine`] trait.
+//! and the gate policy ([`rules`]) and the [`Engine`] trait. The Omron CP rules (BCD,
+//! condition flags, moves, comparisons, arithmetic, timers and counters) are pure functions
+//! over plain values in [`omron`], which the engines wire to the image.
 //!
 //! Everything is a function on the image bytes (`&mut [u8]` plus its [`Layout`]), so the
 //! interpreter calls it directly and the Cranelift JIT calls the same code through the
@@ -22,6 +24,7 @@ pub mod ffi;
 pub mod flags;
 pub mod image;
 pub mod mem;
+pub mod omron;
 pub mod pointer;
 pub mod rules;
 pub mod scan;

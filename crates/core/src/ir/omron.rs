@@ -119,6 +119,77 @@ pub enum OmronArith {
 }
 
 impl OmronArith {
+    /// The mnemonic as the programmer writes it (`+BL`, `*U`, `/`).
+    pub fn mnemonic(self) -> &'static str {
+        use OmronArith::*;
+        match self {
+            Add => "+",
+            AddL => "+L",
+            AddC => "+C",
+            AddCL => "+CL",
+            AddB => "+B",
+            AddBL => "+BL",
+            AddBC => "+BC",
+            AddBCL => "+BCL",
+            Sub => "-",
+            SubL => "-L",
+            SubC => "-C",
+            SubCL => "-CL",
+            SubB => "-B",
+            SubBL => "-BL",
+            SubBC => "-BC",
+            SubBCL => "-BCL",
+            Mul => "*",
+            MulL => "*L",
+            MulU => "*U",
+            MulUL => "*UL",
+            MulB => "*B",
+            MulBL => "*BL",
+            Div => "/",
+            DivL => "/L",
+            DivU => "/U",
+            DivUL => "/UL",
+            DivB => "/B",
+            DivBL => "/BL",
+        }
+    }
+
+    /// The function code (spec §3.6): each family counts up from its base in the order of
+    /// [`OmronArith::ALL`]: `+` 400–407, `-` 410–417, `*` 420–425, `/` 430–435.
+    pub fn function_code(self) -> u16 {
+        use OmronArith::*;
+        match self {
+            Add => 400,
+            AddL => 401,
+            AddC => 402,
+            AddCL => 403,
+            AddB => 404,
+            AddBL => 405,
+            AddBC => 406,
+            AddBCL => 407,
+            Sub => 410,
+            SubL => 411,
+            SubC => 412,
+            SubCL => 413,
+            SubB => 414,
+            SubBL => 415,
+            SubBC => 416,
+            SubBCL => 417,
+            Mul => 420,
+            MulL => 421,
+            MulU => 422,
+            MulUL => 423,
+            MulB => 424,
+            MulBL => 425,
+            Div => 430,
+            DivL => 431,
+            DivU => 432,
+            DivUL => 433,
+            DivB => 434,
+            DivBL => 435,
+        }
+    }
+
     /// Words of each source operand (1, or 2 for the `L` forms).
     pub fn operand_words(self) -> u32 {
         use OmronArith::*;
@@ -177,4 +248,34 @@ pub enum OmronBox {
         /// First result word.
         dst: super::Operand,
     },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arith_names_and_codes_are_distinct_and_follow_the_families() {
+        // Spec §3.6: `+(400)` … `+BCL(407)`, `-(410)` … `-BCL(417)`, `*(420)` … `*BL(425)`,
+        // `/(430)` … `/BL(435)`; within a family the code counts up in ALL's order, and the
+        // mnemonic's first character names the family.
+        let mut seen = std::collections::HashSet::new();
+        for (i, op) in OmronArith::ALL.iter().enumerate() {
+            assert!(seen.insert(op.mnemonic()), "{op:?}");
+            let (base, first) = match op.mnemonic().as_bytes()[0] {
+                b'+' => (400, 0),
+                b'-' => (410, 8),
+                b'*' => (420, 16),
+                _ => (430, 22),
+            };
+            assert_eq!(op.function_code(), base + (i - first) as u16, "{op:?}");
+        }
+        assert_eq!(OmronArith::AddBL.mnemonic(), "+BL");
+        assert_eq!(OmronArith::AddBL.function_code(), 405);
+        assert_eq!(OmronArith::DivBL.function_code(), 435);
+        assert_eq!(OmronArith::MulU.result_words(), 2);
+        assert_eq!(OmronArith::MulUL.result_words(), 4);
+        assert_eq!(OmronArith::DivL.result_words(), 4);
+        assert_eq!(OmronArith::AddCL.result_words(), 2);
+    }
 }
