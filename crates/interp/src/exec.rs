@@ -68,7 +68,7 @@ impl<'a> Machine<'a> {
 
     /// The gate timers, counters and edges run under: the gate byte (SCR enable or Omron
     /// interlock), with the policy of the program's family.
-    fn stateful_gate(&self) -> Gate {
+    pub(crate) fn stateful_gate(&self) -> Gate {
         Gate::with(
             self.gate(),
             self.layout.profile.profile().family.gate_policy(),
@@ -328,8 +328,9 @@ impl<'a> Machine<'a> {
             Op::ScrCondEnd { .. } => {}
             Op::ScrEnd | Op::InterlockEnd => self.set_gate(true),
             Op::Interlock => self.set_gate(pf),
-            // Wired to the runtime's Omron rules in the next step; no front end emits them yet.
-            Op::OmronTimer { .. } | Op::OmronCounter { .. } | Op::Omron(_) => {}
+            Op::OmronTimer { .. } | Op::OmronCounter { .. } | Op::Omron(_) => {
+                self.omron(op, frame, *st, pf);
+            }
         }
         Step::Next
     }

@@ -9,6 +9,7 @@
 
 mod boxes;
 mod exec;
+mod omron;
 mod operand;
 
 #[cfg(test)]

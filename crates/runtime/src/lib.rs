@@ -25,6 +25,7 @@ pub mod flags;
 pub mod image;
 pub mod mem;
 pub mod omron;
+pub mod omron_image;
 pub mod pointer;
 pub mod rules;
 pub mod scan;

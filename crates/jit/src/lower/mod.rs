@@ -21,6 +21,7 @@ pub(crate) mod cache;
 pub(crate) mod control;
 pub(crate) mod flow;
 pub(crate) mod mem;
+pub(crate) mod omron;
 pub(crate) mod state;
 pub(crate) mod stateful;
 pub(crate) mod value;
@@ -605,9 +606,17 @@ impl<'e, 'f> Lower<'e, 'f> {
             Op::ScrCondEnd { end } => self.scr_cond_end(end.index()),
             Op::ScrEnd | Op::InterlockEnd => self.scr_end(),
             Op::Interlock => self.interlock(),
-            Op::OmronTimer { .. } | Op::OmronCounter { .. } | Op::Omron(_) => {
-                self.func.unsupported = Some(format!("Omron op {op:?} (not compiled yet)"));
-            }
+            Op::OmronTimer {
+                kind,
+                timer,
+                ref set_value,
+            } => self.omron_timer(kind, timer.0, set_value),
+            Op::OmronCounter {
+                kind,
+                counter,
+                ref set_value,
+            } => self.omron_counter(kind, counter.0, set_value),
+            Op::Omron(ref bx) => self.omron_box(bx),
         }
     }
 }

@@ -113,7 +113,7 @@ impl Lower<'_, '_> {
 
     /// The gate word of the general timer and counter shims: the gate at bit 0 and the fixed
     /// bits.
-    fn gate_word(&mut self) -> Value {
+    pub(crate) fn gate_word(&mut self) -> Value {
         let open = self.block.gate.to01(&mut self.b);
         match self.gate_word_fixed() {
             0 => open,
