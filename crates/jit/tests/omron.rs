@@ -104,6 +104,17 @@ fn data_boxes_and_every_arithmetic_op() {
          omron compare double=1 signed=0 lhs=Dm.4 rhs=const(0x12345)
          load bit Flags.1.1
          assign bit=Q.1.1 immediate=0
+         load bit I.1.1
+         omron compare double=0 signed=0 lhs=I.2 rhs=Dm.0
+         load bit Flags.0.4
+         assign bit=Q.1.2 immediate=0
+         omron compare double=1 signed=1 lhs=I.0 rhs=Dm.4
+         load bit Flags.1.2
+         assign bit=Q.1.3 immediate=0
+         load bit Flags.0.3
+         omron move double=0 src=const(0) dst=Dm.40
+         load bit Flags.0.5
+         assign bit=Q.1.4 immediate=0
 ",
     );
     for (i, op) in OmronArith::ALL.iter().enumerate() {

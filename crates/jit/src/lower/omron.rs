@@ -3,11 +3,14 @@
 
 use super::Lower;
 use super::mem::OnFail;
+use super::state::{BoxState, Pred};
 use super::value::{B, Stack};
 use crate::helpers::Helper;
-use cranelift_codegen::ir::{InstBuilder, Value, types::I32};
+use cranelift_codegen::ir::{InstBuilder, Value, condcodes::IntCC, types::I32};
 use stljit_core::ir::{OmronBox, OmronCounterKind, OmronTimerKind, Operand};
-use stljit_core::{FatalCode, Width};
+use stljit_core::{Area, FatalCode, Width};
+use stljit_runtime::omron::Flag;
+use stljit_runtime::omron::data;
 use stljit_runtime::omron_image;
 
 impl Lower<'_, '_> {
@@ -19,10 +22,7 @@ impl Lower<'_, '_> {
         // Omron operands are direct: no pointer can fail.
         let v = self.read_operand(o, width, OnFail::Fatal(FatalCode::CompareIndirect));
         if double && matches!(o, Operand::Mem(_)) {
-            // The halves swapped as two shifts and an `or` (x86 folds them into one rotate).
-            let hi = self.b.ins().ishl_imm_s(v, 16);
-            let lo = self.b.ins().ushr_imm_s(v, 16);
-            self.b.ins().bor(hi, lo)
+            self.swap_halves(v)
         } else {
             v
         }
@@ -57,11 +57,28 @@ impl Lower<'_, '_> {
         self.call_helper(Helper::OmronCounter, &[nv, k, stack, gate, sv]);
     }
 
-    /// `MOV`, `CMP`, arithmetic: when PF, the runtime's box on the operand values.
+    /// `MOV`, `CMP`, arithmetic: when PF. MOV/MOVL and the compares are inlined branch-free
+    /// (their writes keep the old bytes where PF is 0); the arithmetic calls the runtime's box.
     pub(crate) fn omron_box(&mut self, bx: &OmronBox) {
         let pf = self.pf();
         if pf == B::K(false) {
             return;
+        }
+        match *bx {
+            OmronBox::Move { double, src, dst } => {
+                self.omron_free(pf, |s| s.omron_move(double, &src, &dst));
+                return;
+            }
+            OmronBox::Compare {
+                double,
+                signed,
+                lhs,
+                rhs,
+            } => {
+                self.omron_free(pf, |s| s.omron_compare(double, signed, &lhs, &rhs));
+                return;
+            }
+            OmronBox::Arith { .. } => {}
         }
         let bx = *bx;
         self.guarded(pf, move |s| {
@@ -95,6 +112,121 @@ impl Lower<'_, '_> {
             let at = s.iconst(I32, i64::from(at));
             s.call_helper(Helper::OmronBox, &[code, a, b, at]);
         });
+    }
+}
+
+impl Lower<'_, '_> {
+    /// Runs `f` as a branch-free box under `pf`: every write through the cache keeps the old
+    /// value where `pf` is 0 (no ENO: Omron boxes have none).
+    fn omron_free(&mut self, pf: B, f: impl FnOnce(&mut Self)) {
+        self.in_box = BoxState::new(true);
+        self.in_box.pred = match pf {
+            B::K(_) => None,
+            _ => Some(Pred::new(pf.cond(&mut self.b))),
+        };
+        f(self);
+        self.in_box = BoxState::default();
+    }
+
+    /// Condition-flag byte `byte` (0 or 1) of the `Flags` area := its bits outside `mask` kept,
+    /// the bits of `bits` (within `mask`) set.
+    fn put_omron_flags(&mut self, byte: u32, mask: u16, bits: Value) {
+        let m = i64::from((mask >> (8 * byte)) & 0xFF);
+        if m == 0 {
+            return;
+        }
+        let a = self.area_addr(Area::Flags, byte);
+        let old = self.byte(a);
+        let kept = self.b.ins().band_imm_s(old, !m & 0xFF);
+        let new = self.b.ins().bor(kept, bits);
+        self.set_byte_pred(a, new);
+    }
+
+    /// `flag` (a 0/1 value) moved to its bit inside its flag byte.
+    fn flag_at(&mut self, flag: Flag, v: Value) -> Value {
+        let bit = flag.system_bit().bit_loc().bit;
+        let v = self.b.ins().uextend(I32, v);
+        self.b.ins().ishl_imm_s(v, i64::from(bit))
+    }
+
+    /// The condition flags := `values` (0/1 values) for the flags in `mask` (the rule's
+    /// `FlagWrites::mask`); a flag of `mask` not in `values` is written OFF.
+    fn put_flag_values(&mut self, mask: u16, values: &[(Flag, Value)]) {
+        let mut bytes = [None, None];
+        for &(flag, v) in values {
+            let at = self.flag_at(flag, v);
+            let byte = flag.system_bit().bit_loc().byte as usize;
+            bytes[byte] = Some(match bytes[byte] {
+                Some(acc) => self.b.ins().bor(acc, at),
+                None => at,
+            });
+        }
+        for (byte, bits) in bytes.into_iter().enumerate() {
+            let bits = bits.unwrap_or_else(|| self.iconst(I32, 0));
+            self.put_omron_flags(byte as u32, mask, bits);
+        }
+    }
+
+    /// `MOV`/`MOVL` inline with `data::mov`'s flags: ER OFF, `=` when the value is 0, `N` its
+    /// top bit.
+    fn omron_move(&mut self, double: bool, src: &Operand, dst: &Operand) {
+        let v = self.omron_value(src, double);
+        if let Operand::Mem(loc) = *dst {
+            let a = self.area_addr(loc.area, loc.offset);
+            let stored = if double { self.swap_halves(v) } else { v };
+            let width = if double { Width::DWord } else { Width::Word };
+            self.write_static(a, width, stored);
+        }
+        let (_, writes) = data::mov(double, 0);
+        let top = if double { 31 } else { 15 };
+        let zero = self.b.ins().icmp_imm_s(IntCC::Equal, v, 0);
+        let n = self.b.ins().ushr_imm_s(v, top);
+        let n = self.b.ins().band_imm_s(n, 1);
+        let n = self.b.ins().ireduce(cranelift_codegen::ir::types::I8, n);
+        self.put_flag_values(writes.mask, &[(Flag::Eq, zero), (Flag::N, n)]);
+    }
+
+    /// `CMP`/`CMPL`/`CPS`/`CPSL` inline with `data::compare`'s flags: the six comparison flags
+    /// from the order of the operands, ER OFF.
+    fn omron_compare(&mut self, double: bool, signed: bool, lhs: &Operand, rhs: &Operand) {
+        let a = self.omron_value(lhs, double);
+        let b = self.omron_value(rhs, double);
+        let (a, b) = if double || !signed {
+            (a, b)
+        } else {
+            (self.sext(a, Width::Word), self.sext(b, Width::Word))
+        };
+        let (lt_cc, gt_cc) = if signed {
+            (IntCC::SignedLessThan, IntCC::SignedGreaterThan)
+        } else {
+            (IntCC::UnsignedLessThan, IntCC::UnsignedGreaterThan)
+        };
+        let lt = self.b.ins().icmp(lt_cc, a, b);
+        let gt = self.b.ins().icmp(gt_cc, a, b);
+        let eq = self.b.ins().icmp(IntCC::Equal, a, b);
+        let ge = self.b.ins().bxor_imm_s(lt, 1);
+        let le = self.b.ins().bxor_imm_s(gt, 1);
+        let ne = self.b.ins().bxor_imm_s(eq, 1);
+        let mask = data::compare(double, signed, 0, 0).mask;
+        self.put_flag_values(
+            mask,
+            &[
+                (Flag::Lt, lt),
+                (Flag::Gt, gt),
+                (Flag::Eq, eq),
+                (Flag::Ge, ge),
+                (Flag::Le, le),
+                (Flag::Ne, ne),
+            ],
+        );
+    }
+
+    /// `v` with its 16-bit halves swapped: an Omron double word to the IR's big-endian dword
+    /// and back.
+    fn swap_halves(&mut self, v: Value) -> Value {
+        let hi = self.b.ins().ishl_imm_s(v, 16);
+        let lo = self.b.ins().ushr_imm_s(v, 16);
+        self.b.ins().bor(hi, lo)
     }
 }
 
