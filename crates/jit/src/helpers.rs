@@ -91,9 +91,9 @@ helpers! {
     ScanEnd => "stljit_rt_scan_end", ffi::stljit_rt_scan_end, ImageLayout, [I32] -> I32;
     /// `stljit_rt_value(op, sub, out, in1) -> u64` packed outcome (`ffi::ValueOp`).
     Value => "stljit_rt_value", ffi::stljit_rt_value, Nothing, [I32, I32, I32, I32] -> I64;
-    /// `stljit_rt_omron_timer(n, kind, stack, gate, sv)`.
-    OmronTimer => "stljit_rt_omron_timer", ffi::stljit_rt_omron_timer, ImageLayout, [I32, I32, I32, I32, I32] -> I32;
-    OmronCounter => "stljit_rt_omron_counter", ffi::stljit_rt_omron_counter, ImageLayout, [I32, I32, I32, I32, I32] -> I32;
+    /// `stljit_rt_omron_{timer,counter}_fast(value, flag, state[, now], ctl, sv)`: pointers.
+    OmronTimerFast => "stljit_rt_omron_timer_fast", ffi::stljit_rt_omron_timer_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
+    OmronCounterFast => "stljit_rt_omron_counter_fast", ffi::stljit_rt_omron_counter_fast, Nothing, [I64, I64, I64, I32, I32] -> I32;
     /// `stljit_rt_omron_box(code, a, b, dst)`.
     OmronBox => "stljit_rt_omron_box", ffi::stljit_rt_omron_box, ImageLayout, [I32, I32, I32, I32] -> I32;
 }

@@ -34,9 +34,9 @@
 //! | `stljit_rt_shift_register(img, l, data, area, byte, bit, frame, len: i32)` | [`crate::block::shift_register`] | status |
 //! | `stljit_rt_pointer_end(img, l, ptr)` | end of a pointer's [`crate::block::Span`] | image offset (0 = bad) |
 //! | `stljit_rt_value(op, sub, out, in1)` | [`ValueOp::outcome`] | u64: packed [`crate::flags::Outcome`] |
-//! | `stljit_rt_omron_timer(img, l, n, kind, stack, gate, sv)` | [`crate::omron_image::timer`] | status |
-//! | `stljit_rt_omron_counter(img, l, n, kind, stack, gate, sv)` | [`crate::omron_image::counter`] | status |
 //! | `stljit_rt_omron_box(img, l, code, a, b, dst)` | [`crate::omron_image::run_box`] | status |
+//! | `stljit_rt_omron_timer_fast(value, flag, state, now, ctl, sv)` | [`crate::omron_image::timer_step`] | packed flag writes |
+//! | `stljit_rt_omron_counter_fast(value, flag, state, ctl, sv)` | [`crate::omron_image::counter_step`] | packed flag writes |
 //!
 //! Enum arguments (`area`, and inside [`ValueOp`]'s encoding `op`, `func`, `conv`) are
 //! [`FfiCode`]s: the position in the enum's declaration order (`ArithOp`: Add 0, Sub 1, Mul 2,

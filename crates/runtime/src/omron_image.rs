@@ -18,7 +18,9 @@ use crate::omron::{OmronCounter, OmronTimer, arith, data};
 use crate::rules::Gate;
 use stljit_core::Area;
 use stljit_core::ir::{OmronArith, OmronBox, OmronCounterKind, OmronTimerKind};
-use stljit_core::layout::{CounterState, Layout, Sched, TimerState};
+use stljit_core::layout::{
+    COUNTER_STATE_SIZE, CounterState, Layout, Sched, TIMER_STATE_SIZE, TimerState,
+};
 use stljit_core::omron::SystemBit;
 
 /// Applies `writes` to the condition flags.
@@ -33,10 +35,103 @@ pub fn apply_flags(img: &mut [u8], layout: &Layout, writes: FlagWrites) {
     mem::set_u8(img, at + 1, hi);
 }
 
-/// Executes Omron timer `n` of `kind` with the logic stack `stack` (bit i = `S_i`: the TIM
-/// family's execution condition is `S0`; TTIM's timer input `S1`, reset `S0`) under `gate`,
-/// with set value `sv` (the raw word). A timer number outside the profile does nothing (the
-/// verifier rejects such a program).
+/// One Omron timer's bytes: PV (big-endian), completion flag, private state.
+pub type TimerBytes = ([u8; 2], u8, [u8; TIMER_STATE_SIZE as usize]);
+
+/// One Omron counter's bytes: PV, completion flag, private state.
+pub type CounterBytes = ([u8; 2], u8, [u8; COUNTER_STATE_SIZE as usize]);
+
+/// Executes Omron timer instruction `kind` on one timer's bytes `t` at virtual time `t_ms` with
+/// the logic stack `stack` (bit i = `S_i`: the TIM family's execution condition is `S0`; TTIM's
+/// timer input `S1`, reset `S0`) under `gate`, with set value `sv` (the raw word); returns the
+/// condition-flag writes. Both engines' timer paths end here.
+pub fn timer_step(
+    t: &mut TimerBytes,
+    t_ms: u64,
+    kind: OmronTimerKind,
+    stack: u16,
+    gate: Gate,
+    sv: u16,
+) -> FlagWrites {
+    let (value, flag, state) = t;
+    let last = |s: &[u8; TIMER_STATE_SIZE as usize]| {
+        let at = TimerState::LAST as usize;
+        let mut b = [0; 8];
+        b.copy_from_slice(&s[at..at + 8]);
+        u64::from_ne_bytes(b)
+    };
+    let mut timer = OmronTimer {
+        pv: u16::from_be_bytes(*value),
+        flag: *flag != 0,
+        running: state[TimerState::RUN as usize] != 0,
+        last_ms: last(state),
+        rem_ms: u32::from(state[TimerState::TOF as usize]),
+    };
+    let (ec, reset) = if kind.totalizing() {
+        (stack & 0b10 != 0, stack & 1 != 0)
+    } else {
+        (stack & 1 != 0, false)
+    };
+    let writes = timer.step(kind, ec, reset, sv, t_ms, gate);
+    *value = timer.pv.to_be_bytes();
+    *flag = u8::from(timer.flag);
+    state[TimerState::RUN as usize] = u8::from(timer.running);
+    // The remainder is below the unit (at most 99 ms), so it fits its byte.
+    state[TimerState::TOF as usize] = timer.rem_ms.min(255) as u8;
+    let at = TimerState::LAST as usize;
+    state[at..at + 8].copy_from_slice(&timer.last_ms.to_ne_bytes());
+    writes
+}
+
+/// Executes Omron counter instruction `kind` on one counter's bytes `c` with the logic stack
+/// `stack` (CNT: count `S1`, reset `S0`; CNTR: increment `S2`, decrement `S1`, reset `S0`)
+/// under `gate`, set value `sv`; returns the condition-flag writes.
+pub fn counter_step(
+    c: &mut CounterBytes,
+    kind: OmronCounterKind,
+    stack: u16,
+    gate: Gate,
+    sv: u16,
+) -> FlagWrites {
+    let (value, flag, state) = c;
+    let mut counter = OmronCounter {
+        pv: u16::from_be_bytes(*value),
+        flag: *flag != 0,
+        prev_count: state[CounterState::PREV_UP as usize] != 0,
+        prev_dec: state[CounterState::PREV_DOWN as usize] != 0,
+    };
+    let s = |i: u16| stack & (1 << i) != 0;
+    let inputs = if kind.ring() {
+        [s(2), s(1), s(0)]
+    } else {
+        [s(1), false, s(0)]
+    };
+    let writes = counter.step(kind, inputs, sv, gate);
+    *value = counter.pv.to_be_bytes();
+    *flag = u8::from(counter.flag);
+    state[CounterState::PREV_UP as usize] = u8::from(counter.prev_count);
+    state[CounterState::PREV_DOWN as usize] = u8::from(counter.prev_dec);
+    writes
+}
+
+/// Copies `N` image bytes from `at` (zeros past the end, which the callers' range checks rule
+/// out).
+fn take<const N: usize>(img: &[u8], at: u32) -> [u8; N] {
+    let mut b = [0; N];
+    for (i, v) in b.iter_mut().enumerate() {
+        *v = mem::get_u8(img, at + i as u32);
+    }
+    b
+}
+
+fn put(img: &mut [u8], at: u32, bytes: &[u8]) {
+    for (i, &v) in bytes.iter().enumerate() {
+        mem::set_u8(img, at + i as u32, v);
+    }
+}
+
+/// [`timer_step`] on timer `n` of the image (a number outside the profile does nothing; the
+/// verifier rejects such a program), the flags applied.
 pub fn timer(
     img: &mut [u8],
     layout: &Layout,
@@ -51,32 +146,15 @@ pub fn timer(
     }
     let [(value, _), (bit, _), (state, _)] = layout.timer_bytes(n);
     let t_ms = mem::get_u64_ne(img, layout.sched(Sched::T_NOW));
-    let mut t = OmronTimer {
-        pv: u16::from_be_bytes([mem::get_u8(img, value), mem::get_u8(img, value + 1)]),
-        flag: mem::get_u8(img, bit) != 0,
-        running: mem::get_u8(img, state + TimerState::RUN) != 0,
-        last_ms: mem::get_u64_ne(img, state + TimerState::LAST),
-        rem_ms: u32::from(mem::get_u8(img, state + TimerState::TOF)),
-    };
-    let (ec, reset) = if kind.totalizing() {
-        (stack & 0b10 != 0, stack & 1 != 0)
-    } else {
-        (stack & 1 != 0, false)
-    };
-    let writes = t.step(kind, ec, reset, sv, t_ms, gate);
-    let [hi, lo] = t.pv.to_be_bytes();
-    mem::set_u8(img, value, hi);
-    mem::set_u8(img, value + 1, lo);
-    mem::set_u8(img, bit, u8::from(t.flag));
-    mem::set_u8(img, state + TimerState::RUN, u8::from(t.running));
-    // The remainder is below the unit (at most 99 ms), so it fits its byte.
-    mem::set_u8(img, state + TimerState::TOF, t.rem_ms.min(255) as u8);
-    mem::set_u64_ne(img, state + TimerState::LAST, t.last_ms);
+    let mut t = (take(img, value), mem::get_u8(img, bit), take(img, state));
+    let writes = timer_step(&mut t, t_ms, kind, stack, gate, sv);
+    put(img, value, &t.0);
+    mem::set_u8(img, bit, t.1);
+    put(img, state, &t.2);
     apply_flags(img, layout, writes);
 }
 
-/// Executes Omron counter `n` of `kind` with the logic stack `stack` (CNT: count `S1`, reset
-/// `S0`; CNTR: increment `S2`, decrement `S1`, reset `S0`) under `gate`, set value `sv`.
+/// [`counter_step`] on counter `n` of the image, the flags applied.
 pub fn counter(
     img: &mut [u8],
     layout: &Layout,
@@ -90,25 +168,11 @@ pub fn counter(
         return;
     }
     let [(value, _), (bit, _), (state, _)] = layout.counter_bytes(n);
-    let mut c = OmronCounter {
-        pv: u16::from_be_bytes([mem::get_u8(img, value), mem::get_u8(img, value + 1)]),
-        flag: mem::get_u8(img, bit) != 0,
-        prev_count: mem::get_u8(img, state + CounterState::PREV_UP) != 0,
-        prev_dec: mem::get_u8(img, state + CounterState::PREV_DOWN) != 0,
-    };
-    let s = |i: u16| stack & (1 << i) != 0;
-    let inputs = if kind.ring() {
-        [s(2), s(1), s(0)]
-    } else {
-        [s(1), false, s(0)]
-    };
-    let writes = c.step(kind, inputs, sv, gate);
-    let [hi, lo] = c.pv.to_be_bytes();
-    mem::set_u8(img, value, hi);
-    mem::set_u8(img, value + 1, lo);
-    mem::set_u8(img, bit, u8::from(c.flag));
-    mem::set_u8(img, state + CounterState::PREV_UP, u8::from(c.prev_count));
-    mem::set_u8(img, state + CounterState::PREV_DOWN, u8::from(c.prev_dec));
+    let mut c = (take(img, value), mem::get_u8(img, bit), take(img, state));
+    let writes = counter_step(&mut c, kind, stack, gate, sv);
+    put(img, value, &c.0);
+    mem::set_u8(img, bit, c.1);
+    put(img, state, &c.2);
     apply_flags(img, layout, writes);
 }
 

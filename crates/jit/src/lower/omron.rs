@@ -2,13 +2,16 @@
 //! (through the `stljit_rt_omron_*` shims), which both engines share.
 
 use super::Lower;
+use super::cache::Addr;
 use super::mem::OnFail;
 use super::state::{BoxState, Pred};
 use super::value::{B, Stack};
 use crate::helpers::Helper;
 use cranelift_codegen::ir::{InstBuilder, Value, condcodes::IntCC, types::I32};
 use stljit_core::ir::{OmronBox, OmronCounterKind, OmronTimerKind, Operand};
+use stljit_core::layout::Sched;
 use stljit_core::{Area, FatalCode, Width};
+use stljit_runtime::ffi::OMRON_CTL_KIND_SHIFT;
 use stljit_runtime::omron::Flag;
 use stljit_runtime::omron::data;
 use stljit_runtime::omron_image;
@@ -37,24 +40,65 @@ impl Lower<'_, '_> {
         levels.to_reg(&mut self.b)
     }
 
-    /// `TIM`…`TTIMX n sv`.
+    /// `TIM`…`TTIMX n sv`: the fast shim on the timer's own bytes and the scan time, its flag
+    /// writes applied here.
     pub(crate) fn omron_timer(&mut self, kind: OmronTimerKind, n: u16, sv: &Operand) {
+        let l = self.env.layout;
+        if u32::from(n) >= l.area_size(Area::TimerBit) {
+            return; // the verifier keeps timer numbers inside the profile
+        }
         let sv = self.omron_value(sv, false);
-        let stack = self.omron_conditions();
-        let gate = self.gate_word();
-        let nv = self.iconst(I32, i64::from(n));
-        let k = self.iconst(I32, i64::from(omron_kind_code(OmronTimerKind::ALL, kind)));
-        self.call_helper(Helper::OmronTimer, &[nv, k, stack, gate, sv]);
+        let [v, b, s] = l.timer_bytes(n).map(|(off, len)| (Addr::img(off), len));
+        let ranges = [v, b, s, (self.sched(Sched::T_NOW), 8)];
+        let code = omron_kind_code(OmronTimerKind::ALL, kind);
+        self.omron_fast(Helper::OmronTimerFast, &ranges, code, sv);
     }
 
-    /// `CNT`…`CNTRX n sv`.
+    /// `CNT`…`CNTRX n sv`: as [`Lower::omron_timer`].
     pub(crate) fn omron_counter(&mut self, kind: OmronCounterKind, n: u16, sv: &Operand) {
+        let l = self.env.layout;
+        if u32::from(n) >= l.area_size(Area::CounterBit) {
+            return;
+        }
         let sv = self.omron_value(sv, false);
+        let [v, b, s] = l.counter_bytes(n).map(|(off, len)| (Addr::img(off), len));
+        let code = omron_kind_code(OmronCounterKind::ALL, kind);
+        self.omron_fast(Helper::OmronCounterFast, &[v, b, s], code, sv);
+    }
+
+    /// Calls a fast Omron shim on the image ranges `ranges` (pointers, in order) with `ctl`
+    /// (stack levels 0–2, the gate, `kind`) and `sv`, then applies the flag writes it returns.
+    fn omron_fast(&mut self, h: Helper, ranges: &[(Addr, u32)], kind: u32, sv: Value) {
         let stack = self.omron_conditions();
-        let gate = self.gate_word();
-        let nv = self.iconst(I32, i64::from(n));
-        let k = self.iconst(I32, i64::from(omron_kind_code(OmronCounterKind::ALL, kind)));
-        self.call_helper(Helper::OmronCounter, &[nv, k, stack, gate, sv]);
+        let ctl = self.fast_ctl(stack);
+        let ctl = self
+            .b
+            .ins()
+            .bor_imm_s(ctl, i64::from(kind << OMRON_CTL_KIND_SHIFT));
+        let image = self.func.image;
+        let mut args: Vec<Value> = ranges
+            .iter()
+            .map(|(a, _)| self.b.ins().iadd_imm_s(image, i64::from(a.off)))
+            .collect();
+        args.extend([ctl, sv]);
+        let packed = self.call_touching(h, &args, ranges);
+        self.apply_packed_flags(packed);
+    }
+
+    /// The condition flags := the packed writes of a fast shim (`ffi::pack_flag_writes`: mask
+    /// in bits 16–31, values in bits 0–15).
+    fn apply_packed_flags(&mut self, packed: Value) {
+        for byte in 0..2u32 {
+            let a = self.area_addr(Area::Flags, byte);
+            let old = self.byte(a);
+            let m = self.b.ins().ushr_imm_s(packed, i64::from(16 + 8 * byte));
+            let m = self.b.ins().band_imm_s(m, 0xFF);
+            let v = self.b.ins().ushr_imm_s(packed, i64::from(8 * byte));
+            let v = self.b.ins().band_imm_s(v, 0xFF);
+            let kept = self.b.ins().band_not(old, m);
+            let new = self.b.ins().bor(kept, v);
+            self.set_byte(a, new);
+        }
     }
 
     /// `MOV`, `CMP`, arithmetic: when PF. MOV/MOVL and the compares are inlined branch-free

@@ -123,7 +123,7 @@ impl Lower<'_, '_> {
 
     /// The `ctl` argument of the fast shims: `low` (bits 0–7: the inputs) | the SCR gate at
     /// [`CTL_GATE`]. Outside SCR segments the gate is a constant: one `or` or nothing.
-    fn fast_ctl(&mut self, low: Value) -> Value {
+    pub(crate) fn fast_ctl(&mut self, low: Value) -> Value {
         match self.block.gate {
             B::K(false) => low,
             B::K(true) => self.b.ins().bor_imm_s(low, i64::from(CTL_GATE)),

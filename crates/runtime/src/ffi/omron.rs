@@ -1,62 +1,109 @@
 //! The Omron shims (`stljit_rt_omron_*`): the JIT's way into [`crate::omron_image`], under the
-//! module conventions of [`super`]. Kinds travel as their [`FfiCode`](super::FfiCode), the gate
-//! as a gate word, set values and operand values as `u32` (Omron value order).
+//! module conventions of [`super`]. The timer and counter shims are lean like the S7 fast
+//! shims (pointers to the object's bytes, computed from the layout at compile time) and return
+//! the condition-flag writes for compiled code to apply; kinds travel as their position in
+//! core's `ALL` lists, set values and operand values as `u32` (Omron value order).
 
-use super::{RT_BAD_ARGUMENT, decode_gate_word, status_of};
+use super::status_of;
 use crate::omron_image;
+use crate::rules::Gate;
+use std::panic::{AssertUnwindSafe, catch_unwind};
 use stljit_core::ir::{OmronCounterKind, OmronTimerKind};
-use stljit_core::layout::Layout;
+use stljit_core::layout::{COUNTER_STATE_SIZE, Layout, TIMER_STATE_SIZE};
 
-/// [`omron_image::timer`]; `stack` is the logic stack (bit i = S_i).
-///
-/// # Safety
-/// See the module conventions of [`super`].
-pub unsafe extern "C" fn stljit_rt_omron_timer(
-    image: *mut u8,
-    layout: *const Layout,
-    n: u32,
-    kind: u32,
-    stack: u32,
-    gate: u32,
-    sv: u32,
-) -> u32 {
-    let (Some(&kind), Ok(n)) = (OmronTimerKind::ALL.get(kind as usize), u16::try_from(n)) else {
-        return RT_BAD_ARGUMENT;
-    };
-    let (gate, _) = decode_gate_word(gate);
-    // SAFETY: forwarded caller contract.
-    unsafe {
-        status_of(image, layout, |b, l| {
-            omron_image::timer(b, l, kind, n, stack as u16, gate, sv as u16);
-            Ok(())
-        })
-    }
+/// `ctl` of the fast Omron shims: bits 0–2 the logic-stack levels 0–2, bit 8 the gate open
+/// ([`super::CTL_GATE`]), bits 16–23 the kind's position in its `ALL` list.
+pub const OMRON_CTL_KIND_SHIFT: u32 = 16;
+
+/// The packed condition-flag writes a fast Omron shim returns: the mask in bits 16–31, the
+/// values in bits 0–15 (both in the `Flags` area's little-endian bit order).
+pub fn pack_flag_writes(w: crate::omron::FlagWrites) -> u32 {
+    u32::from(w.mask) << 16 | u32::from(w.value & w.mask)
 }
 
-/// [`omron_image::counter`]; `stack` is the logic stack.
+fn ctl_parts(ctl: u32) -> (u16, Gate, usize) {
+    let gate = Gate::with(
+        ctl & super::CTL_GATE != 0,
+        stljit_core::GatePolicy::OmronInterlock,
+    );
+    (
+        (ctl & 0b111) as u16,
+        gate,
+        ((ctl >> OMRON_CTL_KIND_SHIFT) & 0xFF) as usize,
+    )
+}
+
+/// [`omron_image::timer_step`] on one timer's bytes, for compiled code that knows the layout:
+/// `value` (2 bytes), `flag` (1), `state` (`TIMER_STATE_SIZE`), `now` (the scheduler's
+/// native-endian `u64` `T_NOW`), `ctl` as [`OMRON_CTL_KIND_SHIFT`] says, `sv` the set value.
+/// Returns the flag writes ([`pack_flag_writes`]) for compiled code to apply; an impossible
+/// kind writes nothing and returns 0.
 ///
 /// # Safety
-/// See the module conventions of [`super`].
-pub unsafe extern "C" fn stljit_rt_omron_counter(
-    image: *mut u8,
-    layout: *const Layout,
-    n: u32,
-    kind: u32,
-    stack: u32,
-    gate: u32,
+/// Each pointer must be valid for reads and writes of its size (`now`: reads), the ranges must
+/// not overlap, and nothing else may access them during the call. The JIT derives them from
+/// the program's layout for a timer the profile has, inside the image it runs on.
+pub unsafe extern "C" fn stljit_rt_omron_timer_fast(
+    value: *mut u8,
+    flag: *mut u8,
+    state: *mut u8,
+    now: *const u8,
+    ctl: u32,
     sv: u32,
 ) -> u32 {
-    let (Some(&kind), Ok(n)) = (OmronCounterKind::ALL.get(kind as usize), u16::try_from(n)) else {
-        return RT_BAD_ARGUMENT;
+    let (stack, gate, kind) = ctl_parts(ctl);
+    let Some(&kind) = OmronTimerKind::ALL.get(kind) else {
+        return 0;
     };
-    let (gate, _) = decode_gate_word(gate);
-    // SAFETY: forwarded caller contract.
-    unsafe {
-        status_of(image, layout, |b, l| {
-            omron_image::counter(b, l, kind, n, stack as u16, gate, sv as u16);
-            Ok(())
-        })
-    }
+    // SAFETY: the caller's contract: valid, disjoint, exclusively ours for the call.
+    let (value, flag, state, now) = unsafe {
+        (
+            &mut *value.cast::<[u8; 2]>(),
+            &mut *flag,
+            &mut *state.cast::<[u8; TIMER_STATE_SIZE as usize]>(),
+            u64::from_ne_bytes(*now.cast::<[u8; 8]>()),
+        )
+    };
+    let run = AssertUnwindSafe(|| {
+        let mut t = (*value, *flag, *state);
+        let w = omron_image::timer_step(&mut t, now, kind, stack, gate, sv as u16);
+        (*value, *flag, *state) = t;
+        pack_flag_writes(w)
+    });
+    catch_unwind(run).unwrap_or(0)
+}
+
+/// [`omron_image::counter_step`] on one counter's bytes: `value`, `flag`, `state`
+/// (`COUNTER_STATE_SIZE`), `ctl`, `sv`, as [`stljit_rt_omron_timer_fast`].
+///
+/// # Safety
+/// As [`stljit_rt_omron_timer_fast`] (no `now`).
+pub unsafe extern "C" fn stljit_rt_omron_counter_fast(
+    value: *mut u8,
+    flag: *mut u8,
+    state: *mut u8,
+    ctl: u32,
+    sv: u32,
+) -> u32 {
+    let (stack, gate, kind) = ctl_parts(ctl);
+    let Some(&kind) = OmronCounterKind::ALL.get(kind) else {
+        return 0;
+    };
+    // SAFETY: the caller's contract: valid, disjoint, exclusively ours for the call.
+    let (value, flag, state) = unsafe {
+        (
+            &mut *value.cast::<[u8; 2]>(),
+            &mut *flag,
+            &mut *state.cast::<[u8; COUNTER_STATE_SIZE as usize]>(),
+        )
+    };
+    let run = AssertUnwindSafe(|| {
+        let mut c = (*value, *flag, *state);
+        let w = omron_image::counter_step(&mut c, kind, stack, gate, sv as u16);
+        (*value, *flag, *state) = c;
+        pack_flag_writes(w)
+    });
+    catch_unwind(run).unwrap_or(0)
 }
 
 /// [`omron_image::run_box`]: box `code` ([`omron_image::box_code`]) on `a`, `b`, result at
