@@ -94,6 +94,8 @@ helpers! {
     /// `stljit_rt_omron_{timer,counter}_fast(value, flag, state[, now], ctl, sv)`: pointers.
     OmronTimerFast => "stljit_rt_omron_timer_fast", ffi::stljit_rt_omron_timer_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
     OmronCounterFast => "stljit_rt_omron_counter_fast", ffi::stljit_rt_omron_counter_fast, Nothing, [I64, I64, I64, I32, I32] -> I32;
+    /// `stljit_rt_omron_arith(op, a, b, cy) -> u64`: pure, no image.
+    OmronArith => "stljit_rt_omron_arith", ffi::stljit_rt_omron_arith, Nothing, [I32, I32, I32, I32] -> I64;
     /// `stljit_rt_omron_box(code, a, b, dst)`.
     OmronBox => "stljit_rt_omron_box", ffi::stljit_rt_omron_box, ImageLayout, [I32, I32, I32, I32] -> I32;
 }

@@ -8,10 +8,10 @@ use super::state::{BoxState, Pred};
 use super::value::{B, Stack};
 use crate::helpers::Helper;
 use cranelift_codegen::ir::{InstBuilder, Value, condcodes::IntCC, types::I32};
-use stljit_core::ir::{OmronBox, OmronCounterKind, OmronTimerKind, Operand};
+use stljit_core::ir::{OmronArith, OmronBox, OmronCounterKind, OmronTimerKind, Operand};
 use stljit_core::layout::Sched;
 use stljit_core::{Area, FatalCode, Width};
-use stljit_runtime::ffi::OMRON_CTL_KIND_SHIFT;
+use stljit_runtime::ffi::{OMRON_ARITH_HAS_RESULT, OMRON_CTL_KIND_SHIFT};
 use stljit_runtime::omron::Flag;
 use stljit_runtime::omron::data;
 use stljit_runtime::omron_image;
@@ -120,6 +120,10 @@ impl Lower<'_, '_> {
                 rhs,
             } => {
                 self.omron_free(pf, |s| s.omron_compare(double, signed, &lhs, &rhs));
+                return;
+            }
+            OmronBox::Arith { op, lhs, rhs, dst } if op.result_words() <= 2 => {
+                self.omron_free(pf, |s| s.omron_arith(op, &lhs, &rhs, &dst));
                 return;
             }
             OmronBox::Arith { .. } => {}
@@ -263,6 +267,63 @@ impl Lower<'_, '_> {
                 (Flag::Ne, ne),
             ],
         );
+    }
+
+    /// An arithmetic instruction with at most two result words: the runtime's pure arithmetic
+    /// (`stljit_rt_omron_arith`, no image), its result and flags applied here (nothing written
+    /// on ER).
+    fn omron_arith(&mut self, op: OmronArith, lhs: &Operand, rhs: &Operand, dst: &Operand) {
+        let double = op.operand_words() == 2;
+        let a = self.omron_value(lhs, double);
+        let b = self.omron_value(rhs, double);
+        let cy_at = self.area_addr(Area::Flags, 0);
+        let cy = self.byte(cy_at);
+        let cy = self
+            .b
+            .ins()
+            .ushr_imm_s(cy, i64::from(Flag::Cy.system_bit().bit_loc().bit));
+        let cy = self.b.ins().band_imm_s(cy, 1);
+        let code = self.iconst(I32, i64::from(omron_kind_code(OmronArith::ALL, op)));
+        let out = self.call_pure(Helper::OmronArith, &[code, a, b, cy]);
+        // The flag writes, repacked as a fast shim's (mask 16–31, values 0–15).
+        let flags = self.b.ins().ushr_imm_s(out, 32);
+        let flags = self.b.ins().ireduce(I32, flags);
+        let vals = self.b.ins().band_imm_s(flags, 0xFFFF);
+        // Bit 31 here is OMRON_ARITH_HAS_RESULT, not a flag.
+        let mask = self.b.ins().band_imm_s(flags, 0x7FFF_0000);
+        let packed = self.b.ins().bor(vals, mask);
+        let has = self.b.ins().band_imm_s(out, OMRON_ARITH_HAS_RESULT as i64);
+        let has = self.b.ins().icmp_imm_s(IntCC::NotEqual, has, 0);
+        if let Operand::Mem(loc) = *dst {
+            let r = self.b.ins().ireduce(I32, out);
+            let a = self.area_addr(loc.area, loc.offset);
+            let (width, stored) = if op.result_words() == 2 {
+                (Width::DWord, self.swap_halves(r))
+            } else {
+                (Width::Word, r)
+            };
+            // Written only with a result: fold `has` into the box's predicate.
+            let old = self.read_static(a, width);
+            let v = self.b.ins().select(has, stored, old);
+            self.write_static(a, width, v);
+        }
+        self.apply_packed_flags_pred(packed);
+    }
+
+    /// [`Lower::apply_packed_flags`] inside a branch-free box (the old bytes kept where PF is
+    /// 0).
+    fn apply_packed_flags_pred(&mut self, packed: Value) {
+        for byte in 0..2u32 {
+            let a = self.area_addr(Area::Flags, byte);
+            let old = self.byte(a);
+            let m = self.b.ins().ushr_imm_s(packed, i64::from(16 + 8 * byte));
+            let m = self.b.ins().band_imm_s(m, 0xFF);
+            let v = self.b.ins().ushr_imm_s(packed, i64::from(8 * byte));
+            let v = self.b.ins().band_imm_s(v, 0xFF);
+            let kept = self.b.ins().band_not(old, m);
+            let new = self.b.ins().bor(kept, v);
+            self.set_byte_pred(a, new);
+        }
     }
 
     /// `v` with its 16-bit halves swapped: an Omron double word to the IR's big-endian dword

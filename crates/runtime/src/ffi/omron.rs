@@ -106,6 +106,35 @@ pub unsafe extern "C" fn stljit_rt_omron_counter_fast(
     catch_unwind(run).unwrap_or(0)
 }
 
+/// Bit of [`stljit_rt_omron_arith`]'s result: a result is to be written (no ER).
+pub const OMRON_ARITH_HAS_RESULT: u64 = 1 << 63;
+
+/// [`crate::omron::arith::execute`] of `op` (its position in `OmronArith::ALL`) for the
+/// instructions with at most two result words, as a pure value for compiled code: bits 0–31
+/// the result (word 0 = bits 0–15, written to R; word 1 to R+1), bits 32–47 the flag values,
+/// bits 48–62 the flag mask (the condition flags fill twelve bits), bit 63
+/// [`OMRON_ARITH_HAS_RESULT`]. An impossible `op` (or a four-word one) returns 0: nothing
+/// written, no flag changed.
+pub extern "C" fn stljit_rt_omron_arith(op: u32, a: u32, b: u32, cy: u32) -> u64 {
+    use stljit_core::ir::OmronArith;
+    let Some(&op) = OmronArith::ALL.get(op as usize) else {
+        return 0;
+    };
+    if op.result_words() > 2 {
+        return 0;
+    }
+    let run = AssertUnwindSafe(|| {
+        let out = crate::omron::arith::execute(op, a, b, cy != 0);
+        let w = out.flags;
+        let flags = u64::from(w.value & w.mask) << 32 | u64::from(w.mask) << 48;
+        match out.result {
+            Some(r) => (r & 0xFFFF_FFFF) | flags | OMRON_ARITH_HAS_RESULT,
+            None => flags,
+        }
+    });
+    catch_unwind(run).unwrap_or(0)
+}
+
 /// [`omron_image::run_box`]: box `code` ([`omron_image::box_code`]) on `a`, `b`, result at
 /// image offset `dst`.
 ///
