@@ -101,11 +101,15 @@ pub enum Area {
     Flags,
     /// Omron temporary relays `TR0`–`TR15` (two bytes; a branch point, never retained).
     Tr,
+    /// Omron index registers `IR0`–`IR15`, big-endian `u32` effective addresses at `4n`.
+    IndexReg,
+    /// Omron data registers `DR0`–`DR15`, big-endian `i16` at `2n`.
+    DataReg,
 }
 
 impl Area {
     /// Every area, in image order.
-    pub const ALL: [Area; 22] = [
+    pub const ALL: [Area; 24] = [
         Area::I,
         Area::Q,
         Area::M,
@@ -128,6 +132,8 @@ impl Area {
         Area::Dm,
         Area::Flags,
         Area::Tr,
+        Area::IndexReg,
+        Area::DataReg,
     ];
 
     /// The code a pointer (`&VB100`) carries in its top byte, for areas a pointer may address

@@ -125,6 +125,77 @@ pub fn word_bit(bit: BitLoc) -> (Loc, u8) {
     )
 }
 
+/// The flat "I/O memory effective address" space of spec §1.5 (the CS/CJ map, U8): the first
+/// effective word address of each region. Index registers hold these addresses; a bit's
+/// address is `16 · word address + bit`, above every word address (so a bit address used as a
+/// word operand is an access error).
+pub const EA_MAP: [(EaRegion, u32); 7] = [
+    (EaRegion::Word(WordArea::Aux), 0x0B000),
+    (EaRegion::Word(WordArea::Cio), 0x0C000),
+    (EaRegion::Word(WordArea::Holding), 0x0D800),
+    (EaRegion::Word(WordArea::Work), 0x0DE00),
+    (EaRegion::TimerPv, 0x0E000),
+    (EaRegion::CounterPv, 0x0F000),
+    (EaRegion::Word(WordArea::Dm), 0x10000),
+];
+
+/// A region of the effective-address space.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum EaRegion {
+    /// A word area.
+    Word(WordArea),
+    /// The timer PVs.
+    TimerPv,
+    /// The counter PVs.
+    CounterPv,
+}
+
+/// Words reserved for each region in the map (the distance to the next region; D to the end).
+fn ea_span(i: usize) -> u32 {
+    match EA_MAP.get(i + 1) {
+        Some((_, next)) => next - EA_MAP[i].1,
+        None => 0x8000,
+    }
+}
+
+fn region_words(profile: &CpuProfile, region: EaRegion) -> u32 {
+    match region {
+        EaRegion::Word(a) => a.words(profile),
+        EaRegion::TimerPv => u32::from(profile.timers),
+        EaRegion::CounterPv => u32::from(profile.counters),
+    }
+}
+
+/// The effective address of word `word` of `region`, `None` outside the profile.
+pub fn effective_address(profile: &CpuProfile, region: EaRegion, word: u32) -> Option<u32> {
+    let (i, &(_, base)) = EA_MAP.iter().enumerate().find(|(_, r)| r.0 == region)?;
+    (word < region_words(profile, region) && word < ea_span(i)).then_some(base + word)
+}
+
+/// The image location of the word at effective address `ea`, `None` for a hole, memory the
+/// profile does not have, or a bit address.
+pub fn ea_loc(profile: &CpuProfile, ea: u32) -> Option<Loc> {
+    let (_, &(region, base)) = EA_MAP
+        .iter()
+        .enumerate()
+        .find(|(i, (_, base))| (*base..*base + ea_span(*i)).contains(&ea))?;
+    let word = ea - base;
+    if word >= region_words(profile, region) {
+        return None;
+    }
+    match region {
+        EaRegion::Word(a) => word_loc(profile, a, word),
+        EaRegion::TimerPv => Some(Loc {
+            area: Area::TimerValue,
+            offset: 2 * word,
+        }),
+        EaRegion::CounterPv => Some(Loc {
+            area: Area::CounterValue,
+            offset: 2 * word,
+        }),
+    }
+}
+
 /// Bytes of the [`Area::Flags`] area.
 pub const FLAG_BYTES: u32 = 4;
 
@@ -379,6 +450,39 @@ mod tests {
         assert_eq!(bit_of_word(w, 15).bit, 7);
         for b in 0..16 {
             assert_eq!(word_bit(bit_of_word(w, b)), (w, b));
+        }
+    }
+
+    #[test]
+    fn effective_addresses_follow_the_cs_cj_map() {
+        let p = &CP1H;
+        // Spec §1.5: W500 is EA 0DFF4 and the word after W511 is T0000's PV.
+        assert_eq!(
+            effective_address(p, EaRegion::Word(WordArea::Work), 500),
+            Some(0xDFF4)
+        );
+        assert_eq!(
+            ea_loc(p, 0xDE00 + 512),
+            Some(Loc {
+                area: Area::TimerValue,
+                offset: 0
+            })
+        );
+        assert_eq!(
+            ea_loc(p, 0x10000 + 400),
+            Some(Loc {
+                area: Area::Dm,
+                offset: 800
+            })
+        );
+        // CIO 100 is the first output word: area Q.
+        assert_eq!(ea_loc(p, 0xC000 + 100).map(|l| l.area), Some(Area::Q));
+        // A hole (A960.. below CIO) and bit addresses are no words.
+        assert_eq!(ea_loc(p, 0xB000 + 960), None);
+        assert_eq!(ea_loc(p, 0x10000 * 16), None);
+        for (region, _) in EA_MAP {
+            let ea = effective_address(p, region, 3).unwrap();
+            assert!(ea_loc(p, ea).is_some());
         }
     }
 

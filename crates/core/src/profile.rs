@@ -434,6 +434,14 @@ impl CpuProfile {
                 Family::S7 => 0,
                 Family::Omron => 2,
             },
+            Area::IndexReg => match self.family {
+                Family::S7 => 0,
+                Family::Omron => 4 * 16,
+            },
+            Area::DataReg => match self.family {
+                Family::S7 => 0,
+                Family::Omron => 2 * 16,
+            },
         }
     }
 

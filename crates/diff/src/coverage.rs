@@ -315,6 +315,11 @@ pub fn operand_kind(o: &Operand) -> String {
         Operand::Const(_) => "const".into(),
         Operand::Indirect(l) => format!("*{}", area_name(l.area)),
         Operand::AddressOf(l) => format!("&{}", area_name(l.area)),
+        Operand::Omron(r) => match r {
+            stljit_core::ir::OmronRef::DmBinary(_) => "@D".into(),
+            stljit_core::ir::OmronRef::DmBcd(_) => "*D".into(),
+            stljit_core::ir::OmronRef::Index { .. } => ",IR".into(),
+        },
     }
 }
 

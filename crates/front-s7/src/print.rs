@@ -51,6 +51,8 @@ fn val(o: Operand, width: Width, real: bool) -> String {
         },
         Operand::Indirect(l) => format!("*{}", loc(l.area, l.offset, Width::DWord)),
         Operand::AddressOf(l) => format!("&{}", loc(l.area, l.offset, Width::Byte)),
+        // The verifier rejects Omron operands in S7 programs.
+        Operand::Omron(r) => format!("// not S7: {r:?}"),
     }
 }
 

@@ -30,6 +30,8 @@ pub fn area_prefix(area: Area) -> &'static str {
         Area::Dm => "D",
         Area::Flags => "P_",
         Area::Tr => "TR",
+        Area::IndexReg => "IR",
+        Area::DataReg => "DR",
     }
 }
 

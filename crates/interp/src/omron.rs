@@ -3,13 +3,18 @@
 
 use crate::exec::Machine;
 use crate::operand::Addr;
-use stljit_core::Width;
-use stljit_core::ir::{OmronBox, Op, Operand};
-use stljit_runtime::omron_image;
+use stljit_core::ir::{Loc, OmronBox, Op, Operand};
+use stljit_core::{Area, Width};
+use stljit_runtime::omron_image::{self, BoxOperand};
 
 /// Words of an Omron operand as the IR width it is read at.
 fn width_of(double: bool) -> Width {
     if double { Width::DWord } else { Width::Word }
+}
+
+/// Words of an operand (1, or 2 for a double).
+fn words(double: bool) -> u32 {
+    if double { 2 } else { 1 }
 }
 
 impl Machine<'_> {
@@ -50,37 +55,54 @@ impl Machine<'_> {
             }
             Op::Omron(b) if pf => {
                 let code = omron_image::box_code(b);
-                let (a, b2, dst) = match *b {
-                    OmronBox::Move { double, src, dst } => (
-                        self.omron_value(&src, double, frame),
-                        0,
-                        Some((dst, double)),
-                    ),
+                let (lhs, rhs, dst, src_words, dst_words) = match *b {
+                    OmronBox::Move { double, src, dst } => {
+                        let w = words(double);
+                        (Some(src), None, Some(dst), w, w)
+                    }
                     OmronBox::Compare {
                         double, lhs, rhs, ..
-                    } => (
-                        self.omron_value(&lhs, double, frame),
-                        self.omron_value(&rhs, double, frame),
-                        None,
-                    ),
-                    OmronBox::Arith { op, lhs, rhs, dst } => {
-                        let double = op.operand_words() == 2;
-                        (
-                            self.omron_value(&lhs, double, frame),
-                            self.omron_value(&rhs, double, frame),
-                            Some((dst, op.result_words() > 1)),
-                        )
+                    } => (Some(lhs), Some(rhs), None, words(double), 0),
+                    OmronBox::SetIndex { ea, ir } => {
+                        let dst = Operand::Mem(Loc {
+                            area: Area::IndexReg,
+                            offset: 4 * u32::from(ir),
+                        });
+                        (Some(Operand::Const(ea)), None, Some(dst), 2, 2)
                     }
+                    OmronBox::Arith { op, lhs, rhs, dst } => (
+                        Some(lhs),
+                        Some(rhs),
+                        Some(dst),
+                        op.operand_words(),
+                        op.result_words(),
+                    ),
                 };
-                let at = match dst {
-                    Some((d, double)) => match self.resolve(&d, width_of(double), frame, true) {
-                        Ok(Addr::Image(at)) => at,
+                let source = |o: Option<Operand>| match o {
+                    None => BoxOperand::Absent,
+                    Some(Operand::Omron(r)) => BoxOperand::Ref(r),
+                    Some(o) => BoxOperand::Direct(self.omron_value(&o, src_words == 2, frame)),
+                };
+                let (a, b2) = (source(lhs), source(rhs));
+                let d = match dst {
+                    None => BoxOperand::Absent,
+                    Some(Operand::Omron(r)) => BoxOperand::Ref(r),
+                    Some(d) => match self.resolve(&d, width_of(dst_words >= 2), frame, true) {
+                        Ok(Addr::Image(at)) => BoxOperand::Direct(at),
                         // The verifier keeps every direct destination inside its area.
                         _ => return,
                     },
-                    None => 0,
                 };
-                omron_image::run_box(self.img, self.layout, code, a, b2, at);
+                if [a, b2, d].iter().any(|o| matches!(o, BoxOperand::Ref(_))) {
+                    let sizes = (src_words, dst_words);
+                    omron_image::run_box_refs(self.img, self.layout, code, (a, b2, d), sizes);
+                } else {
+                    let val = |o: BoxOperand| match o {
+                        BoxOperand::Direct(v) => v,
+                        _ => 0,
+                    };
+                    omron_image::run_box(self.img, self.layout, code, val(a), val(b2), val(d));
+                }
             }
             _ => {}
         }

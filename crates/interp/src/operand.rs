@@ -36,7 +36,11 @@ impl Machine<'_> {
             Operand::AddressOf(loc) if !write => pointer::make(loc.area, loc.offset)
                 .map(|p| Addr::Value(p & width.mask()))
                 .ok_or(ErrorCode::IndirectAddress),
-            Operand::Const(_) | Operand::AddressOf(_) => Err(ErrorCode::OperandRange),
+            // Omron indirect operands are resolved by the runtime (`omron_image`), only in
+            // Omron boxes (the verifier rejects them elsewhere).
+            Operand::Const(_) | Operand::AddressOf(_) | Operand::Omron(_) => {
+                Err(ErrorCode::OperandRange)
+            }
             Operand::Indirect(loc) => {
                 let at = loc_addr(self.layout, loc, Width::DWord, frame)
                     .ok_or(ErrorCode::IndirectAddress)?;
@@ -83,7 +87,9 @@ impl Machine<'_> {
                 let ptr = mem::get_be(self.img, at, Width::DWord);
                 Span::of_pointer(self.layout, ptr, width, write)
             }
-            Operand::Const(_) | Operand::AddressOf(_) => Err(ErrorCode::OperandRange),
+            Operand::Const(_) | Operand::AddressOf(_) | Operand::Omron(_) => {
+                Err(ErrorCode::OperandRange)
+            }
         }
     }
 

@@ -96,6 +96,8 @@ helpers! {
     OmronCounterFast => "stljit_rt_omron_counter_fast", ffi::stljit_rt_omron_counter_fast, Nothing, [I64, I64, I64, I32, I32] -> I32;
     /// `stljit_rt_omron_arith(op, a, b, cy) -> u64`: pure, no image.
     OmronArith => "stljit_rt_omron_arith", ffi::stljit_rt_omron_arith, Nothing, [I32, I32, I32, I32] -> I64;
+    /// `stljit_rt_omron_box_refs(code, lhs_ref, lhs_val, rhs_ref, rhs_val, dst_ref, dst_off, words)`.
+    OmronBoxRefs => "stljit_rt_omron_box_refs", ffi::stljit_rt_omron_box_refs, ImageLayout, [I32, I32, I32, I32, I32, I32, I32, I32] -> I32;
     /// `stljit_rt_omron_box(code, a, b, dst)`.
     OmronBox => "stljit_rt_omron_box", ffi::stljit_rt_omron_box, ImageLayout, [I32, I32, I32, I32] -> I32;
 }

@@ -132,3 +132,34 @@ fn data_boxes_and_every_arithmetic_op() {
         check(&p, &stimulus(seed, 40));
     }
 }
+
+#[test]
+fn indirect_and_index_register_operands() {
+    // Pointers come from the inputs (most miss: AER), the index register walks through D.
+    let p = program(
+        "load bit Flags.1.4
+         omron move double=0 src=I.0 dst=Dm.40
+         omron move double=0 src=I.2 dst=Dm.42
+         omron move double=0 src=const(0x0123) dst=Dm.44
+         omron set_index ea=65936 ir=0
+         omron set_index ea=49152 ir=1
+         omron move double=0 src=const(0x1111) dst=ind_bin(20)
+         omron move double=0 src=const(0x2222) dst=ind_bcd(21)
+         omron move double=0 src=const(0x3333) dst=ind_bcd(22)
+         omron move double=0 src=I.2 dst=ind_ir(0,+0,post1)
+         omron move double=1 src=I.0 dst=ind_ir(0,+2,post2)
+         omron move double=0 src=ind_ir(1,+0,none) dst=Dm.60
+         omron move double=0 src=ind_ir(0,-3,pre1) dst=Dm.62
+         omron compare double=0 signed=1 lhs=ind_bin(21) rhs=const(5)
+         load bit I.1.0
+         omron arith op=Add lhs=ind_ir(0,dr2,none) rhs=ind_bcd(20) dst=ind_ir(0,+4,pre2)
+         omron arith op=MulL lhs=ind_bin(20) rhs=Dm.0 dst=ind_ir(0,+8,none)
+         omron move double=0 src=I.0 dst=DataReg.4
+         load bit Flags.1.3
+         assign bit=Q.0.0 immediate=0",
+        0,
+    );
+    for seed in 0..8 {
+        check(&p, &stimulus(seed, 30));
+    }
+}

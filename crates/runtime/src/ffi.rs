@@ -35,6 +35,7 @@
 //! | `stljit_rt_pointer_end(img, l, ptr)` | end of a pointer's [`crate::block::Span`] | image offset (0 = bad) |
 //! | `stljit_rt_value(op, sub, out, in1)` | [`ValueOp::outcome`] | u64: packed [`crate::flags::Outcome`] |
 //! | `stljit_rt_omron_box(img, l, code, a, b, dst)` | [`crate::omron_image::run_box`] | status |
+//! | `stljit_rt_omron_box_refs(img, l, code, lhs_ref, lhs_val, rhs_ref, rhs_val, dst_ref, dst_off, words)` | [`crate::omron_image::run_box_refs`] | status |
 //! | `stljit_rt_omron_arith(op, a, b, cy)` | [`crate::omron::arith::execute`] | u64: result, flag writes |
 //! | `stljit_rt_omron_timer_fast(value, flag, state, now, ctl, sv)` | [`crate::omron_image::timer_step`] | packed flag writes |
 //! | `stljit_rt_omron_counter_fast(value, flag, state, ctl, sv)` | [`crate::omron_image::counter_step`] | packed flag writes |

@@ -13,14 +13,18 @@
 //! order of [`SystemBit`].
 
 use crate::mem;
-use crate::omron::flags::FlagWrites;
+use crate::omron::bcd;
+use crate::omron::flags::{Flag, FlagWrites};
 use crate::omron::{OmronCounter, OmronTimer, arith, data};
 use crate::rules::Gate;
 use stljit_core::Area;
-use stljit_core::ir::{OmronArith, OmronBox, OmronCounterKind, OmronTimerKind};
+use stljit_core::ir::{
+    IndexOffset, IndexStep, OmronArith, OmronBox, OmronCounterKind, OmronRef, OmronTimerKind,
+};
 use stljit_core::layout::{
     COUNTER_STATE_SIZE, CounterState, Layout, Sched, TIMER_STATE_SIZE, TimerState,
 };
+use stljit_core::omron;
 use stljit_core::omron::SystemBit;
 
 /// Applies `writes` to the condition flags.
@@ -194,14 +198,173 @@ fn write_words(img: &mut [u8], at: u32, words: &[u16]) {
     }
 }
 
+/// Sets the access-error flag (AER, spec §2.11): an illegal indirect access.
+fn access_error(img: &mut [u8], layout: &Layout) {
+    apply_flags(img, layout, FlagWrites::NONE.write(Flag::Aer, true));
+}
+
+fn get_be(img: &[u8], at: u32, n: u32) -> u32 {
+    (0..n).fold(0, |v, i| v << 8 | u32::from(mem::get_u8(img, at + i)))
+}
+
+fn set_be(img: &mut [u8], at: u32, n: u32, v: u32) {
+    for i in 0..n {
+        mem::set_u8(img, at + i, (v >> (8 * (n - 1 - i))) as u8);
+    }
+}
+
+/// Resolves an Omron indirect operand of `words` words (1 or 2) to its image offset, carrying
+/// out an index register's step (spec §1.7: pre-decrement before the access, post-increment
+/// after); `None` is an illegal access (AER set): a pointer that is not a D address (or, for
+/// `*D`, not BCD), an effective address outside the profile's memory, a bit address, a double
+/// word running out of its area, or a write into the read-only auxiliary words. Operands are
+/// resolved in operand order (sources, then the destination), the same in both engines.
+pub fn resolve(
+    img: &mut [u8],
+    layout: &Layout,
+    r: OmronRef,
+    words: u32,
+    write: bool,
+) -> Option<u32> {
+    let profile = layout.profile.profile();
+    let dm = |v: u32| omron::word_loc(profile, omron::WordArea::Dm, v);
+    let loc = match r {
+        OmronRef::DmBinary(n) | OmronRef::DmBcd(n) => {
+            let at = layout.base(Area::Dm) + 2 * u32::from(n);
+            let raw = get_be(img, at, 2) as u16;
+            let v = match r {
+                OmronRef::DmBcd(_) => bcd::bcd16_to_bin(raw),
+                _ => Some(raw),
+            };
+            v.and_then(|v| dm(u32::from(v)))
+        }
+        OmronRef::Index { ir, offset, step } => {
+            let at = layout.base(Area::IndexReg) + 4 * u32::from(ir);
+            let mut reg = get_be(img, at, 4);
+            let (pre, post) = match step {
+                IndexStep::None => (0, 0),
+                IndexStep::PostInc1 => (0, 1),
+                IndexStep::PostInc2 => (0, 2),
+                IndexStep::PreDec1 => (1, 0),
+                IndexStep::PreDec2 => (2, 0),
+            };
+            reg = reg.wrapping_sub(pre);
+            let off = match offset {
+                IndexOffset::Const(c) => i32::from(c),
+                IndexOffset::Dr(m) => {
+                    let at = layout.base(Area::DataReg) + 2 * u32::from(m);
+                    i32::from(get_be(img, at, 2) as u16 as i16)
+                }
+            };
+            let ea = reg.wrapping_add_signed(off);
+            set_be(img, at, 4, reg.wrapping_add(post));
+            omron::ea_loc(profile, ea)
+        }
+    };
+    let fits = loc.filter(|l| {
+        let ends_inside = l.offset + 2 * words <= layout.area_size(l.area);
+        let read_only = write && l.area == Area::Aux && l.offset / 2 < profile.omron.aux_read_only;
+        ends_inside && !read_only
+    });
+    match fits {
+        Some(l) => Some(layout.base(l.area) + l.offset),
+        None => {
+            access_error(img, layout);
+            None
+        }
+    }
+}
+
+/// An operand of [`run_box_refs`]: a value already read, an image offset to write, or an
+/// indirect operand to resolve.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BoxOperand {
+    /// A source's value (Omron order), or a destination's image offset.
+    Direct(u32),
+    /// An indirect operand.
+    Ref(OmronRef),
+    /// No operand (MOV's second source, a compare's destination).
+    Absent,
+}
+
+/// [`run_box`] for a box with indirect operands: each `Ref` is resolved in operand order
+/// (`lhs`, `rhs`, then `dst`), an illegal source reads 0 and an illegal destination drops the
+/// write; the instruction is otherwise processed to the end (spec §2.11). `words` are the
+/// sources' and the result's sizes.
+pub fn run_box_refs(
+    img: &mut [u8],
+    layout: &Layout,
+    code: u32,
+    (lhs, rhs, dst): (BoxOperand, BoxOperand, BoxOperand),
+    (src_words, dst_words): (u32, u32),
+) -> bool {
+    let value = |img: &mut [u8], o: BoxOperand| match o {
+        BoxOperand::Direct(v) => v,
+        BoxOperand::Absent => 0,
+        BoxOperand::Ref(r) => match resolve(img, layout, r, src_words, false) {
+            Some(at) if src_words == 2 => double_of_be(get_be(img, at, 4)),
+            Some(at) => get_be(img, at, 2),
+            None => 0,
+        },
+    };
+    let a = value(img, lhs);
+    let b = value(img, rhs);
+    let dst = match dst {
+        BoxOperand::Direct(at) => Some(at),
+        BoxOperand::Absent => Some(0),
+        BoxOperand::Ref(r) => resolve(img, layout, r, dst_words, true),
+    };
+    // An illegal destination drops the write; the flags are still the instruction's.
+    run_box_at(img, layout, code, a, b, dst)
+}
+
+/// [`OmronRef`] as one integer for the JIT's shim (`stljit_rt_omron_box_refs`): bits 28–31
+/// the kind (1 `@D`, 2 `*D`, 3 indexed); `@D`/`*D`: the pointer word in bits 0–15; indexed:
+/// the register in bits 0–3, the step's position in `IndexStep::ALL` in bits 4–6, bit 7 set
+/// for a `DR` offset, the offset (`i16`) or the `DR` number in bits 8–23. 0 is no reference.
+pub fn pack_ref(r: OmronRef) -> u32 {
+    match r {
+        OmronRef::DmBinary(n) => 1 << 28 | u32::from(n),
+        OmronRef::DmBcd(n) => 2 << 28 | u32::from(n),
+        OmronRef::Index { ir, offset, step } => {
+            let step = IndexStep::ALL.iter().position(|&s| s == step).unwrap_or(0) as u32;
+            let (dr, off) = match offset {
+                IndexOffset::Const(c) => (0, u32::from(c as u16)),
+                IndexOffset::Dr(m) => (1, u32::from(m)),
+            };
+            3 << 28 | u32::from(ir & 15) | step << 4 | dr << 7 | off << 8
+        }
+    }
+}
+
+/// The inverse of [`pack_ref`] (`None` for 0 or an impossible packing).
+pub fn unpack_ref(p: u32) -> Option<OmronRef> {
+    Some(match p >> 28 {
+        1 => OmronRef::DmBinary(p as u16),
+        2 => OmronRef::DmBcd(p as u16),
+        3 => OmronRef::Index {
+            ir: (p & 15) as u8,
+            step: *IndexStep::ALL.get(((p >> 4) & 7) as usize)?,
+            offset: if p & (1 << 7) != 0 {
+                IndexOffset::Dr(((p >> 8) & 15) as u8)
+            } else {
+                IndexOffset::Const((p >> 8) as u16 as i16)
+            },
+        },
+        _ => return None,
+    })
+}
+
 /// An Omron box as one integer for the JIT's shim (`stljit_rt_omron_box`): `MOV` 0, `MOVL` 1,
-/// the compares 2–5 (`2 + 2·double + signed`), the arithmetic `6 + position in OmronArith::ALL`.
+/// the compares 2–5 (`2 + 2·double + signed`), `MOVR` 6, the arithmetic
+/// `7 + position in OmronArith::ALL`.
 pub fn box_code(b: &OmronBox) -> u32 {
     match *b {
         OmronBox::Move { double, .. } => u32::from(double),
         OmronBox::Compare { double, signed, .. } => 2 + 2 * u32::from(double) + u32::from(signed),
+        OmronBox::SetIndex { .. } => 6,
         OmronBox::Arith { op, .. } => {
-            6 + OmronArith::ALL.iter().position(|&a| a == op).unwrap_or(0) as u32
+            7 + OmronArith::ALL.iter().position(|&a| a == op).unwrap_or(0) as u32
         }
     }
 }
@@ -210,14 +373,31 @@ pub fn box_code(b: &OmronBox) -> u32 {
 /// order: a double's low word in the low 16 bits), writing a result to image offset `dst`
 /// (unused by the compares) and the condition flags. `false` for an unknown code.
 pub fn run_box(img: &mut [u8], layout: &Layout, code: u32, a: u32, b: u32, dst: u32) -> bool {
+    run_box_at(img, layout, code, a, b, Some(dst))
+}
+
+/// [`run_box`] with the result dropped when `dst` is `None` (an illegal indirect destination).
+fn run_box_at(
+    img: &mut [u8],
+    layout: &Layout,
+    code: u32,
+    a: u32,
+    b: u32,
+    dst: Option<u32>,
+) -> bool {
+    let emit = |img: &mut [u8], words: &[u16]| {
+        if let Some(at) = dst {
+            write_words(img, at, words);
+        }
+    };
     match code {
         0 | 1 => {
             let double = code == 1;
             let (v, writes) = data::mov(double, a);
             if double {
-                write_words(img, dst, &[v as u16, (v >> 16) as u16]);
+                emit(img, &[v as u16, (v >> 16) as u16]);
             } else {
-                write_words(img, dst, &[v as u16]);
+                emit(img, &[v as u16]);
             }
             apply_flags(img, layout, writes);
         }
@@ -226,8 +406,13 @@ pub fn run_box(img: &mut [u8], layout: &Layout, code: u32, a: u32, b: u32, dst: 
             let signed = code % 2 == 1;
             apply_flags(img, layout, data::compare(double, signed, a, b));
         }
+        6 => {
+            // MOVR: the index register takes the effective address (big-endian dword).
+            emit(img, &[(a >> 16) as u16, a as u16]);
+            apply_flags(img, layout, FlagWrites::OK);
+        }
         _ => {
-            let Some(&op) = OmronArith::ALL.get((code - 6) as usize) else {
+            let Some(&op) = OmronArith::ALL.get((code - 7) as usize) else {
                 return false;
             };
             let cy = {
@@ -239,7 +424,7 @@ pub fn run_box(img: &mut [u8], layout: &Layout, code: u32, a: u32, b: u32, dst: 
             let out = arith::execute(op, a, b, cy);
             if let Some(words) = out.words() {
                 let n = op.result_words() as usize;
-                write_words(img, dst, &words[..n]);
+                emit(img, &words[..n]);
             }
             apply_flags(img, layout, out.flags);
         }

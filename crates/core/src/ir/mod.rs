@@ -25,7 +25,9 @@ mod uses;
 mod verify;
 
 pub use facts::{StackEffect, Successors, enclosing_loop, loop_entered_by};
-pub use omron::{OmronArith, OmronBox, OmronCounterKind, OmronTimerKind};
+pub use omron::{
+    IndexOffset, IndexStep, OmronArith, OmronBox, OmronCounterKind, OmronRef, OmronTimerKind,
+};
 pub use op::{ArithOp, BoxOp, Conversion, LogicOp, Op, RealFn};
 pub use operand::{Address, BitLoc, CmpOp, CmpType, Contact, Loc, Operand};
 pub use uses::{Access, OperandUse, Uses};

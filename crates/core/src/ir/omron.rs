@@ -236,6 +236,14 @@ pub enum OmronBox {
         /// Second operand.
         rhs: super::Operand,
     },
+    /// `MOVR(560) S IRn`: `IRn := ea`, the effective address of `S` (core::omron's map,
+    /// computed by the front end); ER OFF.
+    SetIndex {
+        /// The effective address.
+        ea: u32,
+        /// The index register 0..=15.
+        ir: u8,
+    },
     /// An arithmetic instruction: `dst := lhs op rhs` ([`OmronArith::result_words`] words from
     /// `dst`); on ER nothing is written.
     Arith {
@@ -277,5 +285,72 @@ mod tests {
         assert_eq!(OmronArith::MulUL.result_words(), 4);
         assert_eq!(OmronArith::DivL.result_words(), 4);
         assert_eq!(OmronArith::AddCL.result_words(), 2);
+    }
+}
+
+/// An Omron indirect word operand (omron-cp.md §1.7), resolved at run time by the runtime
+/// (`stljit_runtime::omron_image::resolve`); an illegal one is an access error (AER: the read
+/// gives 0, the write is dropped).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum OmronRef {
+    /// `@Dn`: D[n] read as unsigned binary is the D address.
+    DmBinary(u16),
+    /// `*Dn`: D[n] read as BCD is the D address.
+    DmBcd(u16),
+    /// `c,IRn`, `DRm,IRn`, `,IRn+`, `,--IRn` …: the effective address in `IRn` plus an offset,
+    /// with the register stepped after (`+`/`++`) or before (`-`/`--`) the access.
+    Index {
+        /// The index register 0..=15.
+        ir: u8,
+        /// What is added to the register's address.
+        offset: IndexOffset,
+        /// The register's auto-increment or pre-decrement.
+        step: IndexStep,
+    },
+}
+
+/// The offset of an indexed operand.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum IndexOffset {
+    /// A constant −2048..=2047 (0 for `,IRn`).
+    Const(i16),
+    /// Data register `DRm`, sign-extended.
+    Dr(u8),
+}
+
+/// The auto step of an indexed operand.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum IndexStep {
+    /// `,IRn`.
+    None,
+    /// `,IRn+`: the register += 1 after the access.
+    PostInc1,
+    /// `,IRn++`: += 2 after.
+    PostInc2,
+    /// `,-IRn`: −= 1 before.
+    PreDec1,
+    /// `,--IRn`: −= 2 before.
+    PreDec2,
+}
+
+impl IndexStep {
+    /// Every step, in declaration order.
+    pub const ALL: [IndexStep; 5] = [
+        IndexStep::None,
+        IndexStep::PostInc1,
+        IndexStep::PostInc2,
+        IndexStep::PreDec1,
+        IndexStep::PreDec2,
+    ];
+
+    /// The text form's name (`none`, `post1`, `post2`, `pre1`, `pre2`).
+    pub fn name(self) -> &'static str {
+        match self {
+            IndexStep::None => "none",
+            IndexStep::PostInc1 => "post1",
+            IndexStep::PostInc2 => "post2",
+            IndexStep::PreDec1 => "pre1",
+            IndexStep::PreDec2 => "pre2",
+        }
     }
 }

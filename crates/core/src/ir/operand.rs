@@ -36,6 +36,8 @@ pub enum Operand {
     Indirect(Loc),
     /// `&VB100`: the pointer to a location, a dword constant (spec §1.6 encoding).
     AddressOf(Loc),
+    /// An Omron indirect operand (`@D20`, `*D21`, `+2,IR0`), only in Omron boxes.
+    Omron(super::OmronRef),
 }
 
 /// Operand type of a compare contact.

@@ -194,6 +194,13 @@ fn omron_uses(b: &OmronBox) -> Uses {
             let w = omron_width(if double { 2 } else { 1 });
             Uses::of(&[read(lhs, w), read(rhs, w)])
         }
+        OmronBox::SetIndex { ir, .. } => Uses::of(&[write(
+            Operand::Mem(super::Loc {
+                area: crate::area::Area::IndexReg,
+                offset: 4 * u32::from(ir),
+            }),
+            Width::DWord,
+        )]),
         OmronBox::Arith { op, lhs, rhs, dst } => {
             let w = omron_width(op.operand_words());
             let r = op.result_words();

@@ -14,7 +14,7 @@
 
 use super::facts::loop_entered_by;
 use super::uses::Access;
-use super::{Op, Operand, Pou, Program};
+use super::{IndexOffset, OmronRef, Op, Operand, Pou, Program};
 use crate::area::{Area, Width};
 use crate::layout::Layout;
 use crate::profile::Family;
@@ -290,6 +290,22 @@ fn locations(program: &Program, layout: &Layout, op: &Op) -> Result<(), OpRule> 
                 inside(l.area, l.offset, 1)?;
             }
             Operand::Const(_) => {}
+            Operand::Omron(r) => {
+                if !matches!(op, Op::Omron(_)) {
+                    return Err(OpRule::WrongFamily);
+                }
+                match r {
+                    OmronRef::DmBinary(n) | OmronRef::DmBcd(n) => {
+                        inside(Area::Dm, 2 * u32::from(n), 2)?;
+                    }
+                    OmronRef::Index { ir, offset, .. } => {
+                        inside(Area::IndexReg, 4 * u32::from(ir), 4)?;
+                        if let IndexOffset::Dr(m) = offset {
+                            inside(Area::DataReg, 2 * u32::from(m), 2)?;
+                        }
+                    }
+                }
+            }
         }
         let constant = matches!(u.operand, Operand::Const(_) | Operand::AddressOf(_));
         if constant && u.access != Access::Read {

@@ -6,7 +6,7 @@ use super::debug_is;
 use super::error::{ParseError, ParseErrorKind, Result, error};
 use crate::area::Area;
 use crate::index::FileId;
-use crate::ir::{BitLoc, Loc, Operand, SrcLoc};
+use crate::ir::{BitLoc, IndexOffset, IndexStep, Loc, OmronRef, Operand, SrcLoc};
 use std::fmt;
 
 /// A 1-based column from a 0-based character count.
@@ -348,8 +348,12 @@ impl<'a> Word<'a> {
         Ok((name.choice(&Area::ALL, "area")?, self.tail(dot + 1)))
     }
 
-    /// A value operand: `Area.offset`, `const(n)`, `deref(Area.offset)`, `addr(Area.offset)`.
+    /// A value operand: `Area.offset`, `const(n)`, `deref(Area.offset)`, `addr(Area.offset)`,
+    /// or an Omron indirect one: `ind_bin(n)`, `ind_bcd(n)`, `ind_ir(ir,offset,step)`.
     pub(super) fn operand(&self) -> Result<Operand> {
+        if let Some(r) = self.omron_ref()? {
+            return Ok(Operand::Omron(r));
+        }
         for (head, make) in [
             ("const(", None),
             ("deref(", Some(Operand::Indirect as fn(Loc) -> Operand)),
@@ -374,6 +378,52 @@ impl<'a> Word<'a> {
             }
         }
         Ok(Operand::Mem(self.loc()?))
+    }
+
+    /// `ind_bin(n)`, `ind_bcd(n)`, `ind_ir(ir,offset,step)` (offset `+c`/`-c` or `drN`, step
+    /// an `IndexStep` name), or `None` for another operand.
+    fn omron_ref(&self) -> Result<Option<OmronRef>> {
+        let Some((head, inner)) = ["ind_bin(", "ind_bcd(", "ind_ir("]
+            .into_iter()
+            .find_map(|h| Some((h, self.text.strip_prefix(h)?.strip_suffix(')')?)))
+        else {
+            return Ok(None);
+        };
+        let part = |text: &'a str| Word { text, ..*self };
+        let bad = || {
+            self.err(ParseErrorKind::Expected {
+                expected: "`ind_ir(ir,+offset|drN,none|post1|post2|pre1|pre2)`",
+                found: format!("`{}`", self.text),
+            })
+        };
+        Ok(Some(match head {
+            "ind_bin(" => OmronRef::DmBinary(part(inner).number("DM word")?),
+            "ind_bcd(" => OmronRef::DmBcd(part(inner).number("DM word")?),
+            _ => {
+                let mut it = inner.split(',');
+                let (Some(ir), Some(off), Some(step), None) =
+                    (it.next(), it.next(), it.next(), it.next())
+                else {
+                    return Err(bad());
+                };
+                let offset = match off.strip_prefix("dr") {
+                    Some(m) => IndexOffset::Dr(part(m).number("data register")?),
+                    None => {
+                        let c: i16 = off.parse().map_err(|_| bad())?;
+                        IndexOffset::Const(c)
+                    }
+                };
+                let step = IndexStep::ALL
+                    .into_iter()
+                    .find(|s| s.name() == step)
+                    .ok_or_else(bad)?;
+                OmronRef::Index {
+                    ir: part(ir).number("index register")?,
+                    offset,
+                    step,
+                }
+            }
+        }))
     }
 
     /// `@file0:12:3`.

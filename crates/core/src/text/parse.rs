@@ -387,6 +387,10 @@ fn omron_box(line: &mut Line<'_>) -> Result<OmronBox> {
             lhs: line.field("lhs")?.operand()?,
             rhs: line.field("rhs")?.operand()?,
         },
+        "set_index" => OmronBox::SetIndex {
+            ea: line.field("ea")?.number("effective address")?,
+            ir: line.field("ir")?.number("index register")?,
+        },
         "arith" => OmronBox::Arith {
             op: line
                 .field("op")?

@@ -4,7 +4,8 @@
 use super::{MAGIC, VERSION};
 use crate::index::{EdgeSlot, FileId, LabelId, OpIdx, PouId};
 use crate::ir::{
-    BitLoc, BoxOp, Contact, Loc, OmronBox, Op, Operand, Pou, PouKind, Program, SrcLoc,
+    BitLoc, BoxOp, Contact, IndexOffset, Loc, OmronBox, OmronRef, Op, Operand, Pou, PouKind,
+    Program, SrcLoc,
 };
 use std::fmt::{self, Write as _};
 
@@ -217,6 +218,7 @@ fn write_omron(out: &mut String, b: &OmronBox) -> fmt::Result {
             Opd(lhs),
             Opd(rhs)
         ),
+        OmronBox::SetIndex { ea, ir } => write!(out, "set_index ea={ea} ir={ir}"),
         OmronBox::Arith { op, lhs, rhs, dst } => write!(
             out,
             "arith op={op:?} lhs={} rhs={} dst={}",
@@ -382,6 +384,15 @@ impl fmt::Display for Opd {
             Operand::Const(n) => write!(f, "const({n})"),
             Operand::Indirect(l) => write!(f, "deref({})", Place(l)),
             Operand::AddressOf(l) => write!(f, "addr({})", Place(l)),
+            Operand::Omron(OmronRef::DmBinary(n)) => write!(f, "ind_bin({n})"),
+            Operand::Omron(OmronRef::DmBcd(n)) => write!(f, "ind_bcd({n})"),
+            Operand::Omron(OmronRef::Index { ir, offset, step }) => {
+                let off = match offset {
+                    IndexOffset::Const(c) => format!("{c:+}"),
+                    IndexOffset::Dr(m) => format!("dr{m}"),
+                };
+                write!(f, "ind_ir({ir},{off},{})", step.name())
+            }
         }
     }
 }

@@ -195,7 +195,9 @@ impl Lower<'_, '_> {
         match *o {
             Operand::Mem(loc) => Some(Place::Static(self.loc_addr(loc))),
             Operand::Indirect(loc) => Some(Place::Dyn(self.resolve(loc, width, write, fail))),
-            Operand::Const(_) | Operand::AddressOf(_) => None,
+            // Omron indirect operands only occur in Omron boxes, which resolve them in the
+            // runtime (`lower::omron`).
+            Operand::Const(_) | Operand::AddressOf(_) | Operand::Omron(_) => None,
         }
     }
 

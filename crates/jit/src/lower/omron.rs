@@ -11,7 +11,7 @@ use cranelift_codegen::ir::{InstBuilder, Value, condcodes::IntCC, types::I32};
 use stljit_core::ir::{OmronArith, OmronBox, OmronCounterKind, OmronTimerKind, Operand};
 use stljit_core::layout::Sched;
 use stljit_core::{Area, FatalCode, Width};
-use stljit_runtime::ffi::{OMRON_ARITH_HAS_RESULT, OMRON_CTL_KIND_SHIFT};
+use stljit_runtime::ffi::{OMRON_ARITH_HAS_RESULT, OMRON_CTL_KIND_SHIFT, OMRON_NO_OPERAND};
 use stljit_runtime::omron::Flag;
 use stljit_runtime::omron::data;
 use stljit_runtime::omron_image;
@@ -108,6 +108,11 @@ impl Lower<'_, '_> {
         if pf == B::K(false) {
             return;
         }
+        if Self::has_refs(bx) {
+            let bx = *bx;
+            self.guarded(pf, move |s| s.omron_box_refs(&bx));
+            return;
+        }
         match *bx {
             OmronBox::Move { double, src, dst } => {
                 self.omron_free(pf, |s| s.omron_move(double, &src, &dst));
@@ -126,7 +131,7 @@ impl Lower<'_, '_> {
                 self.omron_free(pf, |s| s.omron_arith(op, &lhs, &rhs, &dst));
                 return;
             }
-            OmronBox::Arith { .. } => {}
+            OmronBox::Arith { .. } | OmronBox::SetIndex { .. } => {}
         }
         let bx = *bx;
         self.guarded(pf, move |s| {
@@ -151,6 +156,13 @@ impl Lower<'_, '_> {
                         Some(dst),
                     )
                 }
+                OmronBox::SetIndex { ea, ir } => {
+                    let dst = Operand::Mem(stljit_core::ir::Loc {
+                        area: Area::IndexReg,
+                        offset: 4 * u32::from(ir),
+                    });
+                    (s.iconst(I32, i64::from(ea)), zero, Some(dst))
+                }
             };
             let at = match dst {
                 Some(Operand::Mem(loc)) => s.loc_addr(loc).off,
@@ -164,6 +176,58 @@ impl Lower<'_, '_> {
 }
 
 impl Lower<'_, '_> {
+    /// Whether a box has an Omron indirect operand (resolved in the runtime).
+    fn has_refs(bx: &OmronBox) -> bool {
+        let is_ref = |o: &Operand| matches!(o, Operand::Omron(_));
+        match bx {
+            OmronBox::Move { src, dst, .. } => is_ref(src) || is_ref(dst),
+            OmronBox::Compare { lhs, rhs, .. } => is_ref(lhs) || is_ref(rhs),
+            OmronBox::Arith { lhs, rhs, dst, .. } => is_ref(lhs) || is_ref(rhs) || is_ref(dst),
+            OmronBox::SetIndex { .. } => false,
+        }
+    }
+
+    /// A box with indirect operands: the direct ones read here, everything else (resolution
+    /// in operand order, the step of an index register, AER, the box) in the runtime
+    /// (`stljit_rt_omron_box_refs`), which may touch any byte.
+    fn omron_box_refs(&mut self, bx: &OmronBox) {
+        let code = omron_image::box_code(bx);
+        let (lhs, rhs, dst, src_words, dst_words) = match *bx {
+            OmronBox::Move { double, src, dst } => {
+                let w = if double { 2 } else { 1 };
+                (Some(src), None, Some(dst), w, w)
+            }
+            OmronBox::Compare {
+                double, lhs, rhs, ..
+            } => (Some(lhs), Some(rhs), None, if double { 2 } else { 1 }, 0),
+            OmronBox::Arith { op, lhs, rhs, dst } => (
+                Some(lhs),
+                Some(rhs),
+                Some(dst),
+                op.operand_words(),
+                op.result_words(),
+            ),
+            OmronBox::SetIndex { .. } => return,
+        };
+        let mut args = vec![self.iconst(I32, i64::from(code))];
+        for (o, is_dst) in [(lhs, false), (rhs, false), (dst, true)] {
+            let (r, v) = match o {
+                None => (OMRON_NO_OPERAND, None),
+                Some(Operand::Omron(r)) => (omron_image::pack_ref(r), None),
+                Some(Operand::Mem(loc)) if is_dst => (
+                    0,
+                    Some(self.iconst(I32, i64::from(self.area_addr(loc.area, loc.offset).off))),
+                ),
+                Some(o) => (0, Some(self.omron_value(&o, src_words == 2))),
+            };
+            let v = v.unwrap_or_else(|| self.iconst(I32, 0));
+            let r = self.iconst(I32, i64::from(r));
+            args.extend([r, v]);
+        }
+        args.push(self.iconst(I32, i64::from(src_words | dst_words << 8)));
+        self.call_helper(Helper::OmronBoxRefs, &args);
+    }
+
     /// Runs `f` as a branch-free box under `pf`: every write through the cache keeps the old
     /// value where `pf` is 0 (no ENO: Omron boxes have none).
     fn omron_free(&mut self, pf: B, f: impl FnOnce(&mut Self)) {

@@ -246,7 +246,7 @@ impl Lower<'_, '_> {
                 let end = self.call_pure(Helper::PointerEnd, &[ptr]);
                 Some((off, end))
             }
-            Operand::Const(_) | Operand::AddressOf(_) => None,
+            Operand::Const(_) | Operand::AddressOf(_) | Operand::Omron(_) => None,
         }
     }
 

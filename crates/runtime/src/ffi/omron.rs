@@ -160,3 +160,52 @@ pub unsafe extern "C" fn stljit_rt_omron_box(
         })
     }
 }
+
+/// The `*_ref` argument of [`stljit_rt_omron_box_refs`] for an absent operand.
+pub const OMRON_NO_OPERAND: u32 = u32::MAX;
+
+fn box_operand(packed: u32, value: u32) -> omron_image::BoxOperand {
+    match (packed, omron_image::unpack_ref(packed)) {
+        (OMRON_NO_OPERAND, _) => omron_image::BoxOperand::Absent,
+        (_, Some(r)) => omron_image::BoxOperand::Ref(r),
+        (_, None) => omron_image::BoxOperand::Direct(value),
+    }
+}
+
+/// [`omron_image::run_box_refs`]: box `code` whose operands are each a value (`*_ref` 0, the
+/// value or the destination's image offset in `*_val`), an indirect operand
+/// ([`omron_image::pack_ref`]) or absent ([`OMRON_NO_OPERAND`]); `words` = source words | result
+/// words << 8.
+///
+/// # Safety
+/// See the module conventions of [`super`].
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn stljit_rt_omron_box_refs(
+    image: *mut u8,
+    layout: *const Layout,
+    code: u32,
+    lhs_ref: u32,
+    lhs_val: u32,
+    rhs_ref: u32,
+    rhs_val: u32,
+    dst_ref: u32,
+    dst_off: u32,
+    words: u32,
+) -> u32 {
+    let ops = (
+        box_operand(lhs_ref, lhs_val),
+        box_operand(rhs_ref, rhs_val),
+        box_operand(dst_ref, dst_off),
+    );
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        status_of(image, layout, |img, l| {
+            let sizes = (words & 0xFF, (words >> 8) & 0xFF);
+            if omron_image::run_box_refs(img, l, code, ops, sizes) {
+                Ok(())
+            } else {
+                Err(stljit_core::ErrorCode::OperandRange)
+            }
+        })
+    }
+}
