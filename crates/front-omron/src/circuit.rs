@@ -159,6 +159,13 @@ impl Circuit {
         fresh
     }
 
+    /// After a line whose class is unknown (an unknown instruction): any instruction may
+    /// follow without a follow-on finding.
+    pub(crate) fn recover(&mut self) {
+        self.pos = Pos::AfterOutput;
+        self.blocks = 0;
+    }
+
     /// Back to the start of a task region (a new POU).
     pub(crate) fn reset(&mut self) {
         *self = Circuit::default();

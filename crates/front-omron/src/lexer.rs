@@ -161,14 +161,14 @@ pub(crate) fn lex_line(line: &str, number: u32) -> Option<Line> {
             ws.next();
         }
     }
-    if code_text.is_none() {
-        if let Some(&(c2, w)) = ws.peek() {
-            if w.starts_with('(') && w.ends_with(')') {
-                code_text = Some(w);
-                head_len = c2 + count(w) - col;
-                ws.next();
-            }
-        }
+    if code_text.is_none()
+        && let Some(&(c2, w)) = ws.peek()
+        && w.starts_with('(')
+        && w.ends_with(')')
+    {
+        code_text = Some(w);
+        head_len = c2 + count(w) - col;
+        ws.next();
     }
     let mut out = Line {
         line: number,

@@ -156,12 +156,16 @@ impl<'a> Lowerer<'a> {
         if !self.admit(l) {
             return;
         }
-        let Some(m) = self.instruction(l) else { return };
-        if !self.options_allowed(l, &m) {
+        let Some(m) = self.instruction(l) else {
+            // Unknown class: let whatever follows pass, so one bad line reports once.
+            self.circuit.recover();
             return;
+        };
+        if !self.options_allowed(l, &m) || self.dispatch(l, &m).is_err() {
+            // The error is reported; advance the circuit as the instruction would have, so
+            // the lines after it are not blamed for it.
+            let _ = self.circuit.step(class_of(m.group), "");
         }
-        // Errors inside a routine were reported; the line simply produces fewer ops.
-        let _ = self.dispatch(l, &m);
     }
 
     /// The supported instruction of the line, with its function code checked (E011).
@@ -317,15 +321,15 @@ impl<'a> Lowerer<'a> {
             Class::Combine
         };
         let new_circuit = self.class(l, class);
-        if let (true, Syn::Flag(f)) = (new_circuit, syn) {
-            if f.index() < SystemBit::CONDITION_FLAGS.count_ones() {
-                let line = l.line;
-                self.cx.report(
+        if let (true, Syn::Flag(f)) = (new_circuit, syn)
+            && f.index() < SystemBit::CONDITION_FLAGS.count_ones()
+        {
+            let line = l.line;
+            self.cx.report(
                     Code::OmrFlagAtStart,
                     tok,
                     format!("line {line}: {} at circuit start reflects whichever instruction ran last; branch from the instruction's own condition instead", clip(&tok.text)),
                 );
-            }
         }
         let contact = if l.options.immediate && bit.area == Area::I {
             Contact::ImmediateInput { bit, negated }
@@ -519,4 +523,23 @@ pub(crate) enum DataBox {
     Compare(bool, bool),
     /// §3.6.
     Arith(stljit_core::ir::OmronArith),
+}
+
+/// The circuit class of an instruction group (§2.4).
+fn class_of(group: Group) -> Class {
+    use crate::mnemonics::Flow;
+    match group {
+        Group::Contact(Join::Load, _) => Class::Start,
+        Group::Contact(..) => Class::Combine,
+        Group::Block(_) => Class::Join,
+        Group::Not | Group::Edge(_) => Class::Intermediate,
+        Group::Keep => Class::Multi(2),
+        Group::Timer(k) if k.conditions() > 1 => Class::Multi(u32::from(k.conditions())),
+        Group::Counter(k) => Class::Multi(u32::from(k.conditions())),
+        Group::Control(Flow::Il | Flow::Jmp | Flow::Cjp | Flow::Cjpn | Flow::Jmp0 | Flow::Sbs) => {
+            Class::Output
+        }
+        Group::Control(_) => Class::Unconditional,
+        _ => Class::Output,
+    }
 }

@@ -221,10 +221,10 @@ pub(crate) fn parse_syn(text: &str) -> Result<Syn, SynError> {
         ('A', WordArea::Aux),
         ('D', WordArea::Dm),
     ] {
-        if let Some(rest) = up.strip_prefix(prefix) {
-            if rest.starts_with(|c: char| c.is_ascii_digit()) {
-                return word_or_bit(area, rest);
-            }
+        if let Some(rest) = up.strip_prefix(prefix)
+            && rest.starts_with(|c: char| c.is_ascii_digit())
+        {
+            return word_or_bit(area, rest);
         }
     }
     if up

@@ -401,7 +401,9 @@ fn symbols_stand_for_their_addresses() {
     };
     let syms = SourceFile { name: "s.txt".into(), bytes: "Name\tData Type\tAddress\tComment\nStart_PB\tBOOL\t0.00\tstart button\nMotor\tBOOL\t100.00\n".as_bytes().to_vec() };
     let out = compile(&[prog], Some(&syms), ProfileId::Cp1h);
-    let p = out.program.unwrap_or_else(|| panic!("{:#?}", out.diagnostics));
+    let p = out
+        .program
+        .unwrap_or_else(|| panic!("{:#?}", out.diagnostics));
     assert_eq!(p.pous[0].ops[..2], [Op::Load(c(i0(0))), assign(q0(0))]);
     assert_eq!(out.symbols.map(|s| s.len()), Some(2));
 }
