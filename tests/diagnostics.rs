@@ -3,6 +3,7 @@
 //! (with an optional `<stem>.symbols.txt` or `<stem>.symbols.csv`), or a `<name>.project/`
 //! directory whose program files form one project (with `symbols.txt`/`symbols.csv` and
 //! `expected` inside). A stem containing `.s7-200` selects that CPU; the default is the A5.
+//! Cases under `omron/` (`.omr` files) compile with the Omron dialect on the CP1H.
 //! `STLJIT_BLESS=1` rewrites the expectations (read them before committing).
 //!
 //! Also here: every diagnostic code has a fixture named after it and an entry in
@@ -11,6 +12,7 @@
 
 use std::path::{Path, PathBuf};
 use stljit_core::ProfileId;
+use stljit_front::Dialect;
 use stljit_front_s7::{Code, Severity, SourceFile, compile, render_human};
 
 fn root() -> PathBuf {
@@ -18,7 +20,8 @@ fn root() -> PathBuf {
 }
 
 fn is_program(p: &Path) -> bool {
-    p.extension().is_some_and(|e| e == "stl" || e == "awl")
+    p.extension()
+        .is_some_and(|e| e == "stl" || e == "awl" || e == "omr")
 }
 
 struct Case {
@@ -28,6 +31,7 @@ struct Case {
     symbols: Option<PathBuf>,
     expected: PathBuf,
     cpu: ProfileId,
+    dialect: Dialect,
 }
 
 fn rel(p: &Path) -> String {
@@ -51,10 +55,13 @@ fn discover(dir: &Path, out: &mut Vec<Case>) {
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default();
-        let cpu = if name.contains(".s7-200") {
-            ProfileId::S7_200
+        let omron = rel(&path).starts_with("omron/");
+        let (dialect, cpu) = if omron {
+            (Dialect::Omron, ProfileId::Cp1h)
+        } else if name.contains(".s7-200") {
+            (Dialect::S7, ProfileId::S7_200)
         } else {
-            ProfileId::A5
+            (Dialect::S7, ProfileId::A5)
         };
         if path.is_dir() && name.ends_with(".project") {
             let mut files: Vec<_> = std::fs::read_dir(&path)
@@ -72,6 +79,7 @@ fn discover(dir: &Path, out: &mut Vec<Case>) {
                 symbols: first_existing([path.join("symbols.txt"), path.join("symbols.csv")]),
                 expected: path.join("expected"),
                 cpu,
+                dialect,
             });
         } else if path.is_dir() {
             discover(&path, out);
@@ -84,6 +92,7 @@ fn discover(dir: &Path, out: &mut Vec<Case>) {
                 symbols: first_existing([with(".symbols.txt"), with(".symbols.csv")]),
                 expected: with(".expected"),
                 cpu,
+                dialect,
             });
         }
     }
@@ -119,7 +128,7 @@ fn fixtures_match_expectations() {
     for case in cases() {
         let files: Vec<_> = case.files.iter().map(|p| load(p)).collect();
         let symbols = case.symbols.as_deref().map(load);
-        let c = compile(&files, symbols.as_ref(), case.cpu);
+        let c = case.dialect.compile(&files, symbols.as_ref(), case.cpu);
         let rendered: Vec<_> = c
             .diagnostics
             .iter()

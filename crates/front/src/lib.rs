@@ -4,7 +4,8 @@
 //! a program in the dialect's own text ([`Dialect::print_program`]).
 //!
 //! Everything dialect-neutral about sources and diagnostics lives in `stljit-source` and is
-//! re-exported here; each dialect is its own crate (`stljit-front-s7`). Adding a dialect adds a
+//! re-exported here; each dialect is its own crate (`stljit-front-s7`, `stljit-front-omron`).
+//! [`Dialect::detect`] guesses a text's dialect from the marks only one of them writes. Adding a dialect adds a
 //! variant to [`Dialect`] and to [`Symbols`], and one arm in each `match` of this file.
 
 use stljit_core::ProfileId;
@@ -20,6 +21,8 @@ pub use stljit_source::{
 pub enum Dialect {
     /// S7-200-style STL as used by the A5 series: plain text and MicroWIN `.awl` exports.
     S7,
+    /// Omron CP-series mnemonics (CX-Programmer instruction lists), omron-cp.md.
+    Omron,
 }
 
 /// A dialect's symbol table, as the compilation read it.
@@ -27,6 +30,8 @@ pub enum Dialect {
 pub enum Symbols {
     /// A MicroWIN symbol table.
     S7(stljit_front_s7::SymbolTable),
+    /// A CX-Programmer symbol table.
+    Omron(stljit_front_omron::SymbolTable),
 }
 
 impl Symbols {
@@ -34,6 +39,7 @@ impl Symbols {
     pub fn names(&self) -> Box<dyn Iterator<Item = &str> + '_> {
         match self {
             Symbols::S7(t) => Box::new(t.names()),
+            Symbols::Omron(t) => Box::new(t.names()),
         }
     }
 }
@@ -45,14 +51,19 @@ pub type Compilation = stljit_source::Compilation<Symbols>;
 /// Why an address named outside a program (stimulus, watch list) was rejected.
 pub use stljit_front_s7::AddressError;
 
+/// The dialects' profiles (Omron's models are the CP ones).
+const OMRON_PROFILES: [ProfileId; 2] = [ProfileId::Cp1h, ProfileId::Cp1e];
+const S7_PROFILES: [ProfileId; 2] = [ProfileId::A5, ProfileId::S7_200];
+
 impl Dialect {
     /// Every dialect.
-    pub const ALL: &'static [Dialect] = &[Dialect::S7];
+    pub const ALL: &'static [Dialect] = &[Dialect::S7, Dialect::Omron];
 
     /// The name on the command line (`--dialect s7`).
     pub fn name(self) -> &'static str {
         match self {
             Dialect::S7 => "s7",
+            Dialect::Omron => "omron",
         }
     }
 
@@ -65,13 +76,28 @@ impl Dialect {
     pub fn default_profile(self) -> ProfileId {
         match self {
             Dialect::S7 => ProfileId::A5,
+            Dialect::Omron => ProfileId::Cp1h,
         }
     }
 
     /// The CPU profiles of this dialect.
     pub fn profiles(self) -> &'static [ProfileId] {
         match self {
-            Dialect::S7 => &ProfileId::ALL,
+            Dialect::S7 => &S7_PROFILES,
+            Dialect::Omron => &OMRON_PROFILES,
+        }
+    }
+
+    /// The dialect `text` is written in, when the heuristics can tell (`None` when neither or
+    /// both dialects' marks dominate).
+    pub fn detect(text: &str) -> Option<Dialect> {
+        match (
+            stljit_front_omron::looks_like_omron(text),
+            stljit_front_omron::looks_like_s7(text),
+        ) {
+            (true, false) => Some(Dialect::Omron),
+            (false, true) => Some(Dialect::S7),
+            _ => None,
         }
     }
 
@@ -87,6 +113,9 @@ impl Dialect {
             Dialect::S7 => {
                 stljit_front_s7::compile(files, symbols, profile).map_symbols(Symbols::S7)
             }
+            Dialect::Omron => {
+                stljit_front_omron::compile(files, symbols, profile).map_symbols(Symbols::Omron)
+            }
         }
     }
 
@@ -99,8 +128,19 @@ impl Dialect {
     ) -> Result<Address, AddressError> {
         match self {
             Dialect::S7 => {
-                let table = symbols.map(|Symbols::S7(t)| t);
+                let table = symbols.and_then(|s| match s {
+                    Symbols::S7(t) => Some(t),
+                    Symbols::Omron(_) => None,
+                });
                 stljit_front_s7::parse_address(text, profile.profile(), table)
+            }
+            Dialect::Omron => {
+                let table = symbols.and_then(|s| match s {
+                    Symbols::Omron(t) => Some(t),
+                    Symbols::S7(_) => None,
+                });
+                stljit_front_omron::parse_address(text, profile, table)
+                    .map_err(|e| AddressError { message: e.message })
             }
         }
     }
@@ -109,13 +149,16 @@ impl Dialect {
     pub fn print_address(self, address: &Address) -> String {
         match self {
             Dialect::S7 => stljit_front_s7::print_address(address),
+            Dialect::Omron => stljit_front_omron::print_address(address),
         }
     }
 
-    /// The program as text of this dialect that compiles back to the same IR.
-    pub fn print_program(self, program: &Program) -> String {
+    /// The program as text of this dialect that compiles back to the same IR; `None` for a
+    /// dialect without a printer yet (Omron).
+    pub fn print_program(self, program: &Program) -> Option<String> {
         match self {
-            Dialect::S7 => stljit_front_s7::print_program(program),
+            Dialect::S7 => Some(stljit_front_s7::print_program(program)),
+            Dialect::Omron => None,
         }
     }
 }
@@ -131,7 +174,13 @@ mod tests {
             assert!(d.profiles().contains(&d.default_profile()));
         }
         assert_eq!(Dialect::from_name("s7"), Some(Dialect::S7));
-        assert_eq!(Dialect::from_name("omron"), None);
+        assert_eq!(Dialect::from_name("omron"), Some(Dialect::Omron));
+        assert_eq!(Dialect::Omron.default_profile(), ProfileId::Cp1h);
+        assert_eq!(
+            Dialect::Omron.profiles(),
+            [ProfileId::Cp1h, ProfileId::Cp1e]
+        );
+        assert!(!Dialect::S7.profiles().contains(&ProfileId::Cp1h));
     }
 
     #[test]
@@ -148,11 +197,52 @@ mod tests {
             .parse_address("Q0.1", ProfileId::A5, c.symbols.as_ref())
             .expect("an address");
         assert_eq!(Dialect::S7.print_address(&a), "Q0.1");
-        assert!(Dialect::S7.print_program(&p).contains("Q0.1"));
+        assert!(
+            Dialect::S7
+                .print_program(&p)
+                .is_some_and(|t| t.contains("Q0.1"))
+        );
         assert!(
             Dialect::S7
                 .parse_address("Q99.0", ProfileId::A5, None)
                 .is_err()
         );
+    }
+
+    #[test]
+    fn omron_compiles_and_spells_its_addresses() {
+        let file = SourceFile {
+            name: "t.omr".into(),
+            bytes: b"LD Start\nOUT 100.01\nEND(001)\n".to_vec(),
+        };
+        let syms = SourceFile {
+            name: "s.txt".into(),
+            bytes: b"Start\tBOOL\t0.00\n".to_vec(),
+        };
+        let c = Dialect::Omron.compile(&[file], Some(&syms), ProfileId::Cp1h);
+        assert_eq!(c.error_count(), 0, "{:?}", c.diagnostics);
+        let p = c.program.expect("compiles");
+        assert_eq!(p.op_count(), 3);
+        assert_eq!(c.symbols.as_ref().map(|s| s.names().count()), Some(1));
+        let a = Dialect::Omron
+            .parse_address("Start", ProfileId::Cp1h, c.symbols.as_ref())
+            .expect("a symbol");
+        assert_eq!(Dialect::Omron.print_address(&a), "0.00");
+        assert!(
+            Dialect::Omron
+                .parse_address("W600", ProfileId::Cp1h, None)
+                .is_err()
+        );
+        assert_eq!(Dialect::Omron.print_program(&p), None);
+    }
+
+    #[test]
+    fn detect_tells_the_dialects_apart() {
+        let omron = "LD 0.00\nAND LD\nOUT 100.00\nMOV(021) #0001 D0\nEND(001)\n";
+        let s7 = "NETWORK 1\nLD I0.0\n= Q0.0\n";
+        assert_eq!(Dialect::detect(omron), Some(Dialect::Omron));
+        assert_eq!(Dialect::detect(s7), Some(Dialect::S7));
+        assert_eq!(Dialect::detect(""), None);
+        assert_eq!(Dialect::detect("NOP\n"), None);
     }
 }

@@ -24,7 +24,8 @@ impl Severity {
 
 macro_rules! codes {
     ($($(#[$doc:meta])* $variant:ident = $name:literal, $sev:ident, $explain:literal;)*) => {
-        /// A stable diagnostic code (`E0xx` errors, `W0xx` warnings).
+        /// A stable diagnostic code (`E0xx` errors, `W0xx` warnings; the Omron dialect's own
+        /// codes carry the prefix `OMR-`).
         #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
         pub enum Code {
             $($(#[$doc])* $variant,)*
@@ -121,6 +122,66 @@ codes! {
     StackUnderflow = "W001", Warning, "a contact or ALD/OLD/LPP/LRD consumes a stack level that nothing loaded";
     /// Too many live stack levels.
     StackOverflow = "W002", Warning, "more than nine stack levels are live; the bottom one is lost";
+
+    // ---- Omron CP dialect (omron-cp.md §5; the spec's numbers with the `OMR-` prefix) --------
+    /// A task program without END.
+    OmrNoEnd = "OMR-E001", Error, "the task program has no END(001)";
+    /// Instructions after the first END.
+    OmrAfterEnd = "OMR-W002", Warning, "instructions after the first END(001) never run";
+    /// Output directly on the left bus.
+    OmrNoCondition = "OMR-E003", Error, "an output-type instruction has no execution condition";
+    /// AND/OR-type instruction at circuit start.
+    OmrNoLoad = "OMR-E004", Error, "an AND/OR-type instruction has no preceding LD";
+    /// Unclosed logic blocks at an output.
+    OmrOpenBlock = "OMR-E005", Error, "logic blocks opened by LD are not combined before an output";
+    /// AND LD / OR LD with nothing to combine.
+    OmrNothingToCombine = "OMR-E006", Error, "AND LD / OR LD has no pending block to combine";
+    /// Wrong number of execution conditions.
+    OmrConditionCount = "OMR-E007", Error, "a multi-condition instruction gets the wrong number of execution conditions";
+    /// A circuit continued after a multi-condition instruction.
+    OmrAfterMulti = "OMR-E008", Error, "a circuit cannot continue after KEEP/CNT/CNTR/TTIM";
+    /// Unconditional instruction preceded by conditions.
+    OmrNotOnBus = "OMR-E009", Error, "an unconditional instruction must connect directly to the left bus";
+    /// TR misuse.
+    OmrTr = "OMR-E010", Error, "a TR bit is read before it is set in the circuit, set twice, or used by another instruction";
+    /// Unknown or unsupported instruction, or wrong function code.
+    OmrInstruction = "OMR-E011", Error, "unknown or unsupported instruction, or a wrong function code";
+    /// Option not allowed.
+    OmrOption = "OMR-E012", Error, "the option (@, %, !) is not allowed on this instruction";
+    /// Operand count or kind mismatch.
+    OmrOperand = "OMR-E013", Error, "the operand count or kind does not match the instruction";
+    /// Operand outside the model's area.
+    OmrRange = "OMR-E014", Error, "the operand lies outside the area of the selected model";
+    /// Bad constant.
+    OmrConstant = "OMR-E015", Error, "a constant or number has a bad form or range";
+    /// Write to a read-only location.
+    OmrReadOnly = "OMR-E016", Error, "the operand is written but is read-only";
+    /// Output to an input word bit.
+    OmrInputWrite = "OMR-W017", Warning, "an output instruction writes a bit of a physical input word";
+    /// Multi-word operand crossing areas.
+    OmrAreaCross = "OMR-E018", Error, "a multi-word operand crosses from one area into another";
+    /// Multi-word operand past its area.
+    OmrWords = "OMR-E019", Error, "a double-length operand needs consecutive words its area does not have";
+    /// Timer/counter number used twice.
+    OmrNumberTwice = "OMR-E021", Error, "a timer or counter number is used by two instructions";
+    /// IL/ILC pairing.
+    OmrInterlock = "OMR-E022", Error, "IL(002) and ILC(003) do not pair up (unclosed, unopened or nested)";
+    /// Several ILs share one ILC.
+    OmrSharedIlc = "OMR-W022", Warning, "several IL(002) share one ILC(003)";
+    /// Jump pairing.
+    OmrJump = "OMR-E023", Error, "a jump has no JME after it, a JME is defined twice, or a jump crosses an IL region";
+    /// JMP0 without JME0.
+    OmrJmp0 = "OMR-E024", Error, "JMP0(515) has no JME0(516)";
+    /// Code after the subroutine region.
+    OmrAfterSubroutines = "OMR-W028", Warning, "code between the subroutine region and END never runs";
+    /// Subroutine placement.
+    OmrSubroutine = "OMR-E029", Error, "a subroutine region is misplaced, nested, unclosed or defined twice";
+    /// A circuit starting with a condition flag.
+    OmrFlagAtStart = "OMR-W032", Warning, "a circuit starts with a condition flag";
+    /// More than 8 pending blocks.
+    OmrDeepBlocks = "OMR-W040", Warning, "more than 8 logic blocks are pending";
+    /// More than 13 pending blocks.
+    OmrTooDeep = "OMR-E041", Error, "more than 13 logic blocks are pending";
 }
 
 impl fmt::Display for Code {
@@ -142,8 +203,9 @@ mod tests {
                 Severity::Error => 'E',
                 Severity::Warning => 'W',
             };
-            assert!(c.name().starts_with(prefix));
-            assert_eq!(c.name().len(), 4);
+            let bare = c.name().strip_prefix("OMR-").unwrap_or(c.name());
+            assert!(bare.starts_with(prefix), "{}", c.name());
+            assert_eq!(bare.len(), 4, "{}", c.name());
         }
     }
 }

@@ -1,0 +1,358 @@
+//! Program control and regions (omron-cp.md §2.7–§2.9, §3.4): IL/ILC, the jumps, END, the
+//! subroutine region (SBN…RET, SBS), and which lines run at all (W002 after END, W028 between
+//! the subroutine region and END). Checks E001, E022/W022, E023, E024, E029.
+
+use crate::circuit::Class;
+use crate::lexer::Line;
+use crate::lower::{Lowerer, PouBuild};
+use crate::mnemonics::Flow;
+use crate::resolve::Reported;
+use std::collections::HashMap;
+use stljit_core::ir::{Op, Pou, PouKind};
+use stljit_core::{LabelId, PouId};
+use stljit_source::{Code, Span};
+
+/// Where in the task the current line is.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+enum Region {
+    /// The main program.
+    #[default]
+    Main,
+    /// Inside `SBN n` … `RET`.
+    Subroutine,
+    /// After a `RET`, before the next SBN or END.
+    AfterSubroutines,
+    /// After the first END (with its line).
+    AfterEnd(u32),
+}
+
+/// A jump waiting for its JME.
+#[derive(Clone, Debug)]
+struct PendingJump {
+    number: u32,
+    span: Span,
+    interlock: Option<u32>,
+}
+
+/// Region, interlock and jump state.
+#[derive(Debug, Default)]
+pub(crate) struct Control {
+    /// The POU receiving ops (index into `Lowerer::pous`).
+    pub(crate) pou: usize,
+    region: Region,
+    /// The open IL: its line and region id.
+    il: Option<(Span, u32)>,
+    /// Interlock regions opened so far (ids).
+    il_regions: u32,
+    /// Labels of jump numbers of the current POU.
+    labels: HashMap<u32, LabelId>,
+    /// JME numbers defined in the current POU, with their interlock region.
+    defined: HashMap<u32, Option<u32>>,
+    jumps: Vec<PendingJump>,
+    /// Open JMP0s: their labels and where they are.
+    jmp0: Vec<(LabelId, Span)>,
+    /// Subroutine numbers to their POUs.
+    subs: HashMap<u32, PouId>,
+    /// `SBS` calls to resolve at the end: POU index, op index, number, place.
+    calls: Vec<(usize, usize, u32, Span)>,
+}
+
+impl Lowerer<'_> {
+    fn head_span(&self, l: &Line) -> Span {
+        self.cx.span(&l.head)
+    }
+
+    fn report_span(&mut self, code: Code, span: Span, message: String) {
+        let d = stljit_source::Diagnostic::new(code, span, "", message);
+        self.cx.diags.push(d);
+    }
+
+    /// Whether the line is lowered at all (W002 after END, W028 after the subroutines).
+    pub(crate) fn admit(&mut self, l: &Line) -> bool {
+        let line = l.line;
+        match self.control.region {
+            Region::AfterEnd(end) => {
+                self.at_head(
+                    l,
+                    Code::OmrAfterEnd,
+                    format!(
+                        "unreachable — execution of task 0 stops at the first END(001) (line {end})"
+                    ),
+                );
+                false
+            }
+            Region::AfterSubroutines if !matches!(l.mnemonic.as_str(), "SBN" | "END") => {
+                let _ = line;
+                self.at_head(
+                    l,
+                    Code::OmrAfterSubroutines,
+                    "never executed — code after the subroutine region".into(),
+                );
+                false
+            }
+            _ => true,
+        }
+    }
+
+    /// Closes the current POU's regions: open IL (E022), jumps without JME (E023), JMP0
+    /// without JME0 (E024).
+    fn close_pou(&mut self) {
+        if let Some((span, _)) = self.control.il.take() {
+            self.report_span(
+                Code::OmrInterlock,
+                span,
+                format!(
+                    "line {}: IL(002) is not closed by ILC(003) in task 0",
+                    span.line
+                ),
+            );
+        }
+        for j in std::mem::take(&mut self.control.jumps) {
+            self.report_span(
+                Code::OmrJump,
+                j.span,
+                format!(
+                    "line {}: JME {} not found after this jump",
+                    j.span.line, j.number
+                ),
+            );
+        }
+        for (_, span) in std::mem::take(&mut self.control.jmp0) {
+            self.report_span(
+                Code::OmrJmp0,
+                span,
+                format!("line {}: JMP0(515) has no JME0(516)", span.line),
+            );
+        }
+        self.control.labels.clear();
+        self.control.defined.clear();
+        self.circuit.reset();
+    }
+
+    /// The label of jump number `n` in the current POU.
+    fn jump_label(&mut self, n: u32) -> LabelId {
+        if let Some(l) = self.control.labels.get(&n) {
+            return *l;
+        }
+        let l = self.new_label();
+        self.control.labels.insert(n, l);
+        l
+    }
+
+    fn interlock_id(&self) -> Option<u32> {
+        self.control.il.map(|(_, id)| id)
+    }
+
+    /// Lowers a program-control instruction.
+    pub(crate) fn flow(&mut self, l: &Line, flow: Flow) -> Result<(), Reported> {
+        let max_jump = u32::from(self.cx.profile.omron.max_jump);
+        let max_sub = u32::from(self.cx.profile.max_subroutine);
+        match flow {
+            Flow::Il => {
+                self.operands(l, 0)?;
+                self.class(l, Class::Output);
+                if self.control.il.is_some() {
+                    self.at_head(l, Code::OmrSharedIlc, "several IL(002) share one ILC(003); the first interlocked one holds up to the ILC".into());
+                } else {
+                    self.control.il_regions += 1;
+                    self.control.il = Some((self.head_span(l), self.control.il_regions));
+                }
+                self.emit(Op::Interlock);
+            }
+            Flow::Ilc => {
+                self.operands(l, 0)?;
+                self.class(l, Class::Unconditional);
+                if self.control.il.take().is_none() {
+                    self.at_head(l, Code::OmrInterlock, "ILC(003) has no open IL(002)".into());
+                } else {
+                    self.emit(Op::InterlockEnd);
+                }
+            }
+            Flow::Jmp | Flow::Cjp | Flow::Cjpn => {
+                let ops = self.operands(l, 1)?;
+                let n = self.cx.number(&ops[0], max_jump, "jump number")?;
+                self.class(l, Class::Output);
+                if self.control.defined.contains_key(&n) {
+                    let msg =
+                        format!("JME {n} is before this jump; backward jumps are not allowed");
+                    return Err(self.at_head(l, Code::OmrJump, msg));
+                }
+                let label = self.jump_label(n);
+                let span = self.head_span(l);
+                let interlock = self.interlock_id();
+                self.control.jumps.push(PendingJump {
+                    number: n,
+                    span,
+                    interlock,
+                });
+                // JMP and CJPN jump when the condition is OFF, CJP when it is ON.
+                if flow == Flow::Cjp {
+                    self.emit(Op::Jump(label));
+                } else {
+                    self.emit(Op::Not);
+                    self.emit(Op::Jump(label));
+                    self.emit(Op::Not);
+                }
+            }
+            Flow::Jme => {
+                let ops = self.operands(l, 1)?;
+                let n = self.cx.number(&ops[0], max_jump, "jump number")?;
+                self.class(l, Class::Unconditional);
+                if self.control.defined.contains_key(&n) {
+                    return Err(self.at_head(
+                        l,
+                        Code::OmrJump,
+                        format!("jump number {n} defined twice"),
+                    ));
+                }
+                let here = self.interlock_id();
+                self.control.defined.insert(n, here);
+                let (mine, rest): (Vec<_>, Vec<_>) = std::mem::take(&mut self.control.jumps)
+                    .into_iter()
+                    .partition(|j| j.number == n);
+                self.control.jumps = rest;
+                for j in mine.iter().filter(|j| j.interlock != here) {
+                    self.report_span(
+                        Code::OmrJump,
+                        j.span,
+                        format!(
+                            "line {}: jump {n} crosses the boundary of an IL(002)–ILC(003) region",
+                            j.span.line
+                        ),
+                    );
+                }
+                let label = self.jump_label(n);
+                self.place(label);
+            }
+            Flow::Jmp0 => {
+                self.operands(l, 0)?;
+                self.class(l, Class::Output);
+                let label = self.new_label();
+                let span = self.head_span(l);
+                self.control.jmp0.push((label, span));
+                self.emit(Op::Not);
+                self.emit(Op::Jump(label));
+                self.emit(Op::Not);
+            }
+            Flow::Jme0 => {
+                self.operands(l, 0)?;
+                self.class(l, Class::Unconditional);
+                for (label, _) in std::mem::take(&mut self.control.jmp0) {
+                    self.place(label);
+                }
+            }
+            Flow::End => {
+                self.operands(l, 0)?;
+                self.class(l, Class::Unconditional);
+                if self.control.region == Region::Subroutine {
+                    self.at_head(
+                        l,
+                        Code::OmrSubroutine,
+                        "SBN(092) is not closed by RET(093) before END(001)".into(),
+                    );
+                }
+                self.close_pou();
+                self.control.pou = 0;
+                self.emit(Op::End { conditional: false });
+                self.control.region = Region::AfterEnd(l.line);
+            }
+            Flow::Sbn => {
+                let ops = self.operands(l, 1)?;
+                let n = self.cx.number(&ops[0], max_sub, "subroutine number")?;
+                self.class(l, Class::Unconditional);
+                if self.control.region == Region::Subroutine {
+                    self.at_head(
+                        l,
+                        Code::OmrSubroutine,
+                        "SBN(092) cannot be placed inside SBN(092)–RET(093) (nested)".into(),
+                    );
+                }
+                if !self.control.jmp0.is_empty() {
+                    self.at_head(
+                        l,
+                        Code::OmrSubroutine,
+                        "SBN(092) cannot be placed inside JMP0(515)–JME0(516)".into(),
+                    );
+                }
+                self.close_pou();
+                if self.control.subs.contains_key(&n) {
+                    self.at_head(
+                        l,
+                        Code::OmrSubroutine,
+                        format!("subroutine {n} is defined twice"),
+                    );
+                }
+                let id = PouId::new(self.pous.len());
+                self.control.subs.entry(n).or_insert(id);
+                self.pous.push(PouBuild {
+                    pou: Pou {
+                        name: format!("SBN{n}"),
+                        kind: PouKind::Subroutine(n as u16),
+                        ops: Vec::new(),
+                        locs: Vec::new(),
+                        labels: Vec::new(),
+                    },
+                });
+                self.control.pou = self.pous.len() - 1;
+                self.control.region = Region::Subroutine;
+            }
+            Flow::Ret => {
+                self.operands(l, 0)?;
+                self.class(l, Class::Unconditional);
+                if self.control.region != Region::Subroutine {
+                    return Err(self.at_head(
+                        l,
+                        Code::OmrSubroutine,
+                        "RET(093) has no SBN(092)".into(),
+                    ));
+                }
+                self.emit(Op::Return { conditional: false });
+                self.close_pou();
+                self.control.pou = 0;
+                self.control.region = Region::AfterSubroutines;
+            }
+            Flow::Sbs => {
+                let ops = self.operands(l, 1)?;
+                let n = self.cx.number(&ops[0], max_sub, "subroutine number")?;
+                self.class(l, Class::Output);
+                let span = self.head_span(l);
+                let options = l.options;
+                self.edged(options, |s| {
+                    let pou = s.control.pou;
+                    let at = s.pous[pou].pou.ops.len();
+                    s.control.calls.push((pou, at, n, span));
+                    s.emit(Op::Call(PouId(0)));
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// End of the task: E001 without END, open regions, the calls resolved.
+    pub(crate) fn finish(&mut self, last: Span) {
+        if !matches!(self.control.region, Region::AfterEnd(_)) {
+            if self.control.region == Region::Subroutine {
+                self.report_span(
+                    Code::OmrSubroutine,
+                    last,
+                    format!("line {}: SBN(092) is not closed by RET(093)", last.line),
+                );
+            }
+            self.close_pou();
+            self.report_span(Code::OmrNoEnd, last, "task 0: program has no END(001) — the CPU would refuse to run it (\"no END\" program error)".into());
+        }
+        for (pou, at, n, span) in std::mem::take(&mut self.control.calls) {
+            match self.control.subs.get(&n) {
+                Some(id) => self.pous[pou].pou.ops[at] = Op::Call(*id),
+                None => self.report_span(
+                    Code::OmrOperand,
+                    span,
+                    format!(
+                        "line {}: SBS {n} calls a subroutine that no SBN(092) defines",
+                        span.line
+                    ),
+                ),
+            }
+        }
+    }
+}

@@ -1,0 +1,177 @@
+//! The Omron CP-series mnemonic (instruction-list) front end of stljit (omron-cp.md).
+//!
+//! [`compile`] takes the files of one task program (UTF-8 or GBK), an optional CX-Programmer
+//! symbol table and an Omron profile (`cp1h`, `cp1e`), and returns the checked
+//! [`stljit_core::ir::Program`] with every diagnostic (codes `OMR-E…`/`OMR-W…`, §5). It never
+//! panics and never stops at the first error. [`parse_address`]/[`print_address`] read and
+//! write single addresses in Omron spelling; [`looks_like_omron`]/[`looks_like_s7`] guess a
+//! text's dialect.
+//!
+//! Pipeline: `lexer` (one instruction per line) → `lower` (dispatch over `mnemonics::TABLE`,
+//! the circuit machine of `circuit`, operands through `operand`/`resolve`, timers and data in
+//! `boxes`, regions and jumps in `control`) → IR.
+//!
+//! # Lowering (the lead's decisions)
+//!
+//! The program has the chosen Omron profile and `logic_stack_depth = 16`. Every LD-type
+//! instruction is an IR push (`Op::Load`), whether it starts a circuit or a block; AND LD / OR
+//! LD are `AndBlock` / `OrBlock`; outputs never pop, so the execution condition continues after
+//! them. More than 8 pending blocks is OMR-W040, more than 13 OMR-E041: every push below adds
+//! at most two temporaries, so 16 levels always hold the live values.
+//!
+//! * `LD/AND/OR b` (and `NOT` forms): `Load/And/Or(Contact::Bit)`.
+//!   `@LD b`: `Load(b); Edge{rising}`; `%LD b`: `Load(b); Edge{falling}`; `@AND b`:
+//!   `Load(b); Edge; AndBlock`; `@OR b`: `Load(b); Edge; OrBlock`. Every edge has its own slot,
+//!   `init` true for rising, false for falling (§2.6).
+//! * `NOT(520)`: `Not`; `UP(521)`/`DOWN(522)`: `Edge` (init true / false).
+//! * `OUT b`: `Assign`; `OUT NOT b`: `Not; Assign; Not`; `OUT TRn` / `LD TRn`: the TR bit
+//!   (`core::omron::tr_bit`), checked per circuit (E010).
+//! * `SET`/`RSET b`: `SetRange{count: 1}`. Every `@`/`%` output (SET, RSET, MOV, CMP,
+//!   arithmetic, SBS): `Dup; Edge; <op>; Pop`.
+//! * `KEEP(011) b` (S1 set, S0 reset): `SetRange(b, 0); Not; AndBlock; SetRange(b, 1)`
+//!   (reset wins). `DIFU(013)`/`DIFD(014)`: `Dup; Edge; SetRange(b, 1); Not; SetRange(b, 0);
+//!   Pop`.
+//! * `IL(002)`/`ILC(003)`: `Interlock`/`InterlockEnd`. `JMP(004)`/`CJPN(511)`: `Not; Jump;
+//!   Not`; `CJP(510)`: `Jump`; `JME(005)`: `Label`; `JMP0(515)`: like JMP to a fresh label
+//!   placed at the next `JME0(516)`. Jumps go forward only, within one POU and one IL region.
+//! * `END(001)`: `End`; lines after it are W002 and not lowered. `SBN(092) n … RET(093)`: a
+//!   `PouKind::Subroutine(n)` ending in `Return`; `SBS(091) n`: `Call`. The main POU ends at
+//!   the first SBN or END (its `End` op is emitted at the END line).
+//! * Timers: `OmronTimer`, counters: `OmronCounter`; numbers `0000`, `T0000` or `&0`, each
+//!   used once per area (E021); BCD set-value constants are checked (E015).
+//! * `MOV`/`MOVL`: `Omron(Move)`; `CMP`/`CMPL`/`CPS`/`CPSL`: `Omron(Compare)`; §3.6:
+//!   `Omron(Arith)`. Comparison contacts (`LD>=S D0 -5`): `Load(P_On); Omron(Compare); Pop;`
+//!   then `Load/And/Or` of the relation's flag (U2's default).
+//! * Operands: words and bits through `core::omron::word_loc`/`bit_of_word`; `T`/`C` bits are
+//!   `TimerBit`/`CounterBit` byte `n`, their words `TimerValue`/`CounterValue` offset `2n`;
+//!   `P_…` flags are `SystemBit`s, `P_First_Cycle` is A200.11; constants are `Operand::Const`
+//!   in Omron value order (a double constant's low 16 bits are the low word).
+//!
+//! **Not supported yet** (OMR-E011 "not supported yet"): FOR/NEXT/BREAK, STEP/SNXT,
+//! BPRG/BEND, IORF, CCS/CCL, MOVR, indirect `@D`/`*D`, IR/DR operands, TK operands, strings.
+//!
+//! **Known deviation:** `!` refreshes one bit, not the whole 16-bit word (§2.5): on a contact
+//! whose bit is in an input word it reads the physical input bit (`Contact::ImmediateInput`),
+//! on OUT/SET/RSET/KEEP to an output word bit it writes the physical output bit too; on other
+//! operands and on data instructions it is accepted and has no effect.
+
+mod address;
+mod boxes;
+mod circuit;
+mod control;
+mod detect;
+mod lexer;
+mod lower;
+mod mnemonics;
+mod operand;
+mod resolve;
+mod symbols;
+
+pub use address::{AddressError, parse_address, print_address};
+pub use detect::{looks_like_omron, looks_like_s7};
+pub use stljit_source::{
+    Code, Diagnostic, Encoding, Severity, SourceFile, SourceText, Sources, render_human,
+    render_json,
+};
+pub use symbols::SymbolTable;
+
+use stljit_core::ir::Program;
+use stljit_core::{FileId, ProfileId};
+use stljit_source::{Span, decode_file};
+
+/// What compiling an Omron project produced (with its CX-Programmer symbol table).
+pub type Compilation = stljit_source::Compilation<SymbolTable>;
+
+/// Depth of the IR logic stack of an Omron program (see the crate doc).
+pub const LOGIC_STACK_DEPTH: u8 = 16;
+
+/// Compiles a task program: every file in `files` (in order, together one task), the optional
+/// symbol table, against the Omron `profile`. All diagnostics of all files are reported.
+pub fn compile(
+    files: &[SourceFile],
+    symbols: Option<&SourceFile>,
+    profile: ProfileId,
+) -> Compilation {
+    let mut diags = Vec::new();
+    let mut sources = Sources::default();
+    for (i, f) in files.iter().enumerate() {
+        let text = decode_file(f, FileId::new(i), &mut diags);
+        sources.files.push(text);
+    }
+    let table = symbols.map(|s| {
+        let id = FileId::new(files.len());
+        let text = decode_file(s, id, &mut diags);
+        let (table, d) = SymbolTable::parse(&text.text, id);
+        diags.extend(d);
+        sources.files.push(text);
+        table
+    });
+    let cx = resolve::Cx {
+        profile: profile.profile(),
+        symbols: table.as_ref(),
+        diags,
+        file: FileId(0),
+        line: 0,
+        mn: String::new(),
+    };
+    let mut lw = lower::Lowerer::new(cx);
+    let mut last = Span {
+        file: FileId(0),
+        line: 1,
+        col: 1,
+        len: 1,
+    };
+    for (i, src) in sources.files[..files.len()].iter().enumerate() {
+        let file = FileId::new(i);
+        lw.cx.file = file;
+        for (n, raw) in src.text.split('\n').enumerate() {
+            let number = u32::try_from(n + 1).unwrap_or(u32::MAX);
+            last = Span {
+                file,
+                line: number,
+                col: 1,
+                len: 1,
+            };
+            if let Some(line) = lexer::lex_line(raw, number) {
+                lw.cx.line = number;
+                lw.loc = stljit_core::ir::SrcLoc {
+                    file,
+                    line: number,
+                    col: line.head.col,
+                };
+                lw.line(&line);
+            }
+        }
+    }
+    lw.finish(last);
+    let mut diags = std::mem::take(&mut lw.cx.diags);
+    diags.sort_by_key(|d| (d.file, d.line, d.col));
+    let ok = diags.iter().all(|d| d.severity != Severity::Error);
+    let program = ok.then(|| Program {
+        profile,
+        pous: lw.pous.into_iter().map(|p| p.pou).collect(),
+        timers: Vec::new(),
+        counters: Vec::new(),
+        edges: lw.edges,
+        logic_stack_depth: LOGIC_STACK_DEPTH,
+        files: files.iter().map(|f| f.name.clone()).collect(),
+    });
+    Compilation {
+        program,
+        diagnostics: diags,
+        sources,
+        symbols: table,
+    }
+}
+
+/// Compiles one UTF-8 text as a single file named `name` (for tests and tools).
+pub fn compile_str(name: &str, text: &str, profile: ProfileId) -> Compilation {
+    compile(
+        &[SourceFile {
+            name: name.to_owned(),
+            bytes: text.as_bytes().to_vec(),
+        }],
+        None,
+        profile,
+    )
+}

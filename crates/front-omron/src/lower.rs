@@ -1,0 +1,545 @@
+//! Lowering of one task (all program files in order) to IR POUs: the per-line dispatch over
+//! [`mnemonics::TABLE`](crate::mnemonics::TABLE), the function-code and option checks (E011,
+//! E012), the circuit machine ([`Circuit`]) and the bit instructions. Timers, counters and data
+//! boxes are in `boxes`, program control and regions in `control`. The patterns are the ones
+//! the crate doc lists.
+
+use crate::circuit::{Circuit, Class};
+use crate::control::Control;
+use crate::lexer::{Line, Options, Tok};
+use crate::mnemonics::{self, Group, Join, Mnemonic};
+use crate::operand::Syn;
+use crate::resolve::{Cx, Reported};
+use stljit_core::ir::{Contact, EdgeDecl, OmronBox, Op, Operand, Pou, PouKind, SrcLoc};
+use stljit_core::omron::{SystemBit, tr_bit};
+use stljit_core::{Area, EdgeSlot, LabelId, OpIdx};
+use stljit_source::{Code, clip};
+
+/// A POU being built.
+pub(crate) struct PouBuild {
+    /// The finished part.
+    pub(crate) pou: Pou,
+}
+
+/// The lowering state of a whole task.
+pub(crate) struct Lowerer<'a> {
+    /// Profile, symbols, diagnostics and the current line.
+    pub(crate) cx: Cx<'a>,
+    /// The POUs: main first, then the subroutines in source order.
+    pub(crate) pous: Vec<PouBuild>,
+    /// Every edge slot.
+    pub(crate) edges: Vec<EdgeDecl>,
+    /// The circuit machine of the current POU.
+    pub(crate) circuit: Circuit,
+    /// Regions, jumps, interlocks and calls.
+    pub(crate) control: Control,
+    /// Timer and counter numbers in use, with the line of their first use (E021).
+    pub(crate) objects: std::collections::HashMap<(Area, u16), u32>,
+    /// Source location of the current line.
+    pub(crate) loc: SrcLoc,
+}
+
+impl<'a> Lowerer<'a> {
+    /// A lowerer with an empty main POU.
+    pub(crate) fn new(cx: Cx<'a>) -> Self {
+        Lowerer {
+            cx,
+            pous: vec![PouBuild {
+                pou: Pou {
+                    name: "MAIN".into(),
+                    kind: PouKind::Main,
+                    ops: Vec::new(),
+                    locs: Vec::new(),
+                    labels: Vec::new(),
+                },
+            }],
+            edges: Vec::new(),
+            circuit: Circuit::default(),
+            control: Control::default(),
+            objects: Default::default(),
+            loc: SrcLoc::default(),
+        }
+    }
+
+    /// Appends `op` to the current POU with the current line's location.
+    pub(crate) fn emit(&mut self, op: Op) {
+        let pou = self.control.pou;
+        let p = &mut self.pous[pou].pou;
+        p.ops.push(op);
+        p.locs.push(self.loc);
+    }
+
+    /// A new label of the current POU (placed later by [`Lowerer::place`]).
+    pub(crate) fn new_label(&mut self) -> LabelId {
+        let p = &mut self.pous[self.control.pou].pou;
+        p.labels.push(OpIdx(u32::MAX));
+        LabelId::new(p.labels.len() - 1)
+    }
+
+    /// Emits `Label(label)` here.
+    pub(crate) fn place(&mut self, label: LabelId) {
+        let p = &mut self.pous[self.control.pou].pou;
+        if let Some(slot) = p.labels.get_mut(label.index()) {
+            *slot = OpIdx::new(p.ops.len());
+        }
+        self.emit(Op::Label(label));
+    }
+
+    /// An edge op with a new slot (§2.6: rising memories start ON, falling ones OFF).
+    pub(crate) fn edge(&mut self, falling: bool) -> Op {
+        self.edges.push(EdgeDecl { init: !falling });
+        Op::Edge {
+            slot: EdgeSlot::new(self.edges.len() - 1),
+            falling,
+        }
+    }
+
+    /// `Dup; Edge; <body>; Pop` for an `@`/`%` output, or just the body.
+    pub(crate) fn edged(&mut self, options: Options, body: impl FnOnce(&mut Self)) {
+        match options.edge {
+            Some(falling) => {
+                self.emit(Op::Dup);
+                let e = self.edge(falling);
+                self.emit(e);
+                body(self);
+                self.emit(Op::Pop);
+            }
+            None => body(self),
+        }
+    }
+
+    /// Reports a diagnostic at the instruction word.
+    pub(crate) fn at_head(&mut self, l: &Line, code: Code, message: String) -> Reported {
+        let line = l.line;
+        self.cx
+            .report(code, &l.head, format!("line {line}: {message}"))
+    }
+
+    /// Runs the circuit machine for this instruction; true when it started a new circuit.
+    pub(crate) fn class(&mut self, l: &Line, class: Class) -> bool {
+        let (findings, new_circuit) = self.circuit.step(class, &self.cx.mn);
+        for (code, message) in findings {
+            self.at_head(l, code, message);
+        }
+        new_circuit
+    }
+
+    /// The operands, if there are exactly `n` (else E013).
+    pub(crate) fn operands<'l>(&mut self, l: &'l Line, n: usize) -> Result<&'l [Tok], Reported> {
+        if let Some(t) = &l.dangling_cio {
+            let line = l.line;
+            return Err(self.cx.report(
+                Code::OmrOperand,
+                t,
+                format!("line {line}: `CIO` must be followed by a CIO word or bit address"),
+            ));
+        }
+        if l.operands.len() == n {
+            return Ok(&l.operands);
+        }
+        let got: Vec<_> = l.operands.iter().map(|t| clip(&t.text)).collect();
+        let mn = self.cx.mn.clone();
+        Err(self.at_head(
+            l,
+            Code::OmrOperand,
+            format!(
+                "{mn} expects {n} operand(s), got {} ({})",
+                got.len(),
+                got.join(" ")
+            ),
+        ))
+    }
+
+    /// Lowers one lexed line.
+    pub(crate) fn line(&mut self, l: &Line) {
+        self.cx.mn = format!("{}{}", l.options.text(), l.mnemonic);
+        if !self.admit(l) {
+            return;
+        }
+        let Some(m) = self.instruction(l) else {
+            // Unknown class: let whatever follows pass, so one bad line reports once.
+            self.circuit.recover();
+            return;
+        };
+        if !self.options_allowed(l, &m) || self.dispatch(l, &m).is_err() {
+            // The error is reported; advance the circuit as the instruction would have, so
+            // the lines after it are not blamed for it.
+            let _ = self.circuit.step(class_of(m.group), "");
+        }
+    }
+
+    /// The supported instruction of the line, with its function code checked (E011).
+    fn instruction(&mut self, l: &Line) -> Option<Mnemonic> {
+        let name = l.mnemonic.as_str();
+        let found = mnemonics::lookup(name).or_else(|| {
+            mnemonics::compare(name).map(|c| Mnemonic {
+                name: "",
+                code: Some(c.code),
+                group: Group::Contact(c.join, false),
+                allowed: mnemonics::COMPARE_OPTIONS,
+            })
+        });
+        let model = self.cx.profile.model;
+        let Some(m) = found else {
+            let msg = match mnemonics::NOT_YET.iter().find(|(n, _)| *n == name) {
+                Some((n, code)) => format!("{n}({code:03}) is not supported yet"),
+                None => format!("{} is not an instruction of {model}", clip(name)),
+            };
+            self.at_head(l, Code::OmrInstruction, msg);
+            return None;
+        };
+        match (&l.code, m.code) {
+            (None, _) => {}
+            (Some(Ok(c)), Some(c0)) if *c == c0 => {}
+            (Some(Ok(c)), Some(c0)) => {
+                self.at_head(
+                    l,
+                    Code::OmrInstruction,
+                    format!("function code ({c:03}) does not match {name} ({c0:03})"),
+                );
+                return None;
+            }
+            (Some(Ok(c)), None) => {
+                self.at_head(
+                    l,
+                    Code::OmrInstruction,
+                    format!("function code ({c:03}) does not match {name}, which has none"),
+                );
+                return None;
+            }
+            (Some(Err(text)), _) => {
+                let text = clip(text);
+                self.at_head(
+                    l,
+                    Code::OmrInstruction,
+                    format!("`{text}` is not a function code"),
+                );
+                return None;
+            }
+        }
+        Some(m)
+    }
+
+    /// E012 for an option the instruction does not take.
+    fn options_allowed(&mut self, l: &Line, m: &Mnemonic) -> bool {
+        let o = l.options;
+        let bad = match o.edge {
+            Some(false) if !m.allowed.up => Some("@"),
+            Some(true) if !m.allowed.down => Some("%"),
+            _ if o.immediate && !m.allowed.immediate => Some("!"),
+            _ => None,
+        };
+        let Some(opt) = bad else { return true };
+        let mn = l.mnemonic.clone();
+        let help = "use DIFU(013)/UP(521) for rising-edge and DIFD(014)/DOWN(522) for falling-edge execution";
+        let line = l.line;
+        self.cx.report_help(
+            Code::OmrOption,
+            &l.head,
+            format!("line {line}: {opt}{mn} is not allowed"),
+            help,
+        );
+        false
+    }
+
+    fn dispatch(&mut self, l: &Line, m: &Mnemonic) -> Result<(), Reported> {
+        match m.group {
+            Group::Contact(join, negated) => match mnemonics::compare(&l.mnemonic) {
+                Some(c) if m.name.is_empty() => self.compare_contact(l, c),
+                _ => self.contact(l, join, negated),
+            },
+            Group::Block(join) => {
+                self.operands(l, 0)?;
+                self.class(l, Class::Join);
+                self.emit(if join == Join::And {
+                    Op::AndBlock
+                } else {
+                    Op::OrBlock
+                });
+                Ok(())
+            }
+            Group::Not => {
+                self.operands(l, 0)?;
+                self.class(l, Class::Intermediate);
+                self.emit(Op::Not);
+                Ok(())
+            }
+            Group::Edge(falling) => {
+                self.operands(l, 0)?;
+                self.class(l, Class::Intermediate);
+                let e = self.edge(falling);
+                self.emit(e);
+                Ok(())
+            }
+            Group::Out(negated) => self.out(l, negated),
+            Group::SetReset(value) => self.set_reset(l, value),
+            Group::Keep => self.keep(l),
+            Group::Differentiate(falling) => self.differentiate(l, falling),
+            Group::Timer(kind) => self.timer(l, kind),
+            Group::Counter(kind) => self.counter(l, kind),
+            Group::Move(double) => self.data(l, DataBox::Move(double)),
+            Group::Compare(double, signed) => self.data(l, DataBox::Compare(double, signed)),
+            Group::Arith(op) => self.data(l, DataBox::Arith(op)),
+            Group::Control(flow) => self.flow(l, flow),
+        }
+    }
+
+    /// `LD`/`AND`/`OR` (and `NOT` forms, `@`/`%`/`!` options), `LD TRn`.
+    fn contact(&mut self, l: &Line, join: Join, negated: bool) -> Result<(), Reported> {
+        let ops = self.operands(l, 1)?;
+        let tok = &ops[0];
+        let syn = self.cx.syn(tok)?;
+        if let Syn::Tr(n) = syn {
+            let n = self.tr_number(tok, n)?;
+            if join != Join::Load || negated || l.options != Options::default() {
+                let (line, mn) = (l.line, self.cx.mn.clone());
+                return Err(self.cx.report(
+                    Code::OmrTr,
+                    tok,
+                    format!("line {line}: TR{n} may only be used with OUT and LD, not {mn}"),
+                ));
+            }
+            self.class(l, Class::LoadTr);
+            if !self.circuit.tr_set(n) {
+                let line = l.line;
+                self.cx.report(
+                    Code::OmrTr,
+                    tok,
+                    format!("line {line}: TR{n} is not set in this circuit"),
+                );
+            }
+            self.emit(Op::Load(Contact::Bit {
+                bit: tr_bit(n),
+                negated: false,
+            }));
+            return Ok(());
+        }
+        let bit = self.cx.bit(tok, false)?;
+        let class = if join == Join::Load {
+            Class::Start
+        } else {
+            Class::Combine
+        };
+        let new_circuit = self.class(l, class);
+        if let (true, Syn::Flag(f)) = (new_circuit, syn)
+            && f.index() < SystemBit::CONDITION_FLAGS.count_ones()
+        {
+            let line = l.line;
+            self.cx.report(
+                    Code::OmrFlagAtStart,
+                    tok,
+                    format!("line {line}: {} at circuit start reflects whichever instruction ran last; branch from the instruction's own condition instead", clip(&tok.text)),
+                );
+        }
+        let contact = if l.options.immediate && bit.area == Area::I {
+            Contact::ImmediateInput { bit, negated }
+        } else {
+            Contact::Bit { bit, negated }
+        };
+        match (l.options.edge, join) {
+            (None, Join::Load) => self.emit(Op::Load(contact)),
+            (None, Join::And) => self.emit(Op::And(contact)),
+            (None, Join::Or) => self.emit(Op::Or(contact)),
+            (Some(falling), _) => {
+                self.emit(Op::Load(contact));
+                let e = self.edge(falling);
+                self.emit(e);
+                match join {
+                    Join::Load => {}
+                    Join::And => self.emit(Op::AndBlock),
+                    Join::Or => self.emit(Op::OrBlock),
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// A comparison contact: the flags from an `Omron(Compare)` run on a pushed `P_On`, then
+    /// the flag of the relation as the contact (U2's default).
+    fn compare_contact(&mut self, l: &Line, c: mnemonics::CompareContact) -> Result<(), Reported> {
+        let ops = self.operands(l, 2)?;
+        let words = if c.double { 2 } else { 1 };
+        let lhs = self.cx.word(&ops[0], words, false);
+        let rhs = self.cx.word(&ops[1], words, false);
+        let (lhs, rhs) = (lhs?, rhs?);
+        self.class(
+            l,
+            if c.join == Join::Load {
+                Class::Start
+            } else {
+                Class::Combine
+            },
+        );
+        use stljit_core::ir::CmpOp;
+        let flag = match c.op {
+            CmpOp::Eq => SystemBit::Eq,
+            CmpOp::Ne => SystemBit::Ne,
+            CmpOp::Lt => SystemBit::Lt,
+            CmpOp::Le => SystemBit::Le,
+            CmpOp::Gt => SystemBit::Gt,
+            CmpOp::Ge => SystemBit::Ge,
+        };
+        let on = Contact::Bit {
+            bit: SystemBit::On.bit_loc(),
+            negated: false,
+        };
+        self.emit(Op::Load(on));
+        self.emit(Op::Omron(OmronBox::Compare {
+            double: c.double,
+            signed: c.signed,
+            lhs,
+            rhs,
+        }));
+        self.emit(Op::Pop);
+        let contact = Contact::Bit {
+            bit: flag.bit_loc(),
+            negated: false,
+        };
+        self.emit(match c.join {
+            Join::Load => Op::Load(contact),
+            Join::And => Op::And(contact),
+            Join::Or => Op::Or(contact),
+        });
+        Ok(())
+    }
+
+    /// A TR number, 0..=15 (E014).
+    fn tr_number(&mut self, tok: &Tok, n: u32) -> Result<u8, Reported> {
+        match u8::try_from(n) {
+            Ok(v) if v < 16 => Ok(v),
+            _ => {
+                let (line, model) = (self.cx.line, self.cx.profile.model);
+                Err(self.cx.report(
+                    Code::OmrRange,
+                    tok,
+                    format!(
+                        "line {line}: {} is outside TR (0–15) on {model}",
+                        clip(&tok.text)
+                    ),
+                ))
+            }
+        }
+    }
+
+    /// `OUT b`, `OUT NOT b`, `OUT TRn`.
+    fn out(&mut self, l: &Line, negated: bool) -> Result<(), Reported> {
+        let ops = self.operands(l, 1)?;
+        let tok = &ops[0];
+        if let Syn::Tr(n) = self.cx.syn(tok)? {
+            let n = self.tr_number(tok, n)?;
+            if negated || l.options.immediate {
+                let (line, mn) = (l.line, self.cx.mn.clone());
+                return Err(self.cx.report(
+                    Code::OmrTr,
+                    tok,
+                    format!("line {line}: TR{n} may only be used with OUT and LD, not {mn}"),
+                ));
+            }
+            self.class(l, Class::Output);
+            if !self.circuit.store_tr(n) {
+                let line = l.line;
+                self.cx.report(
+                    Code::OmrTr,
+                    tok,
+                    format!("line {line}: TR{n} is stored twice in this circuit"),
+                );
+            }
+            self.emit(Op::Assign {
+                bit: tr_bit(n),
+                immediate: false,
+            });
+            return Ok(());
+        }
+        let bit = self.cx.bit(tok, true)?;
+        self.class(l, Class::Output);
+        let assign = Op::Assign {
+            bit,
+            immediate: l.options.immediate && bit.area == Area::Q,
+        };
+        if negated {
+            self.emit(Op::Not);
+            self.emit(assign);
+            self.emit(Op::Not);
+        } else {
+            self.emit(assign);
+        }
+        Ok(())
+    }
+
+    fn set_range(&self, start: stljit_core::ir::BitLoc, value: bool, immediate: bool) -> Op {
+        Op::SetRange {
+            start,
+            count: Operand::Const(1),
+            value,
+            immediate: immediate && start.area == Area::Q,
+        }
+    }
+
+    /// `SET b` / `RSET b`, with `@`/`%`/`!`.
+    fn set_reset(&mut self, l: &Line, value: bool) -> Result<(), Reported> {
+        let ops = self.operands(l, 1)?;
+        let bit = self.cx.bit(&ops[0], true)?;
+        self.class(l, Class::Output);
+        let op = self.set_range(bit, value, l.options.immediate);
+        self.edged(l.options, |s| s.emit(op));
+        Ok(())
+    }
+
+    /// `KEEP(011) b`: S1 = set, S0 = reset; reset wins.
+    fn keep(&mut self, l: &Line) -> Result<(), Reported> {
+        let ops = self.operands(l, 1)?;
+        let bit = self.cx.bit(&ops[0], true)?;
+        self.class(l, Class::Multi(2));
+        let imm = l.options.immediate;
+        self.emit(self.set_range(bit, false, imm));
+        self.emit(Op::Not);
+        self.emit(Op::AndBlock);
+        self.emit(self.set_range(bit, true, imm));
+        Ok(())
+    }
+
+    /// `DIFU(013)` / `DIFD(014)`: the bit is ON in the edge cycle, OFF otherwise.
+    fn differentiate(&mut self, l: &Line, falling: bool) -> Result<(), Reported> {
+        let ops = self.operands(l, 1)?;
+        let bit = self.cx.bit(&ops[0], true)?;
+        self.class(l, Class::Output);
+        self.emit(Op::Dup);
+        let e = self.edge(falling);
+        self.emit(e);
+        self.emit(self.set_range(bit, true, false));
+        self.emit(Op::Not);
+        self.emit(self.set_range(bit, false, false));
+        self.emit(Op::Pop);
+        Ok(())
+    }
+}
+
+/// The data boxes `boxes::data` lowers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum DataBox {
+    /// MOV / MOVL.
+    Move(bool),
+    /// CMP family: (double, signed).
+    Compare(bool, bool),
+    /// §3.6.
+    Arith(stljit_core::ir::OmronArith),
+}
+
+/// The circuit class of an instruction group (§2.4).
+fn class_of(group: Group) -> Class {
+    use crate::mnemonics::Flow;
+    match group {
+        Group::Contact(Join::Load, _) => Class::Start,
+        Group::Contact(..) => Class::Combine,
+        Group::Block(_) => Class::Join,
+        Group::Not | Group::Edge(_) => Class::Intermediate,
+        Group::Keep => Class::Multi(2),
+        Group::Timer(k) if k.conditions() > 1 => Class::Multi(u32::from(k.conditions())),
+        Group::Counter(k) => Class::Multi(u32::from(k.conditions())),
+        Group::Control(Flow::Il | Flow::Jmp | Flow::Cjp | Flow::Cjpn | Flow::Jmp0 | Flow::Sbs) => {
+            Class::Output
+        }
+        Group::Control(_) => Class::Unconditional,
+        _ => Class::Output,
+    }
+}
