@@ -1,6 +1,7 @@
 //! The programs under `examples/` run as tests on every engine.
 //!
-//! An example directory with an `expected.csv` is a case: its program files (`*.awl`, `*.stl`),
+//! An example directory with an `expected.csv` is a case: its program files (`*.awl`, `*.stl`
+//! for S7, `*.omr` for Omron CP; the dialect is detected from the content as the CLI does),
 //! optional `symbols.txt` and `stimulus.csv` are compiled and run for as many scans as the
 //! expectations need, on every engine of the conformance harness. Each expectation row names a
 //! scan and the values (symbols or addresses in the header) after it; the rows are derived by
@@ -10,14 +11,14 @@
 use crate::conformance::harness::ENGINES;
 use std::path::{Path, PathBuf};
 use stljit_core::ir::{Address, Program};
-use stljit_front_s7::{SourceFile, SymbolTable};
+use stljit_front::{Dialect, SourceFile, Symbols};
 use stljit_runtime::Image;
 use stljit_sim::{FnObserver, ScanEvent, Simulation, Stimulus, TimeBase, Until, read_address};
 
 struct Example {
     dir: PathBuf,
     program: Program,
-    symbols: Option<SymbolTable>,
+    symbols: Option<Symbols>,
     stimulus: Stimulus,
     columns: Vec<(String, Address)>,
     rows: Vec<(u64, Vec<u32>)>,
@@ -35,20 +36,28 @@ fn load(dir: &Path) -> Example {
         .unwrap()
         .flatten()
         .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|e| e == "awl" || e == "stl"))
+        .filter(|p| {
+            p.extension()
+                .is_some_and(|e| e == "awl" || e == "stl" || e == "omr")
+        })
         .collect();
     files.sort();
     let sources: Vec<SourceFile> = files.iter().map(|p| read(p)).collect();
     let symbols_path = dir.join("symbols.txt");
     let symbols = symbols_path.exists().then(|| read(&symbols_path));
-    let c = stljit_front_s7::compile(&sources, symbols.as_ref(), stljit_core::ProfileId::A5);
+    let text = String::from_utf8_lossy(&sources[0].bytes).into_owned();
+    let dialect = Dialect::detect(&text)
+        .unwrap_or_else(|| panic!("{}: cannot tell the dialect", dir.display()));
+    let c = dialect.compile(&sources, symbols.as_ref(), dialect.default_profile());
     let program = c
         .program
         .unwrap_or_else(|| panic!("{}: does not compile: {:?}", dir.display(), c.diagnostics));
     let profile = program.profile.profile();
     let table = c.symbols;
     let resolve = |name: &str| {
-        stljit_front_s7::parse_address(name, profile, table.as_ref()).map_err(|e| e.message)
+        dialect
+            .parse_address(name, program.profile, table.as_ref())
+            .map_err(|e| e.message)
     };
     let stimulus_path = dir.join("stimulus.csv");
     let stimulus = if stimulus_path.exists() {

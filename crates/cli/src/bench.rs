@@ -30,9 +30,9 @@ pub(crate) struct Args {
     /// Virtual time per scan in ms.
     #[arg(long, default_value_t = 10)]
     scan_ms: u64,
-    /// Program dialect (see `stljit check --help`).
-    #[arg(long, default_value = "s7")]
-    dialect: String,
+    /// Program dialect (see `stljit check --help`; omitted: detected).
+    #[arg(long)]
+    dialect: Option<String>,
     /// CPU profile (default: the dialect's).
     #[arg(long)]
     cpu: Option<String>,
@@ -142,6 +142,7 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
             dialect: args.dialect.clone(),
             cpu: args.cpu.clone(),
             symbols: args.symbols.clone(),
+            chosen: Default::default(),
         };
         let c = input.compile()?;
         let Some(program) = crate::project::checked_program(&c) else {

@@ -24,18 +24,24 @@ pub(crate) enum Format {
 /// Options shared by every command that compiles programs.
 #[derive(clap::Args)]
 pub(crate) struct Input {
-    /// Program files (plain STL or MicroWIN .awl exports), checked as one project.
+    /// Program files (plain STL, MicroWIN .awl exports or Omron CX-Programmer mnemonics),
+    /// checked as one project.
     #[arg(required = true)]
     pub(crate) files: Vec<PathBuf>,
-    /// Program dialect: s7 (S7-200/A5 STL and MicroWIN exports; the default).
-    #[arg(long, default_value = "s7")]
-    pub(crate) dialect: String,
-    /// CPU profile: a5 (the s7 default) or s7-200.
+    /// Program dialect: s7 (S7-200/A5 STL and MicroWIN exports) or omron (CP-series
+    /// mnemonics). Omitted: detected from the files' content (a note says which was chosen).
+    #[arg(long)]
+    pub(crate) dialect: Option<String>,
+    /// CPU profile: a5 (the s7 default) or s7-200; cp1h (the omron default) or cp1e.
     #[arg(long)]
     pub(crate) cpu: Option<String>,
-    /// MicroWIN symbol table (name<TAB>address[<TAB>comment], or CSV).
+    /// Symbol table: MicroWIN (name<TAB>address[<TAB>comment], or CSV) or CX-Programmer
+    /// (name<TAB>type<TAB>address[<TAB>comment], or CSV).
     #[arg(long)]
     pub(crate) symbols: Option<PathBuf>,
+    /// The dialect once chosen (detection runs and reports once).
+    #[arg(skip)]
+    pub(crate) chosen: std::cell::OnceCell<Dialect>,
 }
 
 fn read(path: &Path) -> anyhow::Result<SourceFile> {
@@ -47,16 +53,61 @@ fn read(path: &Path) -> anyhow::Result<SourceFile> {
 }
 
 impl Input {
-    /// The dialect named by `--dialect`; `Err` is a usage error (exit 2).
+    /// The dialect named by `--dialect`, or the one the files' content shows (a note on stderr
+    /// says so); `Err` is a usage error (exit 2): an unknown name, or files whose dialect cannot
+    /// be told.
     pub(crate) fn dialect(&self) -> anyhow::Result<Dialect> {
-        Dialect::from_name(&self.dialect).with_context(|| {
-            let names: Vec<_> = Dialect::ALL.iter().map(|d| d.name()).collect();
-            format!(
-                "unknown --dialect `{}` (known: {})",
-                self.dialect,
-                names.join(", ")
-            )
-        })
+        if let Some(d) = self.chosen.get() {
+            return Ok(*d);
+        }
+        let d = match &self.dialect {
+            Some(name) => Dialect::from_name(name).with_context(|| {
+                let names: Vec<_> = Dialect::ALL.iter().map(|d| d.name()).collect();
+                format!("unknown --dialect `{name}` (known: {})", names.join(", "))
+            })?,
+            None => self.detect()?,
+        };
+        Ok(*self.chosen.get_or_init(|| d))
+    }
+
+    /// The dialect of the files by their content: every file must show the same one.
+    fn detect(&self) -> anyhow::Result<Dialect> {
+        let mut found: Option<Dialect> = None;
+        for path in &self.files {
+            let bytes =
+                std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+            let text = String::from_utf8_lossy(&bytes);
+            let Some(d) = Dialect::detect(&text) else {
+                anyhow::bail!(
+                    "cannot tell the dialect of {} from its content; pass --dialect {}",
+                    path.display(),
+                    Dialect::ALL
+                        .iter()
+                        .map(|d| d.name())
+                        .collect::<Vec<_>>()
+                        .join(" or --dialect ")
+                );
+            };
+            if let Some(f) = found
+                && f != d
+            {
+                anyhow::bail!(
+                    "{} reads as the {} dialect but an earlier file as {}; pass --dialect",
+                    path.display(),
+                    d.name(),
+                    f.name()
+                );
+            }
+            found = Some(d);
+        }
+        let d = found.context("no program files")?;
+        eprintln!(
+            "note: reading the program as the {} dialect (detected from its content; \
+             --dialect {} says so explicitly)",
+            d.name(),
+            d.name()
+        );
+        Ok(d)
     }
 
     /// Reads every file and compiles the project; `Err` is a usage error (exit 2).
