@@ -120,8 +120,8 @@ impl Lowerer<'_> {
         let op = match what {
             DataBox::Move(double) => {
                 let w = if double { 2 } else { 1 };
-                let src = self.cx.word(&ops[0], w, false);
-                let dst = self.cx.word(&ops[1], w, true);
+                let src = self.cx.data_word(&ops[0], w, false);
+                let dst = self.cx.data_word(&ops[1], w, true);
                 OmronBox::Move {
                     double,
                     src: src?,
@@ -130,8 +130,8 @@ impl Lowerer<'_> {
             }
             DataBox::Compare(double, signed) => {
                 let w = if double { 2 } else { 1 };
-                let lhs = self.cx.word(&ops[0], w, false);
-                let rhs = self.cx.word(&ops[1], w, false);
+                let lhs = self.cx.data_word(&ops[0], w, false);
+                let rhs = self.cx.data_word(&ops[1], w, false);
                 OmronBox::Compare {
                     double,
                     signed,
@@ -141,9 +141,9 @@ impl Lowerer<'_> {
             }
             DataBox::Arith(op) => {
                 let w = op.operand_words();
-                let lhs = self.cx.word(&ops[0], w, false);
-                let rhs = self.cx.word(&ops[1], w, false);
-                let dst = self.cx.word(&ops[2], op.result_words(), true);
+                let lhs = self.cx.data_word(&ops[0], w, false);
+                let rhs = self.cx.data_word(&ops[1], w, false);
+                let dst = self.cx.data_word(&ops[2], op.result_words(), true);
                 OmronBox::Arith {
                     op,
                     lhs: lhs?,
@@ -154,6 +154,20 @@ impl Lowerer<'_> {
         };
         self.class(l, Class::Output);
         self.edged(l.options, |s| s.emit(Op::Omron(op)));
+        Ok(())
+    }
+
+    /// `MOVR(560) S IRn`: `IRn :=` the effective address of `S` (core::omron's §1.5 map; a
+    /// bit's address is `16 · word address + bit`).
+    pub(crate) fn move_address(&mut self, l: &Line) -> Result<(), Reported> {
+        let ops = self.operands(l, 2)?;
+        let ea = self.cx.effective_address(&ops[0]);
+        let ir = self.cx.index_register(&ops[1]);
+        let (ea, ir) = (ea?, ir?);
+        self.class(l, Class::Output);
+        self.edged(l.options, |s| {
+            s.emit(Op::Omron(OmronBox::SetIndex { ea, ir }))
+        });
         Ok(())
     }
 }

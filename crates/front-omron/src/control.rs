@@ -8,8 +8,9 @@ use crate::lower::{Lowerer, PouBuild};
 use crate::mnemonics::Flow;
 use crate::resolve::Reported;
 use std::collections::HashMap;
-use stljit_core::ir::{Op, Pou, PouKind};
-use stljit_core::{LabelId, PouId};
+use stljit_core::ir::{Contact, Loc, Op, Operand, Pou, PouKind};
+use stljit_core::omron::SystemBit;
+use stljit_core::{Area, LabelId, OpIdx, PouId};
 use stljit_source::{Code, Span};
 
 /// Where in the task the current line is.
@@ -55,6 +56,21 @@ pub(crate) struct Control {
     subs: HashMap<u32, PouId>,
     /// `SBS` calls to resolve at the end: POU index, op index, number, place.
     calls: Vec<(usize, usize, u32, Span)>,
+    /// The open FOR loops, innermost last.
+    loops: Vec<OpenLoop>,
+}
+
+/// A FOR(503) waiting for its NEXT(504).
+#[derive(Clone, Debug)]
+struct OpenLoop {
+    /// The index of its `Op::For`.
+    head: usize,
+    /// Where BREAK(514) goes: just after the NEXT.
+    exit: LabelId,
+    span: Span,
+    /// The jump numbers pending when the loop opened: their JME may not be inside the loop
+    /// (a jump into a FOR body would reach NEXT with no FOR active).
+    outside_jumps: Vec<u32>,
 }
 
 impl Lowerer<'_> {
@@ -122,6 +138,16 @@ impl Lowerer<'_> {
                 Code::OmrJmp0,
                 span,
                 format!("line {}: JMP0(515) has no JME0(516)", span.line),
+            );
+        }
+        for lp in std::mem::take(&mut self.control.loops) {
+            self.report_span(
+                Code::OmrInRegion,
+                lp.span,
+                format!(
+                    "line {}: FOR(503) is not closed by NEXT(504) in this program",
+                    lp.span.line
+                ),
             );
         }
         self.control.labels.clear();
@@ -203,6 +229,20 @@ impl Lowerer<'_> {
                         l,
                         Code::OmrJump,
                         format!("jump number {n} defined twice"),
+                    ));
+                }
+                if self
+                    .control
+                    .loops
+                    .iter()
+                    .any(|lp| lp.outside_jumps.contains(&n))
+                {
+                    return Err(self.at_head(
+                        l,
+                        Code::OmrInRegion,
+                        format!(
+                            "JME {n} is inside a FOR(503)–NEXT(504) loop its jump is outside of"
+                        ),
                     ));
                 }
                 let here = self.interlock_id();
@@ -310,6 +350,82 @@ impl Lowerer<'_> {
                 self.close_pou();
                 self.control.pou = 0;
                 self.control.region = Region::AfterSubroutines;
+            }
+            Flow::For => {
+                let ops = self.operands(l, 1)?;
+                let count = self.cx.word(&ops[0], 1, false)?;
+                self.class(l, Class::Unconditional);
+                let depth = self.control.loops.len();
+                if depth >= usize::from(self.cx.profile.max_for_depth) {
+                    return Err(self.at_head(
+                        l,
+                        Code::OmrInRegion,
+                        format!(
+                            "FOR(503) loops nest at most {} deep",
+                            self.cx.profile.max_for_depth
+                        ),
+                    ));
+                }
+                // FOR has no execution condition: its power flow is P_On (under an active
+                // interlock the loop is skipped with everything else). The loop counter is a
+                // private word of the call level's L frame, one per nesting depth.
+                self.emit(Op::Load(Contact::Bit {
+                    bit: SystemBit::On.bit_loc(),
+                    negated: false,
+                }));
+                let pou = self.control.pou;
+                let head = self.pous[pou].pou.ops.len();
+                self.emit(Op::For {
+                    index: Operand::Mem(Loc {
+                        area: Area::L,
+                        offset: 2 * depth as u32,
+                    }),
+                    init: Operand::Const(1),
+                    limit: count,
+                    next: OpIdx::new(head),
+                });
+                let exit = self.new_label();
+                let span = self.head_span(l);
+                let outside_jumps = self.control.jumps.iter().map(|j| j.number).collect();
+                self.control.loops.push(OpenLoop {
+                    head,
+                    exit,
+                    span,
+                    outside_jumps,
+                });
+            }
+            Flow::Next => {
+                self.operands(l, 0)?;
+                self.class(l, Class::Unconditional);
+                let Some(lp) = self.control.loops.pop() else {
+                    return Err(self.at_head(
+                        l,
+                        Code::OmrOutsideRegion,
+                        "NEXT(504) has no FOR(503)".into(),
+                    ));
+                };
+                let pou = self.control.pou;
+                let at = self.pous[pou].pou.ops.len();
+                if let Some(Op::For { next, .. }) = self.pous[pou].pou.ops.get_mut(lp.head) {
+                    *next = OpIdx::new(at);
+                }
+                self.emit(Op::Next {
+                    head: OpIdx::new(lp.head),
+                });
+                self.place(lp.exit);
+            }
+            Flow::Break => {
+                self.operands(l, 0)?;
+                self.class(l, Class::Output);
+                let Some(exit) = self.control.loops.last().map(|lp| lp.exit) else {
+                    return Err(self.at_head(
+                        l,
+                        Code::OmrOutsideRegion,
+                        "BREAK(514) is only allowed inside FOR(503)–NEXT(504)".into(),
+                    ));
+                };
+                // The rest of the pass is skipped and the loop ends: a jump past NEXT.
+                self.emit(Op::Jump(exit));
             }
             Flow::Sbs => {
                 let ops = self.operands(l, 1)?;

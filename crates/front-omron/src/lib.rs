@@ -37,6 +37,17 @@
 //! * `END(001)`: `End`; lines after it are W002 and not lowered. `SBN(092) n … RET(093)`: a
 //!   `PouKind::Subroutine(n)` ending in `Return`; `SBS(091) n`: `Call`. The main POU ends at
 //!   the first SBN or END (its `End` op is emitted at the END line).
+//! * `FOR(503) N`: `Load(P_On); For{index: L word 2·depth, init: 1, limit: N}`; `NEXT(504)`:
+//!   `Next` and a label after it, which `BREAK(514)` (`Jump`) reaches: the rest of the pass
+//!   is skipped and the loop ends. The counter is a private word of the call level's L frame
+//!   (no Omron operand names it); `N` is compared as the IR's FOR does (signed: a count above
+//!   32767 runs the loop zero times) and every pass counts against the scan's loop budget.
+//!   E026: nesting beyond the profile's depth, an unclosed FOR, a JME inside a loop whose jump
+//!   is outside; E027: NEXT/BREAK outside a loop.
+//! * `MOVR(560) S IRn`: `Omron(SetIndex{ea})` with `S`'s effective address
+//!   (`core::omron::effective_address`; a bit's is `16 · word + bit`). Indirect operands
+//!   `@Dn`, `*Dn`, `c,IRn`, `DRm,IRn`, `,IRn+`, `,IRn++`, `,-IRn`, `,--IRn` are
+//!   `Operand::Omron` in MOV/CMP/arithmetic, resolved at run time (`DRn` is a word anywhere).
 //! * Timers: `OmronTimer`, counters: `OmronCounter`; numbers `0000`, `T0000` or `&0`, each
 //!   used once per area (E021); BCD set-value constants are checked (E015).
 //! * `MOV`/`MOVL`: `Omron(Move)`; `CMP`/`CMPL`/`CPS`/`CPSL`: `Omron(Compare)`; §3.6:
@@ -47,8 +58,9 @@
 //!   `P_…` flags are `SystemBit`s, `P_First_Cycle` is A200.11; constants are `Operand::Const`
 //!   in Omron value order (a double constant's low 16 bits are the low word).
 //!
-//! **Not supported yet** (OMR-E011 "not supported yet"): FOR/NEXT/BREAK, STEP/SNXT,
-//! BPRG/BEND, IORF, CCS/CCL, MOVR, indirect `@D`/`*D`, IR/DR operands, TK operands, strings.
+//! **Not supported yet** (OMR-E011 "not supported yet"): STEP/SNXT, BPRG/BEND, IORF,
+//! CCS/CCL, indirect operands outside MOV/CMP/arithmetic (contacts, coils, timer set values),
+//! TK operands, strings.
 //!
 //! **Known deviation:** `!` refreshes one bit, not the whole 16-bit word (§2.5): on a contact
 //! whose bit is in an input word it reads the physical input bit (`Contact::ImmediateInput`),

@@ -278,6 +278,7 @@ impl<'a> Lowerer<'a> {
             Group::Timer(kind) => self.timer(l, kind),
             Group::Counter(kind) => self.counter(l, kind),
             Group::Move(double) => self.data(l, DataBox::Move(double)),
+            Group::MoveAddress => self.move_address(l),
             Group::Compare(double, signed) => self.data(l, DataBox::Compare(double, signed)),
             Group::Arith(op) => self.data(l, DataBox::Arith(op)),
             Group::Control(flow) => self.flow(l, flow),
@@ -536,9 +537,9 @@ fn class_of(group: Group) -> Class {
         Group::Keep => Class::Multi(2),
         Group::Timer(k) if k.conditions() > 1 => Class::Multi(u32::from(k.conditions())),
         Group::Counter(k) => Class::Multi(u32::from(k.conditions())),
-        Group::Control(Flow::Il | Flow::Jmp | Flow::Cjp | Flow::Cjpn | Flow::Jmp0 | Flow::Sbs) => {
-            Class::Output
-        }
+        Group::Control(
+            Flow::Il | Flow::Jmp | Flow::Cjp | Flow::Cjpn | Flow::Jmp0 | Flow::Sbs | Flow::Break,
+        ) => Class::Output,
         Group::Control(_) => Class::Unconditional,
         _ => Class::Output,
     }

@@ -30,6 +30,8 @@ pub(crate) enum Group {
     Counter(OmronCounterKind),
     /// `MOV(021)` (false), `MOVL(498)` (true).
     Move(bool),
+    /// `MOVR(560)`: an effective address into an index register.
+    MoveAddress,
     /// `CMP`/`CMPL`/`CPS`/`CPSL`: (double, signed).
     Compare(bool, bool),
     /// The arithmetic of §3.6.
@@ -76,6 +78,12 @@ pub(crate) enum Flow {
     Sbn,
     /// `RET(093)`.
     Ret,
+    /// `FOR(503) N`.
+    For,
+    /// `NEXT(504)`.
+    Next,
+    /// `BREAK(514)`.
+    Break,
 }
 
 /// The options an instruction accepts (spec §2.5; anything else is E012).
@@ -179,6 +187,7 @@ pub(crate) const TABLE: &[Mnemonic] = &[
     m("CNTRX", Some(548), G::Counter(Ck::CntrX), NONE),
     m("MOV", Some(21), G::Move(false), UP_IMM),
     m("MOVL", Some(498), G::Move(true), UP_IMM),
+    m("MOVR", Some(560), G::MoveAddress, UP),
     m("CMP", Some(20), G::Compare(false, false), IMM),
     m("CMPL", Some(60), G::Compare(true, false), IMM),
     m("CPS", Some(114), G::Compare(false, true), IMM),
@@ -195,15 +204,14 @@ pub(crate) const TABLE: &[Mnemonic] = &[
     m("SBS", Some(91), G::Control(Flow::Sbs), UP),
     m("SBN", Some(92), G::Control(Flow::Sbn), NONE),
     m("RET", Some(93), G::Control(Flow::Ret), NONE),
+    m("FOR", Some(503), G::Control(Flow::For), NONE),
+    m("NEXT", Some(504), G::Control(Flow::Next), NONE),
+    m("BREAK", Some(514), G::Control(Flow::Break), NONE),
 ];
 
 /// Instructions of the CP series this front end recognises but does not lower yet (E011 with
 /// "not supported yet"), with their function codes.
 pub(crate) const NOT_YET: &[(&str, u16)] = &[
-    ("FOR", 503),
-    ("NEXT", 504),
-    ("BREAK", 514),
-    ("MOVR", 560),
     ("STEP", 8),
     ("SNXT", 9),
     ("BPRG", 96),

@@ -3,6 +3,7 @@
 //! symbols ([`FLAGS`], the one list of their names), constants, and the forms that are
 //! recognised but not supported yet (indirect and index-register addressing, TK, strings).
 
+use stljit_core::ir::{IndexOffset, IndexStep, OmronRef};
 use stljit_core::omron::{SystemBit, WordArea};
 
 /// The `P_…` symbols of the condition flags, constants and clock pulses (§1.8), as
@@ -96,6 +97,12 @@ pub(crate) enum Syn {
     FirstCycle,
     /// A constant: its value (negative only for the signed form) and form.
     Const(i64, ConstForm),
+    /// An indirect word operand: `@Dn`, `*Dn`, `c,IRn`, `DRm,IRn`, `,IRn+`, `,--IRn` (§1.7).
+    Indirect(OmronRef),
+    /// `IRn`: an index register (MOVR's destination).
+    IndexReg(u32),
+    /// `DRn`: a data register, a signed word.
+    DataReg(u32),
     /// A form recognised but not supported yet: what it is.
     Unsupported(&'static str),
 }
@@ -162,6 +169,78 @@ fn constant(t: &str) -> Option<Result<Syn, SynError>> {
     Some(Ok(Syn::Const(if neg { -v } else { v }, form)))
 }
 
+/// A DM word number of an indirect operand (the range is checked against the profile later).
+fn small(n: &str) -> Result<u16, SynError> {
+    u16::try_from(dec(n)).map_err(|_| SynError::Malformed("no such DM word"))
+}
+
+/// The register number of `IRn` / `DRn`: 0 to 15.
+fn register(n: &str) -> Result<u8, SynError> {
+    match n.parse::<u8>() {
+        Ok(r) if r <= 15 && digits(n) => Ok(r),
+        _ => Err(SynError::Malformed(
+            "index and data registers are numbered 0 to 15",
+        )),
+    }
+}
+
+/// `offset,register` (upper case): the index-register forms of §1.7.
+fn indexed(offset: &str, reg: &str) -> Result<Syn, SynError> {
+    let (step_pre, rest) = if let Some(r) = reg.strip_prefix("--") {
+        (Some(IndexStep::PreDec2), r)
+    } else if let Some(r) = reg.strip_prefix('-') {
+        (Some(IndexStep::PreDec1), r)
+    } else {
+        (None, reg)
+    };
+    let rest = rest.strip_prefix("IR").ok_or(SynError::Malformed(
+        "expected `,IRn` (an index register) after the comma",
+    ))?;
+    let (n, step_post) = if let Some(n) = rest.strip_suffix("++") {
+        (n, Some(IndexStep::PostInc2))
+    } else if let Some(n) = rest.strip_suffix('+') {
+        (n, Some(IndexStep::PostInc1))
+    } else {
+        (rest, None)
+    };
+    let step = match (step_pre, step_post) {
+        (Some(_), Some(_)) => {
+            return Err(SynError::Malformed(
+                "an index register is either incremented after or decremented before, not both",
+            ));
+        }
+        (Some(s), None) | (None, Some(s)) => s,
+        (None, None) => IndexStep::None,
+    };
+    let ir = register(n)?;
+    let offset = if offset.is_empty() {
+        IndexOffset::Const(0)
+    } else if let Some(m) = offset.strip_prefix("DR") {
+        if step != IndexStep::None {
+            return Err(SynError::Malformed(
+                "a DR offset takes no increment or decrement",
+            ));
+        }
+        IndexOffset::Dr(register(m)?)
+    } else {
+        let body = offset.strip_prefix(['+', '-']).unwrap_or(offset);
+        if !digits(body) || step != IndexStep::None {
+            return Err(SynError::Malformed(
+                "an IR offset is a decimal constant −2048…+2047 (no increment or decrement)",
+            ));
+        }
+        match offset.parse::<i16>() {
+            Ok(c) if (-2048..=2047).contains(&c) => IndexOffset::Const(c),
+            _ => {
+                return Err(SynError::Malformed(
+                    "an IR offset is a decimal constant −2048…+2047",
+                ));
+            }
+        }
+    };
+    Ok(Syn::Indirect(OmronRef::Index { ir, offset, step }))
+}
+
 /// Parses an operand's text (case-insensitive).
 pub(crate) fn parse_syn(text: &str) -> Result<Syn, SynError> {
     let t = text.trim();
@@ -169,23 +248,26 @@ pub(crate) fn parse_syn(text: &str) -> Result<Syn, SynError> {
     if t.starts_with('\'') {
         return Ok(Syn::Unsupported("string constants"));
     }
-    if t.contains(',') {
-        return Ok(Syn::Unsupported("index-register addressing (,IRn)"));
+    if let Some((offset, reg)) = up.rsplit_once(',') {
+        return indexed(offset, reg);
     }
     if let Some(c) = constant(t) {
         return c;
     }
-    if (up.starts_with("@D") || up.starts_with("*D")) && digits(&up[2..]) {
-        return Ok(Syn::Unsupported("indirect DM addressing (@D/*D)"));
+    if let Some(n) = up.strip_prefix("@D").filter(|n| digits(n)) {
+        return Ok(Syn::Indirect(OmronRef::DmBinary(small(n)?)));
     }
-    for (prefix, what) in [
-        ("IR", "index registers (IRn)"),
-        ("DR", "data registers (DRn)"),
-        ("TK", "task flags (TKn)"),
-    ] {
-        if up.strip_prefix(prefix).is_some_and(digits) {
-            return Ok(Syn::Unsupported(what));
-        }
+    if let Some(n) = up.strip_prefix("*D").filter(|n| digits(n)) {
+        return Ok(Syn::Indirect(OmronRef::DmBcd(small(n)?)));
+    }
+    if let Some(n) = up.strip_prefix("IR").filter(|n| digits(n)) {
+        return Ok(Syn::IndexReg(dec(n)));
+    }
+    if let Some(n) = up.strip_prefix("DR").filter(|n| digits(n)) {
+        return Ok(Syn::DataReg(dec(n)));
+    }
+    if up.strip_prefix("TK").is_some_and(digits) {
+        return Ok(Syn::Unsupported("task flags (TKn)"));
     }
     if let Some(n) = up.strip_prefix("TR").filter(|n| digits(n)) {
         return Ok(Syn::Tr(dec(n)));
@@ -288,10 +370,36 @@ mod tests {
         );
         assert_eq!(parse_syn("-5"), Ok(Syn::Const(-5, ConstForm::Signed)));
         assert!(matches!(parse_syn("#"), Err(SynError::Malformed(_))));
-        for t in [
-            "@D20", "*D21", ",IR0+", "+2,IR0", "IR0", "DR1", "TK0", "'AB'",
-        ] {
+        for t in ["TK0", "'AB'"] {
             assert!(matches!(parse_syn(t), Ok(Syn::Unsupported(_))), "{t}");
+        }
+    }
+
+    #[test]
+    fn indirect_and_index_register_forms() {
+        use IndexStep::*;
+        let ix = |ir, offset, step| Ok(Syn::Indirect(OmronRef::Index { ir, offset, step }));
+        // Spec §1.7 and the seed's examples.
+        assert_eq!(parse_syn("@D20"), Ok(Syn::Indirect(OmronRef::DmBinary(20))));
+        assert_eq!(parse_syn("*D21"), Ok(Syn::Indirect(OmronRef::DmBcd(21))));
+        assert_eq!(parse_syn(",IR0"), ix(0, IndexOffset::Const(0), None));
+        assert_eq!(parse_syn("+5,IR0"), ix(0, IndexOffset::Const(5), None));
+        assert_eq!(
+            parse_syn("-2048,IR15"),
+            ix(15, IndexOffset::Const(-2048), None)
+        );
+        assert_eq!(parse_syn("DR0,IR0"), ix(0, IndexOffset::Dr(0), None));
+        assert_eq!(parse_syn(",IR0++"), ix(0, IndexOffset::Const(0), PostInc2));
+        assert_eq!(parse_syn(",ir1+"), ix(1, IndexOffset::Const(0), PostInc1));
+        assert_eq!(parse_syn(",--IR0"), ix(0, IndexOffset::Const(0), PreDec2));
+        assert_eq!(parse_syn(",-IR3"), ix(3, IndexOffset::Const(0), PreDec1));
+        assert_eq!(parse_syn("IR2"), Ok(Syn::IndexReg(2)));
+        assert_eq!(parse_syn("DR1"), Ok(Syn::DataReg(1)));
+        for bad in ["+2048,IR0", ",IR16", ",--IR0+", "5,D0", "DR0,IR0+"] {
+            assert!(
+                matches!(parse_syn(bad), Err(SynError::Malformed(_))),
+                "{bad}"
+            );
         }
     }
 }

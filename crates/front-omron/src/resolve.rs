@@ -6,8 +6,10 @@
 use crate::lexer::Tok;
 use crate::operand::{ConstForm, Syn, SynError, area_name, area_prefix, parse_syn};
 use crate::symbols::{SymTarget, SymbolTable};
-use stljit_core::ir::{BitLoc, Loc, Operand};
-use stljit_core::omron::{FIRST_CYCLE, WordArea, bit_of_word, word_loc};
+use stljit_core::ir::{BitLoc, Loc, OmronRef, Operand};
+use stljit_core::omron::{
+    EaRegion, FIRST_CYCLE, WordArea, bit_of_word, effective_address, word_loc,
+};
 use stljit_core::{Area, CpuProfile, FileId};
 use stljit_source::{Code, Diagnostic, Span, clip};
 
@@ -207,7 +209,10 @@ impl Cx<'_> {
                 ));
             }
             Syn::Word { .. } => return Err(self.kind(tok, "a bit (word.bit, e.g. 0.00 or W3.15)")),
-            Syn::Const(..) | Syn::Unsupported(_) => return Err(self.kind(tok, "a bit")),
+            Syn::Indirect(_) => return Err(self.not_yet(tok, "indirect bit operands")),
+            Syn::Const(..) | Syn::Unsupported(_) | Syn::IndexReg(_) | Syn::DataReg(_) => {
+                return Err(self.kind(tok, "a bit"));
+            }
         };
         if write && b.area == Area::I {
             let line = self.line;
@@ -298,8 +303,75 @@ impl Cx<'_> {
                     format!("line {line}: TR{n} may only be used with OUT and LD"),
                 ))
             }
-            Syn::Unsupported(_) => Err(self.kind(tok, "a word")),
+            Syn::DataReg(m) if words == 1 => Ok(Operand::Mem(Loc {
+                area: Area::DataReg,
+                offset: 2 * m,
+            })),
+            Syn::Indirect(_) => {
+                Err(self.not_yet(tok, "indirect operands outside MOV, CMP and the arithmetic"))
+            }
+            Syn::Unsupported(_) | Syn::IndexReg(_) | Syn::DataReg(_) => {
+                Err(self.kind(tok, "a word"))
+            }
         }
+    }
+
+    /// A word operand of a data box (MOV, CMP, arithmetic): as [`Cx::word`], and also the
+    /// indirect forms of §1.7 (their DM pointer word range-checked here; the address they
+    /// name is resolved at run time, AER when illegal).
+    pub(crate) fn data_word(
+        &mut self,
+        tok: &Tok,
+        words: u32,
+        write: bool,
+    ) -> Result<Operand, Reported> {
+        match parse_syn(&tok.text) {
+            Ok(Syn::Indirect(r)) => {
+                if let OmronRef::DmBinary(n) | OmronRef::DmBcd(n) = r {
+                    self.word_loc(tok, WordArea::Dm, u32::from(n))?;
+                }
+                Ok(Operand::Omron(r))
+            }
+            _ => self.word(tok, words, write),
+        }
+    }
+
+    /// The effective address of a word, bit, timer or counter operand (MOVR's source).
+    pub(crate) fn effective_address(&mut self, tok: &Tok) -> Result<u32, Reported> {
+        let syn = self.syn(tok)?;
+        let (region, word, bit) = match syn {
+            Syn::Word { area, word } => (EaRegion::Word(area), word, None),
+            Syn::Bit { area, word, bit } if bit <= 15 => (EaRegion::Word(area), word, Some(bit)),
+            Syn::Timer(n) => (EaRegion::TimerPv, n, None),
+            Syn::Counter(n) => (EaRegion::CounterPv, n, None),
+            _ => return Err(self.kind(tok, "a word, bit, timer or counter (its address)")),
+        };
+        let Some(ea) = effective_address(self.profile, region, word) else {
+            return Err(self.kind(tok, "an address of this model's memory"));
+        };
+        Ok(match bit {
+            Some(b) => 16 * ea + b,
+            None => ea,
+        })
+    }
+
+    /// An index register `IRn` (0..=15).
+    pub(crate) fn index_register(&mut self, tok: &Tok) -> Result<u8, Reported> {
+        match self.syn(tok)? {
+            Syn::IndexReg(n) if n <= 15 => Ok(n as u8),
+            Syn::IndexReg(_) => Err(self.outside(tok, "IR", 15)),
+            _ => Err(self.kind(tok, "an index register (IR0 to IR15)")),
+        }
+    }
+
+    /// "{what} are not supported yet" (OMR-E011).
+    fn not_yet(&mut self, tok: &Tok, what: &str) -> Reported {
+        let (line, mn) = (self.line, self.mn.clone());
+        self.report(
+            Code::OmrInstruction,
+            tok,
+            format!("line {line}: {mn}: {what} are not supported yet"),
+        )
     }
 
     /// A constant of `words` words (1 or 2) as its bit pattern (§1.6 ranges).

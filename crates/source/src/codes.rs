@@ -172,7 +172,11 @@ codes! {
     OmrJump = "OMR-E023", Error, "a jump has no JME after it, a JME is defined twice, or a jump crosses an IL region";
     /// JMP0 without JME0.
     OmrJmp0 = "OMR-E024", Error, "JMP0(515) has no JME0(516)";
-    /// Code after the subroutine region.
+    /// A FOR–NEXT region broken.
+    OmrInRegion = "OMR-E026", Error, "an instruction is not allowed inside its region (a FOR–NEXT loop too deep, unclosed, or entered by a jump)";
+    /// An instruction allowed only inside a region.
+    OmrOutsideRegion = "OMR-E027", Error, "NEXT(504) or BREAK(514) outside a FOR(503)–NEXT(504) loop";
+    /// Code between the subroutine region and END.
     OmrAfterSubroutines = "OMR-W028", Warning, "code between the subroutine region and END never runs";
     /// Subroutine placement.
     OmrSubroutine = "OMR-E029", Error, "a subroutine region is misplaced, nested, unclosed or defined twice";
