@@ -276,6 +276,16 @@ impl SystemBit {
         self as u32
     }
 
+    /// The value of a constant system bit at `bit` (`P_On` 1, `P_Off` 0), which every scan
+    /// writes before the program runs and no program can write (the verifier rejects writes to
+    /// [`Area::Flags`]), so compiled code may take it as a constant.
+    pub fn constant_at(bit: BitLoc) -> Option<bool> {
+        [(SystemBit::On, true), (SystemBit::Off, false)]
+            .into_iter()
+            .find(|(b, _)| b.bit_loc() == bit)
+            .map(|(_, v)| v)
+    }
+
     /// Its location in the image.
     pub fn bit_loc(self) -> BitLoc {
         BitLoc {

@@ -45,19 +45,18 @@ pub type TimerBytes = ([u8; 2], u8, [u8; TIMER_STATE_SIZE as usize]);
 /// One Omron counter's bytes: PV, completion flag, private state.
 pub type CounterBytes = ([u8; 2], u8, [u8; COUNTER_STATE_SIZE as usize]);
 
-/// Executes Omron timer instruction `kind` on one timer's bytes `t` at virtual time `t_ms` with
+/// Executes Omron timer instruction `kind` on one timer's bytes at virtual time `t_ms` with
 /// the logic stack `stack` (bit i = `S_i`: the TIM family's execution condition is `S0`; TTIM's
 /// timer input `S1`, reset `S0`) under `gate`, with set value `sv` (the raw word); returns the
 /// condition-flag writes. Both engines' timer paths end here.
 pub fn timer_step(
-    t: &mut TimerBytes,
+    (value, flag, state): (&mut [u8; 2], &mut u8, &mut [u8; TIMER_STATE_SIZE as usize]),
     t_ms: u64,
     kind: OmronTimerKind,
     stack: u16,
     gate: Gate,
     sv: u16,
 ) -> FlagWrites {
-    let (value, flag, state) = t;
     let last = |s: &[u8; TIMER_STATE_SIZE as usize]| {
         let at = TimerState::LAST as usize;
         let mut b = [0; 8];
@@ -87,17 +86,20 @@ pub fn timer_step(
     writes
 }
 
-/// Executes Omron counter instruction `kind` on one counter's bytes `c` with the logic stack
+/// Executes Omron counter instruction `kind` on one counter's bytes with the logic stack
 /// `stack` (CNT: count `S1`, reset `S0`; CNTR: increment `S2`, decrement `S1`, reset `S0`)
 /// under `gate`, set value `sv`; returns the condition-flag writes.
 pub fn counter_step(
-    c: &mut CounterBytes,
+    (value, flag, state): (
+        &mut [u8; 2],
+        &mut u8,
+        &mut [u8; COUNTER_STATE_SIZE as usize],
+    ),
     kind: OmronCounterKind,
     stack: u16,
     gate: Gate,
     sv: u16,
 ) -> FlagWrites {
-    let (value, flag, state) = c;
     let mut counter = OmronCounter {
         pv: u16::from_be_bytes(*value),
         flag: *flag != 0,
@@ -116,6 +118,36 @@ pub fn counter_step(
     state[CounterState::PREV_UP as usize] = u8::from(counter.prev_count);
     state[CounterState::PREV_DOWN as usize] = u8::from(counter.prev_dec);
     writes
+}
+
+/// What a TIM-family timer with the constant set value `sv` does when its execution condition
+/// is OFF under an open gate, if that does not depend on the timer's previous state: the PV
+/// word, the completion flag, `running` and the flag writes. Compiled code uses it to skip the
+/// call on the most frequent path; it is `timer_step` itself, run on two different states.
+pub fn timer_reset_outcome(kind: OmronTimerKind, sv: u16) -> Option<([u8; 2], u8, u8, FlagWrites)> {
+    if kind.totalizing() {
+        return None;
+    }
+    let outcome = |start: TimerBytes| {
+        let mut t = start;
+        let w = timer_step((&mut t.0, &mut t.1, &mut t.2), 0, kind, 0, Gate::Open, sv);
+        let run = t.2[TimerState::RUN as usize];
+        // Everything but the fields reported must be as it was.
+        let rest_kept =
+            t.2.iter()
+                .zip(start.2.iter())
+                .enumerate()
+                .all(|(i, (a, b))| i == TimerState::RUN as usize || a == b);
+        rest_kept.then_some((t.0, t.1, run, w))
+    };
+    let busy = {
+        let mut state = [0xA5u8; TIMER_STATE_SIZE as usize];
+        state[TimerState::RUN as usize] = 1;
+        ([0x12, 0x34], 1, state)
+    };
+    let idle = ([0, 0], 0, [0u8; TIMER_STATE_SIZE as usize]);
+    let a = outcome(busy)?;
+    (outcome(idle)? == a).then_some(a)
 }
 
 /// Copies `N` image bytes from `at` (zeros past the end, which the callers' range checks rule
@@ -150,8 +182,8 @@ pub fn timer(
     }
     let [(value, _), (bit, _), (state, _)] = layout.timer_bytes(n);
     let t_ms = mem::get_u64_ne(img, layout.sched(Sched::T_NOW));
-    let mut t = (take(img, value), mem::get_u8(img, bit), take(img, state));
-    let writes = timer_step(&mut t, t_ms, kind, stack, gate, sv);
+    let mut t: TimerBytes = (take(img, value), mem::get_u8(img, bit), take(img, state));
+    let writes = timer_step((&mut t.0, &mut t.1, &mut t.2), t_ms, kind, stack, gate, sv);
     put(img, value, &t.0);
     mem::set_u8(img, bit, t.1);
     put(img, state, &t.2);
@@ -172,8 +204,8 @@ pub fn counter(
         return;
     }
     let [(value, _), (bit, _), (state, _)] = layout.counter_bytes(n);
-    let mut c = (take(img, value), mem::get_u8(img, bit), take(img, state));
-    let writes = counter_step(&mut c, kind, stack, gate, sv);
+    let mut c: CounterBytes = (take(img, value), mem::get_u8(img, bit), take(img, state));
+    let writes = counter_step((&mut c.0, &mut c.1, &mut c.2), kind, stack, gate, sv);
     put(img, value, &c.0);
     mem::set_u8(img, bit, c.1);
     put(img, state, &c.2);

@@ -106,6 +106,9 @@ pub enum OpRule {
     WriteToConstant,
     /// A timer or counter op whose object is not declared with that kind.
     UndeclaredObject,
+    /// An op writes the Omron condition flags or system bits (`Area::Flags`), which only the
+    /// scan cycle and the Omron boxes' own flag rules may change.
+    WriteToSystemBits,
     /// An op of one PLC family's execution model (Omron interlocks, timers, counters and
     /// flag boxes; S7 SCR segments) in a program for a profile of the other.
     WrongFamily,
@@ -153,6 +156,9 @@ impl fmt::Display for VerifyError {
                     OpRule::WriteToConstant => f.write_str("writes a constant"),
                     OpRule::UndeclaredObject => {
                         f.write_str("timer or counter not declared with this kind")
+                    }
+                    OpRule::WriteToSystemBits => {
+                        f.write_str("writes the Omron condition flags or system bits")
                     }
                     OpRule::WrongFamily => {
                         f.write_str("op of another PLC family than the program's profile")
@@ -307,12 +313,19 @@ fn locations(program: &Program, layout: &Layout, op: &Op) -> Result<(), OpRule> 
                 }
             }
         }
+        if u.access != Access::Read && matches!(u.operand, Operand::Mem(l) if l.area == Area::Flags)
+        {
+            return Err(OpRule::WriteToSystemBits);
+        }
         let constant = matches!(u.operand, Operand::Const(_) | Operand::AddressOf(_));
         if constant && u.access != Access::Read {
             return Err(OpRule::WriteToConstant);
         }
     }
-    for (b, _) in op.bit_uses() {
+    for (b, access) in op.bit_uses() {
+        if access != Access::Read && b.area == Area::Flags {
+            return Err(OpRule::WriteToSystemBits);
+        }
         if b.bit > 7 {
             return Err(OpRule::OutOfArea {
                 area: b.area,

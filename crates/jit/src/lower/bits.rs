@@ -26,6 +26,10 @@ impl Lower<'_, '_> {
 
     /// Reads a bit as a lazy boolean.
     pub(crate) fn read_bit(&mut self, bit: BitLoc) -> B {
+        // `P_On`/`P_Off` are constants of the scan (no program writes them).
+        if let Some(k) = stljit_core::omron::SystemBit::constant_at(bit) {
+            return B::K(k);
+        }
         let a = self.bit_byte(bit);
         let (v, at) = self.test_byte(a);
         B::Bit {

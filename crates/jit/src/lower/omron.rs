@@ -9,10 +9,11 @@ use super::value::{B, Stack};
 use crate::helpers::Helper;
 use cranelift_codegen::ir::{InstBuilder, Value, condcodes::IntCC, types::I32};
 use stljit_core::ir::{OmronArith, OmronBox, OmronCounterKind, OmronTimerKind, Operand};
-use stljit_core::layout::Sched;
+use stljit_core::layout::{Sched, TimerState};
 use stljit_core::{Area, FatalCode, Width};
 use stljit_runtime::ffi::{OMRON_ARITH_HAS_RESULT, OMRON_CTL_KIND_SHIFT, OMRON_NO_OPERAND};
 use stljit_runtime::omron::Flag;
+use stljit_runtime::omron::FlagWrites;
 use stljit_runtime::omron::data;
 use stljit_runtime::omron_image;
 
@@ -47,11 +48,55 @@ impl Lower<'_, '_> {
         if u32::from(n) >= l.area_size(Area::TimerBit) {
             return; // the verifier keeps timer numbers inside the profile
         }
-        let sv = self.omron_value(sv, false);
         let [v, b, s] = l.timer_bytes(n).map(|(off, len)| (Addr::img(off), len));
         let ranges = [v, b, s, (self.sched(Sched::T_NOW), 8)];
         let code = omron_kind_code(OmronTimerKind::ALL, kind);
-        self.omron_fast(Helper::OmronTimerFast, &ranges, code, sv);
+        // EC OFF under an open gate with a constant set value is the runtime's reset, whose
+        // outcome it computes now (`timer_reset_outcome`): stored inline, no call.
+        let reset = match (*sv, self.block.gate) {
+            (Operand::Const(k), B::K(true)) => omron_image::timer_reset_outcome(kind, k as u16),
+            _ => None,
+        };
+        let sv = self.omron_value(sv, false);
+        match (reset, self.block.stack.top()) {
+            (Some(r), B::K(false)) => self.store_timer_reset(n, r),
+            (Some(r), ec) if ec != B::K(true) => {
+                let c = ec.cond(&mut self.b);
+                self.diamond(
+                    c,
+                    |s| s.omron_fast(Helper::OmronTimerFast, &ranges, code, sv),
+                    |s| s.store_timer_reset(n, r),
+                );
+            }
+            _ => self.omron_fast(Helper::OmronTimerFast, &ranges, code, sv),
+        }
+    }
+
+    /// Stores a timer reset computed at compile time: PV, flag, `running` and the flag writes.
+    fn store_timer_reset(&mut self, n: u16, (pv, flag, run, w): ([u8; 2], u8, u8, FlagWrites)) {
+        let l = self.env.layout;
+        let [(v, _), (b, _), (s, _)] = l.timer_bytes(n);
+        for (at, byte) in [
+            (v, pv[0]),
+            (v + 1, pv[1]),
+            (b, flag),
+            (s + TimerState::RUN, run),
+        ] {
+            let k = self.iconst(I32, i64::from(byte));
+            self.set_byte(Addr::img(at), k);
+        }
+        for byte in 0..2u32 {
+            let m = (w.mask >> (8 * byte)) & 0xFF;
+            if m == 0 {
+                continue;
+            }
+            let val = (w.value >> (8 * byte)) & m;
+            let a = self.area_addr(Area::Flags, byte);
+            let old = self.byte(a);
+            let kept = self.b.ins().band_imm_s(old, i64::from(!m & 0xFF));
+            let new = self.b.ins().bor_imm_s(kept, i64::from(val));
+            self.set_byte(a, new);
+        }
     }
 
     /// `CNT`…`CNTRX n sv`: as [`Lower::omron_timer`].
@@ -128,7 +173,8 @@ impl Lower<'_, '_> {
                 return;
             }
             OmronBox::Arith { op, lhs, rhs, dst } if op.result_words() <= 2 => {
-                self.omron_free(pf, |s| s.omron_arith(op, &lhs, &rhs, &dst));
+                // A branch, not branch-free: the call is skipped where PF is 0.
+                self.guarded(pf, |s| s.omron_arith(op, &lhs, &rhs, &dst));
                 return;
             }
             OmronBox::Arith { .. } | OmronBox::SetIndex { .. } => {}
@@ -371,23 +417,7 @@ impl Lower<'_, '_> {
             let v = self.b.ins().select(has, stored, old);
             self.write_static(a, width, v);
         }
-        self.apply_packed_flags_pred(packed);
-    }
-
-    /// [`Lower::apply_packed_flags`] inside a branch-free box (the old bytes kept where PF is
-    /// 0).
-    fn apply_packed_flags_pred(&mut self, packed: Value) {
-        for byte in 0..2u32 {
-            let a = self.area_addr(Area::Flags, byte);
-            let old = self.byte(a);
-            let m = self.b.ins().ushr_imm_s(packed, i64::from(16 + 8 * byte));
-            let m = self.b.ins().band_imm_s(m, 0xFF);
-            let v = self.b.ins().ushr_imm_s(packed, i64::from(8 * byte));
-            let v = self.b.ins().band_imm_s(v, 0xFF);
-            let kept = self.b.ins().band_not(old, m);
-            let new = self.b.ins().bor(kept, v);
-            self.set_byte_pred(a, new);
-        }
+        self.apply_packed_flags(packed);
     }
 
     /// `v` with its 16-bit halves swapped: an Omron double word to the IR's big-endian dword

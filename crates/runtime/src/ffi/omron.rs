@@ -65,9 +65,7 @@ pub unsafe extern "C" fn stljit_rt_omron_timer_fast(
         )
     };
     let run = AssertUnwindSafe(|| {
-        let mut t = (*value, *flag, *state);
-        let w = omron_image::timer_step(&mut t, now, kind, stack, gate, sv as u16);
-        (*value, *flag, *state) = t;
+        let w = omron_image::timer_step((value, flag, state), now, kind, stack, gate, sv as u16);
         pack_flag_writes(w)
     });
     catch_unwind(run).unwrap_or(0)
@@ -98,9 +96,7 @@ pub unsafe extern "C" fn stljit_rt_omron_counter_fast(
         )
     };
     let run = AssertUnwindSafe(|| {
-        let mut c = (*value, *flag, *state);
-        let w = omron_image::counter_step(&mut c, kind, stack, gate, sv as u16);
-        (*value, *flag, *state) = c;
+        let w = omron_image::counter_step((value, flag, state), kind, stack, gate, sv as u16);
         pack_flag_writes(w)
     });
     catch_unwind(run).unwrap_or(0)

@@ -21,12 +21,15 @@ fn decode(v: u64, digits: u32) -> Option<u64> {
     Some(out)
 }
 
-/// `v` as `digits` BCD digits, or `None` if it needs more digits.
+/// `v` as `digits` BCD digits, or `None` if it needs more digits. The loop stops at the last
+/// non-zero digit (most values are small; the remaining digits are 0).
 fn encode(mut v: u64, digits: u32) -> Option<u64> {
     let mut out = 0u64;
-    for i in 0..digits {
+    let mut i = 0;
+    while v != 0 && i < digits {
         out |= (v % 10) << (4 * i);
         v /= 10;
+        i += 1;
     }
     (v == 0).then_some(out)
 }
