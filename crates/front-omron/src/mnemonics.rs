@@ -322,6 +322,7 @@ mod tests {
         }
         assert_eq!(lookup("+BL").map(|m| m.code), Some(Some(405)));
         assert_eq!(lookup("KEEP").map(|m| m.code), Some(Some(11)));
-        assert!(lookup("FOR").is_none());
+        assert_eq!(lookup("FOR").map(|m| m.code), Some(Some(503)));
+        assert!(lookup("STEP").is_none());
     }
 }

@@ -2,7 +2,7 @@
 //! no error, and every compiled program passes the IR verifier.
 
 use stljit_core::ProfileId;
-use stljit_core::ir::verify;
+use stljit_core::ir::{OmronBox, Op, Operand, verify};
 use stljit_front_omron::{Code, Severity, compile_str};
 
 fn spec(name: &str) -> String {
@@ -22,17 +22,18 @@ fn errors(text: &str) -> Vec<(Code, u32, String)> {
 #[test]
 fn every_section_6_program_compiles_and_verifies() {
     for name in [
-        "s6_1", "s6_2", "s6_3", "s6_4", "s6_5", "s6_6", "s6_7", "s6_8", "s6_9",
+        "s6_1", "s6_2", "s6_3", "s6_4", "s6_5", "s6_6", "s6_7", "s6_8", "s6_9", "s6_10",
     ] {
         let text = spec(name);
+        assert!(errors(&text).is_empty(), "{name}: {:#?}", errors(&text));
         for profile in [ProfileId::Cp1h, ProfileId::Cp1e] {
             let c = compile_str(name, &text, profile);
-            let errs: Vec<_> = c
-                .diagnostics
-                .iter()
-                .filter(|d| d.severity == Severity::Error)
-                .collect();
-            assert!(errs.is_empty(), "{name} on {profile:?}: {errs:#?}");
+            assert_eq!(
+                c.error_count(),
+                0,
+                "{name} on {profile:?}: {:#?}",
+                c.diagnostics
+            );
             let p = c.program.expect("no errors, so a program");
             verify(&p).unwrap_or_else(|e| panic!("{name}: {e}"));
         }
@@ -53,30 +54,29 @@ fn section_6_8_part_c_warns_about_the_flag_at_circuit_start() {
 }
 
 #[test]
-fn section_6_10_compiles_except_its_indirect_and_index_register_lines() {
-    // MOVR, `@D20`, `*D21` and `,IR0+` / `+2,IR0` are not supported yet (OMR-E011); every
-    // other line of §6.10 compiles.
-    let text = spec("s6_10");
-    let errs = errors(&text);
-    let lines: Vec<_> = text.lines().collect();
-    assert_eq!(errs.len(), 6, "{errs:#?}");
-    for (code, line, msg) in &errs {
-        assert_eq!(*code, Code::OmrInstruction, "{msg}");
-        assert!(msg.contains("not supported yet"), "{msg}");
-        let l = lines[*line as usize - 1];
-        assert!(
-            l.contains("MOVR") || l.contains("@D") || l.contains("*D") || l.contains("IR0"),
-            "{l}"
-        );
-    }
-    let supported: String = lines
-        .iter()
-        .filter(|l| {
-            !(l.contains("MOVR") || l.contains("@D") || l.contains("*D") || l.contains("IR0"))
-        })
-        .map(|l| format!("{l}\n"))
-        .collect();
-    let c = compile_str("s6_10", &supported, ProfileId::Cp1h);
+fn section_6_10_compiles_with_its_indirect_and_index_register_lines() {
+    // MOVR, `@D20`, `*D21`, `,IR0+` and `+2,IR0` (§1.7) lower to Omron indirect operands and
+    // `SetIndex`: the whole of §6.10 compiles and verifies.
+    let c = compile_str("s6_10", &spec("s6_10"), ProfileId::Cp1h);
     assert_eq!(c.error_count(), 0, "{:#?}", c.diagnostics);
-    verify(&c.program.unwrap()).unwrap();
+    let p = c.program.unwrap();
+    verify(&p).unwrap();
+    let ops = &p.pous[0].ops;
+    assert!(
+        ops.iter()
+            .any(|o| matches!(o, Op::Omron(OmronBox::SetIndex { ir: 0, .. })))
+    );
+    let refs = ops
+        .iter()
+        .filter(|o| {
+            matches!(
+                o,
+                Op::Omron(OmronBox::Move {
+                    dst: Operand::Omron(_),
+                    ..
+                })
+            )
+        })
+        .count();
+    assert_eq!(refs, 5, "@D20, *D21, ,IR0+ twice, +2,IR0");
 }
