@@ -6,25 +6,11 @@ use crate::lexer::Tok;
 use crate::operand::{FLAGS, Syn, area_prefix};
 use crate::resolve::Cx;
 use crate::symbols::SymbolTable;
-use std::fmt;
 use stljit_core::ir::{Address, Operand};
 use stljit_core::omron::{word_bit, word_of};
 use stljit_core::{Area, FileId, ProfileId, Width};
 
-/// Why an address was rejected.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct AddressError {
-    /// The message, e.g. "W600 is outside W (0–511) on CP1H".
-    pub message: String,
-}
-
-impl fmt::Display for AddressError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
-    }
-}
-
-impl std::error::Error for AddressError {}
+pub use stljit_source::AddressError;
 
 /// Parses one address (or a symbol of `symbols`) against the Omron `profile`. Words are
 /// `Address::Value` of width `Word`; `Tn`/`Cn` are the completion flags.

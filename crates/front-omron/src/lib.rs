@@ -89,7 +89,7 @@ pub use symbols::SymbolTable;
 
 use stljit_core::ir::Program;
 use stljit_core::{FileId, ProfileId};
-use stljit_source::{Span, decode_file};
+use stljit_source::{Span, decode_project};
 
 /// What compiling an Omron project produced (with its CX-Programmer symbol table).
 pub type Compilation = stljit_source::Compilation<SymbolTable>;
@@ -104,20 +104,7 @@ pub fn compile(
     symbols: Option<&SourceFile>,
     profile: ProfileId,
 ) -> Compilation {
-    let mut diags = Vec::new();
-    let mut sources = Sources::default();
-    for (i, f) in files.iter().enumerate() {
-        let text = decode_file(f, FileId::new(i), &mut diags);
-        sources.files.push(text);
-    }
-    let table = symbols.map(|s| {
-        let id = FileId::new(files.len());
-        let text = decode_file(s, id, &mut diags);
-        let (table, d) = SymbolTable::parse(&text.text, id);
-        diags.extend(d);
-        sources.files.push(text);
-        table
-    });
+    let (sources, table, diags) = decode_project(files, symbols, SymbolTable::parse);
     let cx = resolve::Cx {
         profile: profile.profile(),
         symbols: table.as_ref(),
@@ -178,12 +165,5 @@ pub fn compile(
 
 /// Compiles one UTF-8 text as a single file named `name` (for tests and tools).
 pub fn compile_str(name: &str, text: &str, profile: ProfileId) -> Compilation {
-    compile(
-        &[SourceFile {
-            name: name.to_owned(),
-            bytes: text.as_bytes().to_vec(),
-        }],
-        None,
-        profile,
-    )
+    compile(&[SourceFile::from_text(name, text)], None, profile)
 }

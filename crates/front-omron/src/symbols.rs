@@ -3,9 +3,9 @@
 //! header line. Names may be any text, including non-ASCII.
 
 use crate::operand::{Syn, SynError, parse_syn};
-use std::collections::HashMap;
 use stljit_core::FileId;
-use stljit_source::{Code, Diagnostic, Span, clip};
+use stljit_source::Diagnostic;
+use stljit_source::symbols::{self, SymbolMap};
 
 /// What a symbol stands for.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -19,7 +19,7 @@ pub(crate) enum SymTarget {
 /// A parsed symbol table: names to addresses.
 #[derive(Clone, Debug, Default)]
 pub struct SymbolTable {
-    map: HashMap<String, (SymTarget, u32)>,
+    map: SymbolMap<SymTarget>,
 }
 
 impl SymbolTable {
@@ -35,12 +35,12 @@ impl SymbolTable {
 
     /// Every symbol name, in no particular order.
     pub fn names(&self) -> impl Iterator<Item = &str> {
-        self.map.keys().map(String::as_str)
+        self.map.names()
     }
 
     /// The symbol's target.
     pub(crate) fn get(&self, name: &str) -> Option<&SymTarget> {
-        self.map.get(name).map(|(t, _)| t)
+        self.map.get(name)
     }
 
     /// Parses a symbol-table text (already decoded). Bad lines become diagnostics on `file`;
@@ -48,155 +48,54 @@ impl SymbolTable {
     pub fn parse(text: &str, file: FileId) -> (SymbolTable, Vec<Diagnostic>) {
         let mut table = SymbolTable::default();
         let mut diags = Vec::new();
-        let mut first = true;
-        for (i, raw) in text.split('\n').enumerate() {
-            let number = u32::try_from(i + 1).unwrap_or(u32::MAX);
-            let line = raw.strip_suffix('\r').unwrap_or(raw);
-            let trimmed = line.trim();
-            if trimmed.is_empty() || trimmed.starts_with("//") || trimmed.starts_with(';') {
-                continue;
-            }
-            let fields = split_fields(line);
-            if std::mem::take(&mut first) && is_header(&fields) {
-                continue;
-            }
-            let span = |f: &str| Span {
-                file,
-                line: number,
-                col: col_of(line, f),
-                len: u32::try_from(f.chars().count()).unwrap_or(u32::MAX),
-            };
+        for l in symbols::lines(text, file) {
             // Name, data type, address: the address is the third column, or the second when
             // a line has only two.
-            let name = fields.first().copied().unwrap_or(trimmed);
-            let addr = match fields.len() {
+            let name = l.first();
+            let addr = match l.fields.len() {
                 0 | 1 => None,
-                2 => Some(fields[1]),
-                _ => Some(fields[2]),
+                2 => Some(l.fields[1]),
+                _ => Some(l.fields[2]),
             };
             let Some(addr) = addr else {
-                diags.push(
-                    Diagnostic::new(Code::SymbolAddress, span(name), name, "symbol without an address")
-                        .help("write Name<TAB>Data type<TAB>Address[<TAB>Comment] or Name,Type,Address[,Comment]"),
-                );
+                diags.push(symbols::missing_address(
+                    &l,
+                    "write Name<TAB>Data type<TAB>Address[<TAB>Comment] or Name,Type,Address[,Comment]",
+                ));
                 continue;
             };
-            let name_text = unquote(name);
-            let target = match parse_syn(&unquote(addr)) {
+            let name_text = symbols::unquote(name);
+            let target = match parse_syn(&symbols::unquote(addr)) {
                 Ok(Syn::Const(..)) => Err("a symbol cannot name a constant"),
+                Ok(Syn::Indirect(_)) => Err("a symbol names a direct address"),
                 Ok(Syn::Unsupported(what)) => Err(what),
                 Ok(s) => Ok(s),
                 Err(SynError::Malformed(m)) => Err(m),
                 Err(SynError::NotAddress) => Err("not an Omron address"),
             };
-            let target = match target {
-                Ok(t) => t,
+            let result = match target {
+                Ok(t) => table.map.define(&l, name, name_text, SymTarget::Operand(t)),
                 Err(why) => {
-                    table
-                        .map
-                        .entry(name_text.clone())
-                        .or_insert((SymTarget::Invalid, number));
-                    diags.push(
-                        Diagnostic::new(
-                            Code::SymbolAddress,
-                            span(addr),
-                            addr,
-                            format!("`{}` is not a valid address for symbol `{}`", clip(addr), clip(&name_text)),
-                        )
-                        .help(format!("{why}; allowed: CIO bits and words (0.00, 100), W/H/A bits and words, D words, T/C numbers, P_ flags")),
-                    );
-                    continue;
+                    let d = symbols::bad_address(&l, addr, &name_text, why, ALLOWED);
+                    table.map.define_invalid(&l, name_text, SymTarget::Invalid);
+                    Err(d)
                 }
             };
-            if let Some((_, prev)) = table.map.get(name_text.as_str()) {
-                diags.push(
-                    Diagnostic::new(
-                        Code::SymbolDuplicate,
-                        span(name),
-                        name,
-                        format!("symbol `{}` is defined twice", clip(&name_text)),
-                    )
-                    .help(format!("first defined on line {prev}")),
-                );
-                continue;
-            }
-            table
-                .map
-                .insert(name_text, (SymTarget::Operand(target), number));
+            diags.extend(result.err());
         }
         (table, diags)
     }
 }
 
-/// Column (1-based, in characters) of the sub-slice `field` inside `line`.
-fn col_of(line: &str, field: &str) -> u32 {
-    let off = (field.as_ptr() as usize).saturating_sub(line.as_ptr() as usize);
-    let off = off.min(line.len());
-    let chars = line.get(..off).map_or(off, |s| s.chars().count());
-    u32::try_from(chars + 1).unwrap_or(u32::MAX)
-}
-
-/// Splits a line into trimmed fields: by tabs if it has any, else by `,` or `;` outside
-/// quotes (whichever comes first). Empty tab fields are dropped (leading tabs).
-fn split_fields(line: &str) -> Vec<&str> {
-    if line.contains('\t') {
-        return line
-            .split('\t')
-            .map(str::trim)
-            .filter(|f| !f.is_empty())
-            .collect();
-    }
-    let sep = line
-        .bytes()
-        .find(|&b| b == b',' || b == b';')
-        .unwrap_or(b',');
-    let mut out = Vec::new();
-    let b = line.as_bytes();
-    let (mut start, mut quoted) = (0, false);
-    for i in 0..=b.len() {
-        match b.get(i) {
-            Some(b'"') => quoted = !quoted,
-            Some(&c) if c == sep && !quoted => {
-                out.push(line[start..i].trim());
-                start = i + 1;
-            }
-            None => out.push(line[start..].trim()),
-            _ => {}
-        }
-    }
-    while out.last().is_some_and(|f| f.is_empty()) {
-        out.pop();
-    }
-    out
-}
-
-/// A field without its CSV quotes (`""` inside stands for one quote).
-fn unquote(f: &str) -> String {
-    match f.strip_prefix('"').and_then(|s| s.strip_suffix('"')) {
-        Some(inner) => inner.replace("\"\"", "\""),
-        None => f.to_owned(),
-    }
-}
-
-fn is_header(fields: &[&str]) -> bool {
-    let is = |f: Option<&&str>, words: &[&str]| {
-        f.is_some_and(|f| {
-            let f = unquote(f).to_lowercase();
-            words.iter().any(|w| f == *w)
-        })
-    };
-    is(
-        fields.first(),
-        &["name", "symbol", "symbol name", "名称", "符号"],
-    ) || fields
-        .iter()
-        .any(|f| unquote(f).eq_ignore_ascii_case("address"))
-}
+/// The address forms a symbol may name, for messages.
+const ALLOWED: &str =
+    "CIO bits and words (0.00, 100), W/H/A bits and words, D words, T/C numbers, P_ flags";
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use stljit_core::omron::WordArea;
+    use stljit_source::Code;
 
     #[test]
     fn cx_programmer_export_and_csv() {

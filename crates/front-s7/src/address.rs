@@ -4,26 +4,12 @@ use crate::classes::{BitClass, Cx, Val};
 use crate::lexer::Tok;
 use crate::operand::{Syn, resolve};
 use crate::symbols::SymbolTable;
-use std::fmt;
 use stljit_core::ir::{BitLoc, Operand};
 use stljit_core::{CpuProfile, FileId, Width};
 
 pub use stljit_core::ir::Address;
 
-/// Why an address was rejected.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct AddressError {
-    /// The message, e.g. "`Q16.0` is out of range for the A5".
-    pub message: String,
-}
-
-impl fmt::Display for AddressError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
-    }
-}
-
-impl std::error::Error for AddressError {}
+pub use stljit_source::AddressError;
 
 /// Parses one address against `profile` (and `symbols`, for names). `T37`/`C5` mean the bit;
 /// `ACn` the whole dword.

@@ -2,10 +2,9 @@
 //! a header line allowed) or the same columns as CSV. Names may be any text, including non-ASCII.
 
 use crate::operand::{Syn, SynError, parse_syn};
-use std::collections::HashMap;
 use stljit_core::FileId;
-use stljit_source::Code;
-use stljit_source::{Diagnostic, Span};
+use stljit_source::Diagnostic;
+use stljit_source::symbols::{self, SymbolMap};
 
 /// A program organisation unit named by a symbol (`Motor_Logic  SBR0`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -32,7 +31,7 @@ pub(crate) enum SymTarget {
 /// A parsed symbol table: names to addresses.
 #[derive(Clone, Debug, Default)]
 pub struct SymbolTable {
-    map: HashMap<String, (SymTarget, u32)>,
+    map: SymbolMap<SymTarget>,
 }
 
 impl SymbolTable {
@@ -48,12 +47,12 @@ impl SymbolTable {
 
     /// Every symbol name, in no particular order (for reverse look-ups by the CLI).
     pub fn names(&self) -> impl Iterator<Item = &str> {
-        self.map.keys().map(String::as_str)
+        self.map.names()
     }
 
     /// The symbol's target.
     pub(crate) fn get(&self, name: &str) -> Option<&SymTarget> {
-        self.map.get(name).map(|(t, _)| t)
+        self.map.get(name)
     }
 
     /// Parses a symbol-table text (already decoded). Bad lines become diagnostics on `file`;
@@ -61,135 +60,35 @@ impl SymbolTable {
     pub fn parse(text: &str, file: FileId) -> (SymbolTable, Vec<Diagnostic>) {
         let mut table = SymbolTable::default();
         let mut diags = Vec::new();
-        let mut first = true;
-        for (i, raw) in text.split('\n').enumerate() {
-            let number = u32::try_from(i + 1).unwrap_or(u32::MAX);
-            let line = raw.strip_suffix('\r').unwrap_or(raw);
-            let trimmed = line.trim();
-            if trimmed.is_empty() || trimmed.starts_with("//") {
-                continue;
-            }
-            let fields = split_fields(line);
-            let header = first && is_header(&fields);
-            first = false;
-            if header {
-                continue;
-            }
-            let span = |f: &str| Span {
-                file,
-                line: number,
-                col: col_of(line, f),
-                len: u32::try_from(f.chars().count()).unwrap_or(u32::MAX),
-            };
-            let (Some(&name), Some(&addr)) = (fields.first(), fields.get(1)) else {
-                let f = fields.first().copied().unwrap_or(trimmed);
-                diags.push(
-                    Diagnostic::new(Code::SymbolAddress, span(f), f, "symbol without an address")
-                        .help("write name<TAB>address[<TAB>comment] or name,address[,comment]"),
-                );
+        for l in symbols::lines(text, file) {
+            let (Some(&name), Some(&addr)) = (l.fields.first(), l.fields.get(1)) else {
+                diags.push(symbols::missing_address(
+                    &l,
+                    "write name<TAB>address[<TAB>comment] or name,address[,comment]",
+                ));
                 continue;
             };
-            let name_text = unquote_csv(name);
-            let target = match parse_target(addr) {
-                Ok(t) => t,
+            let name_text = symbols::unquote(name);
+            let result = match parse_target(addr) {
+                Ok(t) => table.map.define(&l, name, name_text, t),
                 Err(why) => {
-                    table
-                        .map
-                        .entry(name_text.clone())
-                        .or_insert((SymTarget::Invalid, number));
-                    diags.push(
-                        Diagnostic::new(
-                            Code::SymbolAddress,
-                            span(addr),
-                            addr,
-                            format!("`{}` is not a valid address for symbol `{}`", stljit_source::clip(addr), stljit_source::clip(&name_text)),
-                        )
-                        .help(format!("{why}; allowed: bit (I0.0), byte/word/dword (VB10, VW10, VD10), T, C, AC, HC, AIW, AQW, SBRn, INTn, OB1")),
-                    );
-                    continue;
+                    let d = symbols::bad_address(&l, addr, &name_text, why, ALLOWED);
+                    table.map.define_invalid(&l, name_text, SymTarget::Invalid);
+                    Err(d)
                 }
             };
-            if let Some((_, prev)) = table.map.get(name_text.as_str()) {
-                diags.push(
-                    Diagnostic::new(
-                        Code::SymbolDuplicate,
-                        span(name),
-                        name,
-                        format!(
-                            "symbol `{}` is defined twice",
-                            stljit_source::clip(&name_text)
-                        ),
-                    )
-                    .help(format!("first defined on line {prev}")),
-                );
-                continue;
-            }
-            table.map.insert(name_text, (target, number));
+            diags.extend(result.err());
         }
         (table, diags)
     }
 }
 
-/// Column (1-based, in characters) of the sub-slice `field` inside `line`.
-fn col_of(line: &str, field: &str) -> u32 {
-    let off = (field.as_ptr() as usize).saturating_sub(line.as_ptr() as usize);
-    let off = off.min(line.len());
-    let chars = line.get(..off).map_or(off, |s| s.chars().count());
-    u32::try_from(chars + 1).unwrap_or(u32::MAX)
-}
-
-/// Splits a line into trimmed, non-empty fields: by tabs if it has any, else as CSV.
-fn split_fields(line: &str) -> Vec<&str> {
-    if line.contains('\t') {
-        return line
-            .split('\t')
-            .map(str::trim)
-            .filter(|f| !f.is_empty())
-            .collect();
-    }
-    let mut out = Vec::new();
-    let b = line.as_bytes();
-    let (mut start, mut quoted) = (0, false);
-    for i in 0..=b.len() {
-        match b.get(i) {
-            Some(b'"') => quoted = !quoted,
-            Some(b',') if !quoted => {
-                out.push(line[start..i].trim());
-                start = i + 1;
-            }
-            None => out.push(line[start..].trim()),
-            _ => {}
-        }
-    }
-    while out.last().is_some_and(|f| f.is_empty()) {
-        out.pop();
-    }
-    out
-}
-
-/// A CSV field without its quotes (`""` inside stands for one quote).
-fn unquote_csv(f: &str) -> String {
-    match f.strip_prefix('"').and_then(|s| s.strip_suffix('"')) {
-        Some(inner) => inner.replace("\"\"", "\""),
-        None => f.to_owned(),
-    }
-}
-
-fn is_header(fields: &[&str]) -> bool {
-    let is = |f: Option<&&str>, words: &[&str]| {
-        f.is_some_and(|f| {
-            let f = unquote_csv(f).to_lowercase();
-            words.iter().any(|w| f == *w)
-        })
-    };
-    is(
-        fields.first(),
-        &["symbol", "name", "symbol name", "符号", "名称"],
-    ) || is(fields.get(1), &["address", "adresse", "addr", "地址"])
-}
+/// The address forms a symbol may name, for messages.
+const ALLOWED: &str =
+    "bit (I0.0), byte/word/dword (VB10, VW10, VD10), T, C, AC, HC, AIW, AQW, SBRn, INTn, OB1";
 
 fn parse_target(addr: &str) -> Result<SymTarget, &'static str> {
-    let addr = unquote_csv(addr);
+    let addr = symbols::unquote(addr);
     let upper = addr.to_ascii_uppercase();
     if upper == "OB1" {
         return Ok(SymTarget::Pou(PouRef::Main));
@@ -218,6 +117,7 @@ fn parse_target(addr: &str) -> Result<SymTarget, &'static str> {
 mod tests {
     use super::*;
     use stljit_core::Area;
+    use stljit_source::Code;
 
     #[test]
     fn tab_table_with_header_and_leading_tabs() {

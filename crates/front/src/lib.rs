@@ -49,7 +49,7 @@ impl Symbols {
 pub type Compilation = stljit_source::Compilation<Symbols>;
 
 /// Why an address named outside a program (stimulus, watch list) was rejected.
-pub use stljit_front_s7::AddressError;
+pub use stljit_source::AddressError;
 
 /// The dialects' profiles (Omron's models are the CP ones).
 const OMRON_PROFILES: [ProfileId; 2] = [ProfileId::Cp1h, ProfileId::Cp1e];

@@ -3,18 +3,13 @@
 
 use crate::exec::Machine;
 use crate::operand::Addr;
-use stljit_core::ir::{Loc, OmronBox, Op, Operand};
-use stljit_core::{Area, Width};
+use stljit_core::Width;
+use stljit_core::ir::{BoxOperands, Op, Operand};
 use stljit_runtime::omron_image::{self, BoxOperand};
 
 /// Words of an Omron operand as the IR width it is read at.
 fn width_of(double: bool) -> Width {
     if double { Width::DWord } else { Width::Word }
-}
-
-/// Words of an operand (1, or 2 for a double).
-fn words(double: bool) -> u32 {
-    if double { 2 } else { 1 }
 }
 
 impl Machine<'_> {
@@ -55,29 +50,12 @@ impl Machine<'_> {
             }
             Op::Omron(b) if pf => {
                 let code = omron_image::box_code(b);
-                let (lhs, rhs, dst, src_words, dst_words) = match *b {
-                    OmronBox::Move { double, src, dst } => {
-                        let w = words(double);
-                        (Some(src), None, Some(dst), w, w)
-                    }
-                    OmronBox::Compare {
-                        double, lhs, rhs, ..
-                    } => (Some(lhs), Some(rhs), None, words(double), 0),
-                    OmronBox::SetIndex { ea, ir } => {
-                        let dst = Operand::Mem(Loc {
-                            area: Area::IndexReg,
-                            offset: 4 * u32::from(ir),
-                        });
-                        (Some(Operand::Const(ea)), None, Some(dst), 2, 2)
-                    }
-                    OmronBox::Arith { op, lhs, rhs, dst } => (
-                        Some(lhs),
-                        Some(rhs),
-                        Some(dst),
-                        op.operand_words(),
-                        op.result_words(),
-                    ),
-                };
+                let BoxOperands {
+                    sources: [lhs, rhs],
+                    dst,
+                    src_words,
+                    dst_words,
+                } = b.operands();
                 let source = |o: Option<Operand>| match o {
                     None => BoxOperand::Absent,
                     Some(Operand::Omron(r)) => BoxOperand::Ref(r),

@@ -9,6 +9,7 @@
 pub mod codes;
 pub mod decode;
 pub mod diag;
+pub mod symbols;
 
 pub use codes::{Code, Severity};
 pub use decode::Encoding;
@@ -62,6 +63,57 @@ impl<S> Compilation<S> {
             symbols: self.symbols.map(f),
         }
     }
+}
+
+/// Why an address named outside a program (a stimulus column, a watch, an HMI write) was
+/// rejected; every dialect's `parse_address` returns it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AddressError {
+    /// The message, e.g. "`Q16.0` is out of range for the A5".
+    pub message: String,
+}
+
+impl std::fmt::Display for AddressError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for AddressError {}
+
+impl SourceFile {
+    /// A file named `name` holding the UTF-8 text `text` (for tests and tools).
+    pub fn from_text(name: &str, text: &str) -> SourceFile {
+        SourceFile {
+            name: name.to_owned(),
+            bytes: text.as_bytes().to_vec(),
+        }
+    }
+}
+
+/// Decodes a project's program files (file ids `0..files.len()`) and its optional symbol table
+/// (the next id), which `parse_symbols` reads: the decoded sources, the table, and every
+/// diagnostic so far (encoding problems, bad symbol lines). Both front ends start here.
+pub fn decode_project<S>(
+    files: &[SourceFile],
+    symbols: Option<&SourceFile>,
+    parse_symbols: impl FnOnce(&str, FileId) -> (S, Vec<Diagnostic>),
+) -> (Sources, Option<S>, Vec<Diagnostic>) {
+    let mut diags = Vec::new();
+    let mut sources = Sources::default();
+    for (i, f) in files.iter().enumerate() {
+        let text = decode_file(f, FileId::new(i), &mut diags);
+        sources.files.push(text);
+    }
+    let table = symbols.map(|s| {
+        let id = FileId::new(files.len());
+        let text = decode_file(s, id, &mut diags);
+        let (table, d) = parse_symbols(&text.text, id);
+        diags.extend(d);
+        sources.files.push(text);
+        table
+    });
+    (sources, table, diags)
 }
 
 /// Decodes `file`, reporting undecodable bytes as [`Code::Encoding`] on `id`.

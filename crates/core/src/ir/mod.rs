@@ -26,7 +26,8 @@ mod verify;
 
 pub use facts::{StackEffect, Successors, enclosing_loop, loop_entered_by};
 pub use omron::{
-    IndexOffset, IndexStep, OmronArith, OmronBox, OmronCounterKind, OmronRef, OmronTimerKind,
+    BoxOperands, IndexOffset, IndexStep, OmronArith, OmronBox, OmronCounterKind, OmronRef,
+    OmronTimerKind,
 };
 pub use op::{ArithOp, BoxOp, Conversion, LogicOp, Op, RealFn};
 pub use operand::{Address, BitLoc, CmpOp, CmpType, Contact, Loc, Operand};

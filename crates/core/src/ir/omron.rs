@@ -354,3 +354,56 @@ impl IndexStep {
         }
     }
 }
+
+/// The operands of an Omron box in evaluation order, with their sizes in words: what both
+/// engines read, resolve and write, stated once.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BoxOperands {
+    /// The sources, first operand first (`None` where the box has fewer).
+    pub sources: [Option<super::Operand>; 2],
+    /// The destination (`None` for the compares).
+    pub dst: Option<super::Operand>,
+    /// Words of each source (1 or 2).
+    pub src_words: u32,
+    /// Words of the result (1, 2 or 4; 0 without a destination).
+    pub dst_words: u32,
+}
+
+impl OmronBox {
+    /// The box's operands ([`BoxOperands`]); MOVR's source is its effective address as a
+    /// constant and its destination the index register's dword.
+    pub fn operands(&self) -> BoxOperands {
+        let words = |double: bool| if double { 2 } else { 1 };
+        match *self {
+            OmronBox::Move { double, src, dst } => BoxOperands {
+                sources: [Some(src), None],
+                dst: Some(dst),
+                src_words: words(double),
+                dst_words: words(double),
+            },
+            OmronBox::Compare {
+                double, lhs, rhs, ..
+            } => BoxOperands {
+                sources: [Some(lhs), Some(rhs)],
+                dst: None,
+                src_words: words(double),
+                dst_words: 0,
+            },
+            OmronBox::SetIndex { ea, ir } => BoxOperands {
+                sources: [Some(super::Operand::Const(ea)), None],
+                dst: Some(super::Operand::Mem(super::Loc {
+                    area: crate::area::Area::IndexReg,
+                    offset: 4 * u32::from(ir),
+                })),
+                src_words: 2,
+                dst_words: 2,
+            },
+            OmronBox::Arith { op, lhs, rhs, dst } => BoxOperands {
+                sources: [Some(lhs), Some(rhs)],
+                dst: Some(dst),
+                src_words: op.operand_words(),
+                dst_words: op.result_words(),
+            },
+        }
+    }
+}

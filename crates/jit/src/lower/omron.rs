@@ -8,7 +8,9 @@ use super::state::{BoxState, Pred};
 use super::value::{B, Stack};
 use crate::helpers::Helper;
 use cranelift_codegen::ir::{InstBuilder, Value, condcodes::IntCC, types::I32};
-use stljit_core::ir::{OmronArith, OmronBox, OmronCounterKind, OmronTimerKind, Operand};
+use stljit_core::ir::{
+    BoxOperands, OmronArith, OmronBox, OmronCounterKind, OmronTimerKind, Operand,
+};
 use stljit_core::layout::{Sched, TimerState};
 use stljit_core::{Area, FatalCode, Width};
 use stljit_runtime::ffi::{OMRON_ARITH_HAS_RESULT, OMRON_CTL_KIND_SHIFT, OMRON_NO_OPERAND};
@@ -238,23 +240,12 @@ impl Lower<'_, '_> {
     /// (`stljit_rt_omron_box_refs`), which may touch any byte.
     fn omron_box_refs(&mut self, bx: &OmronBox) {
         let code = omron_image::box_code(bx);
-        let (lhs, rhs, dst, src_words, dst_words) = match *bx {
-            OmronBox::Move { double, src, dst } => {
-                let w = if double { 2 } else { 1 };
-                (Some(src), None, Some(dst), w, w)
-            }
-            OmronBox::Compare {
-                double, lhs, rhs, ..
-            } => (Some(lhs), Some(rhs), None, if double { 2 } else { 1 }, 0),
-            OmronBox::Arith { op, lhs, rhs, dst } => (
-                Some(lhs),
-                Some(rhs),
-                Some(dst),
-                op.operand_words(),
-                op.result_words(),
-            ),
-            OmronBox::SetIndex { .. } => return,
-        };
+        let BoxOperands {
+            sources: [lhs, rhs],
+            dst,
+            src_words,
+            dst_words,
+        } = bx.operands();
         let mut args = vec![self.iconst(I32, i64::from(code))];
         for (o, is_dst) in [(lhs, false), (rhs, false), (dst, true)] {
             let (r, v) = match o {
