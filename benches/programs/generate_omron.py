@@ -21,13 +21,16 @@ def contact(r):
     return f"H{r.randrange(50)}.{r.randrange(16):02d}"
 
 
-def coil(r):
-    k = r.random()
-    if k < 0.25:
-        return f"{100 + r.randrange(2)}.{r.randrange(16):02d}"
-    if k < 0.85:
-        return f"W{r.randrange(100)}.{r.randrange(16):02d}"
-    return f"H{r.randrange(50)}.{r.randrange(16):02d}"
+def pools(r):
+    """Every coil bit and destination word once, shuffled: each is written by one instruction
+    (no duplicate coils, OMR-W020)."""
+    bits = [f"{w}.{b:02d}" for w in (100, 101) for b in range(16)]
+    bits += [f"W{w}.{b:02d}" for w in range(100) for b in range(16)]
+    bits += [f"H{w}.{b:02d}" for w in range(50) for b in range(16)]
+    words = [f"D{w}" for w in range(1000, 3000)]
+    r.shuffle(bits)
+    r.shuffle(words)
+    return bits, words
 
 
 def dm(r):
@@ -37,10 +40,23 @@ def dm(r):
 class Gen:
     def __init__(self, seed):
         self.r = random.Random(seed)
+        self.coils, self.dsts = pools(self.r)
+        self.doubles = 0
         self.lines = []
         self.timers = 0
         self.counters = 0
         self.jumps = 0
+
+    def coil(self):
+        return self.coils.pop()
+
+    def dst(self):
+        return self.dsts.pop()
+
+    def double_dst(self):
+        """A fresh double word (D5000 upwards, two words each)."""
+        self.doubles += 2
+        return f"D{5000 + self.doubles}"
 
     def emit(self, s):
         self.lines.append(s)
@@ -65,26 +81,26 @@ class Gen:
         self.condition()
         k = r.random()
         if k < 0.55:
-            self.emit(f"OUT {coil(r)}")
+            self.emit(f"OUT {self.coil()}")
             if r.random() < 0.3:
                 self.emit(f"AND {contact(r)}")
-                self.emit(f"OUT {coil(r)}")
+                self.emit(f"OUT {self.coil()}")
         elif k < 0.65:
-            self.emit(f"OUT NOT {coil(r)}")
+            self.emit(f"OUT NOT {self.coil()}")
         elif k < 0.75:
-            self.emit(f"{r.choice(['SET', 'RSET'])} {coil(r)}")
+            self.emit(f"{r.choice(['SET', 'RSET'])} {self.coil()}")
         elif k < 0.82:
-            self.emit(f"{r.choice(['DIFU(013)', 'DIFD(014)'])} {coil(r)}")
+            self.emit(f"{r.choice(['DIFU(013)', 'DIFD(014)'])} {self.coil()}")
         elif k < 0.9:
             self.block()
-            self.emit(f"KEEP(011) {coil(r)}")
+            self.emit(f"KEEP(011) {self.coil()}")
         else:
             self.emit("OUT TR0")
             self.emit(f"AND {contact(r)}")
-            self.emit(f"OUT {coil(r)}")
+            self.emit(f"OUT {self.coil()}")
             self.emit("LD TR0")
             self.emit(f"AND NOT {contact(r)}")
-            self.emit(f"OUT {coil(r)}")
+            self.emit(f"OUT {self.coil()}")
 
     def network(self):
         r = self.r
@@ -104,27 +120,32 @@ class Gen:
             self.counters += 1
         elif k < 0.73:
             self.block()
-            self.emit(r.choice([f"MOV(021) {dm(r)} {dm(r)}", f"MOV(021) #{r.randrange(65536):04X} {dm(r)}",
-                                f"MOVL(498) D{2 * r.randrange(400)} D{2 * r.randrange(400, 490)}"]))
+            k2 = r.random()
+            if k2 < 0.4:
+                self.emit(f"MOV(021) {dm(r)} {self.dst()}")
+            elif k2 < 0.8:
+                self.emit(f"MOV(021) #{r.randrange(65536):04X} {self.dst()}")
+            else:
+                self.emit(f"MOVL(498) D{2 * r.randrange(400)} {self.double_dst()}")
             self.emit("AND P_EQ")
-            self.emit(f"OUT {coil(r)}")
+            self.emit(f"OUT {self.coil()}")
         elif k < 0.83:
             rel = r.choice(["=", "<>", "<", "<=", ">", ">="])
             suffix = r.choice(["", "S"])
             self.emit(f"LD{rel}{suffix} {dm(r)} &{r.randint(0, 200)}")
             self.emit(f"AND {contact(r)}")
-            self.emit(f"OUT {coil(r)}")
+            self.emit(f"OUT {self.coil()}")
         elif k < 0.93:
             self.block()
             op = r.choice(["+(400)", "-(410)", "+B(404)", "-B(414)", "+L(401)"])
             if op == "+L(401)":
-                self.emit(f"{op} D{2 * r.randrange(400)} D{2 * r.randrange(400)} D{2 * r.randrange(400, 490)}")
+                self.emit(f"{op} D{2 * r.randrange(400)} D{2 * r.randrange(400)} {self.double_dst()}")
             elif "B" in op:
-                self.emit(f"{op} {dm(r)} #{r.randint(0, 99):04d} {dm(r)}")
+                self.emit(f"{op} {dm(r)} #{r.randint(0, 99):04d} {self.dst()}")
             else:
-                self.emit(f"{op} {dm(r)} &{r.randint(1, 9)} {dm(r)}")
+                self.emit(f"{op} {dm(r)} &{r.randint(1, 9)} {self.dst()}")
             self.emit(r.choice(["AND P_CY", "AND NOT P_EQ", "AND P_ER"]))
-            self.emit(f"OUT {coil(r)}")
+            self.emit(f"OUT {self.coil()}")
         elif k < 0.96 and self.jumps < 250:
             n = self.jumps
             self.jumps += 1

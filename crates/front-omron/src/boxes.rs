@@ -4,7 +4,7 @@
 
 use crate::circuit::Class;
 use crate::lexer::{Line, Tok};
-use crate::lower::{DataBox, Lowerer};
+use crate::lower::{DataBox, Lowerer, Written};
 use crate::resolve::Reported;
 use stljit_core::ir::{OmronBox, OmronCounterKind, OmronTimerKind, Op, Operand};
 use stljit_core::{Area, CounterId, TimerId};
@@ -85,6 +85,7 @@ impl Lowerer<'_> {
         } else {
             Class::Output
         };
+        self.flags_changed = true;
         self.class(l, class);
         self.emit(Op::OmronTimer {
             kind,
@@ -100,6 +101,7 @@ impl Lowerer<'_> {
         let n = self.object_number(&ops[0], Area::CounterBit);
         let sv = self.set_value(&ops[1], kind.bcd());
         let (n, sv) = (n?, sv?);
+        self.flags_changed = true;
         self.class(l, Class::Multi(u32::from(kind.conditions())));
         self.emit(Op::OmronCounter {
             kind,
@@ -152,6 +154,13 @@ impl Lowerer<'_> {
                 }
             }
         };
+        if let (OmronBox::Move { dst, .. } | OmronBox::Arith { dst, .. }, Some(tok)) =
+            (op, ops.last())
+            && let Operand::Mem(loc) = dst
+        {
+            self.note_write(tok, Written::Word(loc));
+        }
+        self.flags_changed = true;
         self.class(l, Class::Output);
         self.edged(l.options, |s| s.emit(Op::Omron(op)));
         Ok(())

@@ -37,6 +37,20 @@ pub(crate) struct Lowerer<'a> {
     pub(crate) objects: std::collections::HashMap<(Area, u16), u32>,
     /// Source location of the current line.
     pub(crate) loc: SrcLoc,
+    /// Bits driven by OUT/OUT NOT/KEEP/DIFU/DIFD and direct words written by data
+    /// instructions, with the line of their first write (W020).
+    pub(crate) written: std::collections::HashMap<Written, u32>,
+    /// Whether an instruction that changes condition flags has been lowered yet (W034).
+    pub(crate) flags_changed: bool,
+}
+
+/// A bit or a word one instruction writes (the key of W020's check).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) enum Written {
+    /// A coil.
+    Bit(stljit_core::ir::BitLoc),
+    /// A destination word.
+    Word(stljit_core::ir::Loc),
 }
 
 impl<'a> Lowerer<'a> {
@@ -58,6 +72,8 @@ impl<'a> Lowerer<'a> {
             control: Control::default(),
             objects: Default::default(),
             loc: SrcLoc::default(),
+            written: Default::default(),
+            flags_changed: false,
         }
     }
 
@@ -322,6 +338,20 @@ impl<'a> Lowerer<'a> {
             Class::Combine
         };
         let new_circuit = self.class(l, class);
+        if let Syn::Flag(f) = syn
+            && f.index() < SystemBit::CONDITION_FLAGS.count_ones()
+            && !self.flags_changed
+        {
+            let line = l.line;
+            self.cx.report(
+                Code::OmrFlagNeverSet,
+                tok,
+                format!(
+                    "line {line}: condition flags are cleared at task start; {} is always OFF here",
+                    clip(&tok.text)
+                ),
+            );
+        }
         if let (true, Syn::Flag(f)) = (new_circuit, syn)
             && f.index() < SystemBit::CONDITION_FLAGS.count_ones()
         {
@@ -385,6 +415,7 @@ impl<'a> Lowerer<'a> {
             negated: false,
         };
         self.emit(Op::Load(on));
+        self.flags_changed = true;
         self.emit(Op::Omron(OmronBox::Compare {
             double: c.double,
             signed: c.signed,
@@ -422,6 +453,26 @@ impl<'a> Lowerer<'a> {
         }
     }
 
+    /// W020: `what` (written as `tok`) is also written by an earlier output instruction.
+    pub(crate) fn note_write(&mut self, tok: &Tok, what: Written) {
+        let line = self.cx.line;
+        match self.written.get(&what) {
+            Some(&first) => {
+                self.cx.report(
+                    Code::OmrDuplicateCoil,
+                    tok,
+                    format!(
+                        "line {line}: {} is also written at line {first}; only the later write is visible at output refresh",
+                        clip(&tok.text)
+                    ),
+                );
+            }
+            None => {
+                self.written.insert(what, line);
+            }
+        }
+    }
+
     /// `OUT b`, `OUT NOT b`, `OUT TRn`.
     fn out(&mut self, l: &Line, negated: bool) -> Result<(), Reported> {
         let ops = self.operands(l, 1)?;
@@ -452,6 +503,7 @@ impl<'a> Lowerer<'a> {
             return Ok(());
         }
         let bit = self.cx.bit(tok, true)?;
+        self.note_write(tok, Written::Bit(bit));
         self.class(l, Class::Output);
         let assign = Op::Assign {
             bit,
@@ -490,6 +542,7 @@ impl<'a> Lowerer<'a> {
     fn keep(&mut self, l: &Line) -> Result<(), Reported> {
         let ops = self.operands(l, 1)?;
         let bit = self.cx.bit(&ops[0], true)?;
+        self.note_write(&ops[0], Written::Bit(bit));
         self.class(l, Class::Multi(2));
         let imm = l.options.immediate;
         self.emit(self.set_range(bit, false, imm));
@@ -503,6 +556,7 @@ impl<'a> Lowerer<'a> {
     fn differentiate(&mut self, l: &Line, falling: bool) -> Result<(), Reported> {
         let ops = self.operands(l, 1)?;
         let bit = self.cx.bit(&ops[0], true)?;
+        self.note_write(&ops[0], Written::Bit(bit));
         self.class(l, Class::Output);
         self.emit(Op::Dup);
         let e = self.edge(falling);

@@ -162,6 +162,8 @@ codes! {
     OmrAreaCross = "OMR-E018", Error, "a multi-word operand crosses from one area into another";
     /// Multi-word operand past its area.
     OmrWords = "OMR-E019", Error, "a double-length operand needs consecutive words its area does not have";
+    /// The same bit or word written by two output instructions.
+    OmrDuplicateCoil = "OMR-W020", Warning, "the same bit (OUT, OUT NOT, KEEP, DIFU, DIFD) or word (a data instruction's destination) is written by two instructions";
     /// Timer/counter number used twice.
     OmrNumberTwice = "OMR-E021", Error, "a timer or counter number is used by two instructions";
     /// IL/ILC pairing.
@@ -182,6 +184,8 @@ codes! {
     OmrSubroutine = "OMR-E029", Error, "a subroutine region is misplaced, nested, unclosed or defined twice";
     /// A circuit starting with a condition flag.
     OmrFlagAtStart = "OMR-W032", Warning, "a circuit starts with a condition flag";
+    /// A condition flag read before anything could set it.
+    OmrFlagNeverSet = "OMR-W034", Warning, "a condition flag is read before any instruction of the task can have changed it (flags are cleared at task start)";
     /// More than 8 pending blocks.
     OmrDeepBlocks = "OMR-W040", Warning, "more than 8 logic blocks are pending";
     /// More than 13 pending blocks.
