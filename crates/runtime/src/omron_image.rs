@@ -150,6 +150,37 @@ pub fn timer_reset_outcome(kind: OmronTimerKind, sv: u16) -> Option<([u8; 2], u8
     (outcome(idle)? == a).then_some(a)
 }
 
+/// What an Omron counter with the constant set value `sv` does when all its inputs are OFF
+/// under an open gate, if that does not depend on its state: PV and flag are kept, each private
+/// state byte is either set to a constant (`Some`) or kept (`None`), and the flag writes.
+/// Compiled code uses it to skip the call when no input is ON; like [`timer_reset_outcome`]
+/// it is `counter_step` itself, run on two different states.
+pub fn counter_idle_outcome(
+    kind: OmronCounterKind,
+    sv: u16,
+) -> Option<([Option<u8>; COUNTER_STATE_SIZE as usize], FlagWrites)> {
+    let run = |start: CounterBytes| {
+        let mut c = start;
+        let w = counter_step((&mut c.0, &mut c.1, &mut c.2), kind, 0, Gate::Open, sv);
+        (c, w)
+    };
+    let busy: CounterBytes = ([0x12, 0x34], 1, [1; COUNTER_STATE_SIZE as usize]);
+    let idle: CounterBytes = ([0, 0], 0, [0; COUNTER_STATE_SIZE as usize]);
+    let ((a, wa), (b, wb)) = (run(busy), run(idle));
+    if wa != wb || (a.0, a.1) != (busy.0, busy.1) || (b.0, b.1) != (idle.0, idle.1) {
+        return None;
+    }
+    let mut bytes = [None; COUNTER_STATE_SIZE as usize];
+    for (i, slot) in bytes.iter_mut().enumerate() {
+        if a.2[i] == b.2[i] {
+            *slot = Some(a.2[i]);
+        } else if a.2[i] != busy.2[i] || b.2[i] != idle.2[i] {
+            return None;
+        }
+    }
+    Some((bytes, wa))
+}
+
 /// Copies `N` image bytes from `at` (zeros past the end, which the callers' range checks rule
 /// out).
 fn take<const N: usize>(img: &[u8], at: u32) -> [u8; N] {
@@ -462,4 +493,37 @@ fn run_box_at(
         }
     }
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_timer_reset_is_state_free_only_with_a_valid_set_value() {
+        // §2.12: EC OFF → PV := SV, flag OFF, running := false, ER OFF.
+        let (pv, flag, run, w) = timer_reset_outcome(OmronTimerKind::Tim, 0x0003).unwrap();
+        assert_eq!((pv, flag, run), ([0x00, 0x03], 0, 0));
+        assert_eq!(w, FlagWrites::OK);
+        // A non-BCD SV keeps PV and flag (ER ON): the outcome depends on the state.
+        assert_eq!(timer_reset_outcome(OmronTimerKind::Tim, 0x12A4), None);
+        // Binary set values are always valid; TTIM has no reset-by-EC path.
+        assert!(timer_reset_outcome(OmronTimerKind::TimX, 0x12A4).is_some());
+        assert_eq!(timer_reset_outcome(OmronTimerKind::Ttim, 3), None);
+    }
+
+    #[test]
+    fn an_idle_counter_only_records_its_inputs() {
+        // §3.3: no reset and no count edge: PV and flag kept, the input memories take 0, ER OFF.
+        let up = CounterState::PREV_UP as usize;
+        let down = CounterState::PREV_DOWN as usize;
+        let (bytes, w) = counter_idle_outcome(OmronCounterKind::Cnt, 0x0005).unwrap();
+        assert_eq!(bytes[up], Some(0));
+        assert_eq!(w, FlagWrites::OK);
+        let (bytes, _) = counter_idle_outcome(OmronCounterKind::CntrX, 4).unwrap();
+        assert_eq!((bytes[up], bytes[down]), (Some(0), Some(0)));
+        // A non-BCD SV: ER ON, the edge memories are still updated (§3.3 design).
+        let (_, w) = counter_idle_outcome(OmronCounterKind::Cnt, 0x00A0).unwrap();
+        assert_eq!(w, FlagWrites::ERROR);
+    }
 }

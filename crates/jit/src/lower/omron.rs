@@ -11,7 +11,7 @@ use cranelift_codegen::ir::{InstBuilder, Value, condcodes::IntCC, types::I32};
 use stljit_core::ir::{
     BoxOperands, OmronArith, OmronBox, OmronCounterKind, OmronTimerKind, Operand,
 };
-use stljit_core::layout::{Sched, TimerState};
+use stljit_core::layout::{COUNTER_STATE_SIZE, Sched, TimerState};
 use stljit_core::{Area, FatalCode, Width};
 use stljit_runtime::ffi::{OMRON_ARITH_HAS_RESULT, OMRON_CTL_KIND_SHIFT, OMRON_NO_OPERAND};
 use stljit_runtime::omron::Flag;
@@ -87,6 +87,67 @@ impl Lower<'_, '_> {
             let k = self.iconst(I32, i64::from(byte));
             self.set_byte(Addr::img(at), k);
         }
+        self.put_constant_flags(w);
+    }
+
+    /// `CNT`…`CNTRX n sv`: as [`Lower::omron_timer`].
+    pub(crate) fn omron_counter(&mut self, kind: OmronCounterKind, n: u16, sv: &Operand) {
+        let l = self.env.layout;
+        if u32::from(n) >= l.area_size(Area::CounterBit) {
+            return;
+        }
+        let [v, b, s] = l.counter_bytes(n).map(|(off, len)| (Addr::img(off), len));
+        let code = omron_kind_code(OmronCounterKind::ALL, kind);
+        // With every input OFF under an open gate and a constant set value, the runtime's step
+        // does not depend on the counter's state: its outcome (`counter_idle_outcome`, computed
+        // now) is stored inline and the call is made only when an input is ON.
+        let idle = match (*sv, self.block.gate) {
+            (Operand::Const(k), B::K(true)) => omron_image::counter_idle_outcome(kind, k as u16),
+            _ => None,
+        };
+        let sv = self.omron_value(sv, false);
+        let Some(idle) = idle else {
+            self.omron_fast(Helper::OmronCounterFast, &[v, b, s], code, sv);
+            return;
+        };
+        let inputs = (0..usize::from(kind.conditions())).map(|i| self.block.stack.level(i));
+        let mut any = B::K(false);
+        for input in inputs.collect::<Vec<_>>() {
+            any = any.or(&mut self.b, input);
+        }
+        match any {
+            B::K(false) => self.store_counter_idle(n, idle),
+            B::K(true) => self.omron_fast(Helper::OmronCounterFast, &[v, b, s], code, sv),
+            _ => {
+                let c = any.cond(&mut self.b);
+                self.diamond(
+                    c,
+                    |s2| s2.omron_fast(Helper::OmronCounterFast, &[v, b, s], code, sv),
+                    |s2| s2.store_counter_idle(n, idle),
+                );
+            }
+        }
+    }
+
+    /// Stores a counter's all-inputs-OFF outcome computed at compile time: the private state
+    /// bytes it sets and the flag writes.
+    fn store_counter_idle(
+        &mut self,
+        n: u16,
+        (bytes, w): ([Option<u8>; COUNTER_STATE_SIZE as usize], FlagWrites),
+    ) {
+        let (state, _) = self.env.layout.counter_bytes(n)[2];
+        for (i, byte) in bytes.iter().enumerate() {
+            if let Some(k) = byte {
+                let k = self.iconst(I32, i64::from(*k));
+                self.set_byte(Addr::img(state + i as u32), k);
+            }
+        }
+        self.put_constant_flags(w);
+    }
+
+    /// The condition flags := the constant writes `w`.
+    fn put_constant_flags(&mut self, w: FlagWrites) {
         for byte in 0..2u32 {
             let m = (w.mask >> (8 * byte)) & 0xFF;
             if m == 0 {
@@ -99,18 +160,6 @@ impl Lower<'_, '_> {
             let new = self.b.ins().bor_imm_s(kept, i64::from(val));
             self.set_byte(a, new);
         }
-    }
-
-    /// `CNT`…`CNTRX n sv`: as [`Lower::omron_timer`].
-    pub(crate) fn omron_counter(&mut self, kind: OmronCounterKind, n: u16, sv: &Operand) {
-        let l = self.env.layout;
-        if u32::from(n) >= l.area_size(Area::CounterBit) {
-            return;
-        }
-        let sv = self.omron_value(sv, false);
-        let [v, b, s] = l.counter_bytes(n).map(|(off, len)| (Addr::img(off), len));
-        let code = omron_kind_code(OmronCounterKind::ALL, kind);
-        self.omron_fast(Helper::OmronCounterFast, &[v, b, s], code, sv);
     }
 
     /// Calls a fast Omron shim on the image ranges `ranges` (pointers, in order) with `ctl`
