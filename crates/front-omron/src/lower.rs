@@ -42,6 +42,9 @@ pub(crate) struct Lowerer<'a> {
     pub(crate) written: std::collections::HashMap<Written, u32>,
     /// Whether an instruction that changes condition flags has been lowered yet (W034).
     pub(crate) flags_changed: bool,
+    /// The execution condition when it is exactly `P_On`/`P_First_Cycle` (true: ON in every
+    /// cycle but perhaps the first) or `P_Off` (false), for W031.
+    pub(crate) constant_ec: Option<bool>,
 }
 
 /// A bit or a word one instruction writes (the key of W020's check).
@@ -74,6 +77,7 @@ impl<'a> Lowerer<'a> {
             loc: SrcLoc::default(),
             written: Default::default(),
             flags_changed: false,
+            constant_ec: None,
         }
     }
 
@@ -108,6 +112,21 @@ impl<'a> Lowerer<'a> {
             slot: EdgeSlot::new(self.edges.len() - 1),
             falling,
         }
+    }
+
+    /// W031: an edge instruction (`falling` or rising) whose input is the constant `on`
+    /// (`P_On`/`P_First_Cycle` when true, `P_Off` when false) never executes (§2.6).
+    pub(crate) fn never_fires(&mut self, l: &Line, falling: bool, on: bool) {
+        if falling == on {
+            return; // a falling edge of ON or a rising edge of OFF is a different mistake
+        }
+        let mn = self.cx.mn.clone();
+        let start = if falling { "OFF" } else { "ON" };
+        self.at_head(
+            l,
+            Code::OmrNeverFires,
+            format!("{mn} will never execute — its edge memory starts {start}"),
+        );
     }
 
     /// `Dup; Edge; <body>; Pop` for an `@`/`%` output, or just the body.
@@ -177,6 +196,21 @@ impl<'a> Lowerer<'a> {
             self.circuit.recover();
             return;
         };
+        // The constant execution condition survives outputs (they continue with the same EC)
+        // and ends at anything that changes the EC; an LD of a constant sets it anew.
+        let prev = self.constant_ec.take();
+        let class = class_of(m.group);
+        if class == Class::Output {
+            self.constant_ec = prev;
+        }
+        let edge_of_ec = match m.group {
+            Group::Edge(falling) | Group::Differentiate(falling) => Some(falling),
+            _ if class == Class::Output => l.options.edge,
+            _ => None,
+        };
+        if let (Some(falling), Some(on)) = (edge_of_ec, prev) {
+            self.never_fires(l, falling, on);
+        }
         if !self.options_allowed(l, &m) || self.dispatch(l, &m).is_err() {
             // The error is reported; advance the circuit as the instruction would have, so
             // the lines after it are not blamed for it.
@@ -332,6 +366,17 @@ impl<'a> Lowerer<'a> {
             return Ok(());
         }
         let bit = self.cx.bit(tok, false)?;
+        let constant = match syn {
+            Syn::Flag(SystemBit::On) | Syn::FirstCycle => Some(true),
+            Syn::Flag(SystemBit::Off) => Some(false),
+            _ => None,
+        };
+        if let (Some(falling), Some(on)) = (l.options.edge, constant) {
+            self.never_fires(l, falling, on);
+        }
+        if join == Join::Load && !negated && l.options.edge.is_none() {
+            self.constant_ec = constant;
+        }
         let class = if join == Join::Load {
             Class::Start
         } else {

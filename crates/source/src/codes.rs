@@ -182,6 +182,8 @@ codes! {
     OmrAfterSubroutines = "OMR-W028", Warning, "code between the subroutine region and END never runs";
     /// Subroutine placement.
     OmrSubroutine = "OMR-E029", Error, "a subroutine region is misplaced, nested, unclosed or defined twice";
+    /// An edge instruction fed only by a constant.
+    OmrNeverFires = "OMR-W031", Warning, "a rising-edge instruction fed only by P_On or P_First_Cycle, or a falling-edge one fed only by P_Off, never executes";
     /// A circuit starting with a condition flag.
     OmrFlagAtStart = "OMR-W032", Warning, "a circuit starts with a condition flag";
     /// A condition flag read before anything could set it.
