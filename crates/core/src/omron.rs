@@ -334,6 +334,7 @@ pub static CP1H: CpuProfile = CpuProfile {
         aux_read_only: 448,
         dm: 32768,
         max_jump: 255,
+        dm_bits: false,
     },
     model: "CP1H",
     inputs: 4,
@@ -377,6 +378,8 @@ pub static CP1E: CpuProfile = CpuProfile {
         aux_read_only: 448,
         dm: 2048,
         max_jump: 255,
+        // [uncertain] U9: the CP1E manuals allow `Dn.bb`.
+        dm_bits: true,
     },
     model: "CP1E",
     inputs: 4,

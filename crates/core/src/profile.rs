@@ -179,6 +179,8 @@ pub struct OmronAreas {
     pub dm: u32,
     /// Highest jump number (`JMP`/`CJP`/`JME`).
     pub max_jump: u16,
+    /// Whether DM words are bit-addressable (`D10.03`; omron-cp.md §1.1, U9).
+    pub dm_bits: bool,
 }
 
 impl OmronAreas {
@@ -193,6 +195,7 @@ impl OmronAreas {
         aux_read_only: 0,
         dm: 0,
         max_jump: 0,
+        dm_bits: false,
     };
 }
 

@@ -165,6 +165,14 @@ impl Cx<'_> {
                 if bit > 15 {
                     return Err(self.outside(tok, "bit numbers", 15));
                 }
+                if area == WordArea::Dm && !self.profile.omron.dm_bits {
+                    let (line, model) = (self.line, self.profile.model);
+                    return Err(self.report(
+                        Code::OmrDmBit,
+                        tok,
+                        format!("line {line}: bit access to D is not supported on {model}"),
+                    ));
+                }
                 let loc = self.word_loc(tok, area, word)?;
                 if write && area == WordArea::Aux && word < self.profile.omron.aux_read_only {
                     return Err(self.read_only(tok));

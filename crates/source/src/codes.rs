@@ -188,6 +188,8 @@ codes! {
     OmrFlagAtStart = "OMR-W032", Warning, "a circuit starts with a condition flag";
     /// A condition flag read before anything could set it.
     OmrFlagNeverSet = "OMR-W034", Warning, "a condition flag is read before any instruction of the task can have changed it (flags are cleared at task start)";
+    /// A DM bit on a model without DM bit addressing.
+    OmrDmBit = "OMR-E038", Error, "bit access to D words is not supported on the selected model";
     /// More than 8 pending blocks.
     OmrDeepBlocks = "OMR-W040", Warning, "more than 8 logic blocks are pending";
     /// More than 13 pending blocks.
