@@ -196,8 +196,13 @@ pub fn ea_loc(profile: &CpuProfile, ea: u32) -> Option<Loc> {
     }
 }
 
-/// Bytes of the [`Area::Flags`] area.
-pub const FLAG_BYTES: u32 = 4;
+/// Bytes of the [`Area::Flags`] area: the system bits (bytes 0–3, [`SystemBit`]) and the
+/// condition flags saved by CCS(282) (bytes 4–5, [`SAVED_FLAGS`]).
+pub const FLAG_BYTES: u32 = 6;
+
+/// Offset in [`Area::Flags`] of the condition flags CCS(282) saved (two bytes, the order of
+/// bytes 0–1); the scan does not clear them.
+pub const SAVED_FLAGS: u32 = 4;
 
 /// The read-only system bits of [`Area::Flags`]: the condition flags first (their order is the
 /// bit order of the runtime's flag word, bytes 0–1 little-endian), then the constants and the

@@ -179,4 +179,33 @@ impl Lowerer<'_> {
         });
         Ok(())
     }
+
+    /// `IORF(097) St E`: refreshes expansion I/O words St…E immediately (§3.4). The model has
+    /// only the built-in I/O, on which IORF has no effect, so it lowers to nothing once its
+    /// operands (two CIO words, St ≤ E) are checked.
+    pub(crate) fn iorf(&mut self, l: &Line) -> Result<(), Reported> {
+        let ops = self.operands(l, 2)?;
+        let st = self.cx.word(&ops[0], 1, false);
+        let e = self.cx.word(&ops[1], 1, false);
+        let (st, e) = (st?, e?);
+        let cio = |o: &Operand| match o {
+            Operand::Mem(loc) => stljit_core::omron::word_of(self.cx.profile, *loc)
+                .filter(|(a, _)| *a == stljit_core::omron::WordArea::Cio)
+                .map(|(_, w)| w),
+            _ => None,
+        };
+        match (cio(&st), cio(&e)) {
+            (Some(a), Some(b)) if a <= b => {}
+            _ => {
+                let (line, mn) = (self.cx.line, self.cx.mn.clone());
+                return Err(self.cx.report(
+                    Code::OmrOperand,
+                    &ops[0],
+                    format!("line {line}: {mn} expects two CIO words St ≤ E"),
+                ));
+            }
+        }
+        self.class(l, Class::Output);
+        Ok(())
+    }
 }

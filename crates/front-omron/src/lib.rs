@@ -58,8 +58,11 @@
 //!   `P_…` flags are `SystemBit`s, `P_First_Cycle` is A200.11; constants are `Operand::Const`
 //!   in Omron value order (a double constant's low 16 bits are the low word).
 //!
-//! **Not supported yet** (OMR-E011 "not supported yet"): STEP/SNXT, BPRG/BEND, IORF,
-//! CCS/CCL, indirect operands outside MOV/CMP/arithmetic (contacts, coils, timer set values),
+//! * `CCS(282)`/`CCL(283)`: `Omron(Flags{save})`; `IORF(097) St E`: its operands checked, no
+//!   op (the model has only the built-in I/O, on which IORF has no effect).
+//!
+//! **Not supported yet** (OMR-E011 "not supported yet"): STEP/SNXT, BPRG/BEND (the spec gives
+//! only their placement rules), indirect operands outside MOV/CMP/arithmetic (contacts, coils, timer set values),
 //! TK operands, strings.
 //!
 //! **Known deviation:** `!` refreshes one bit, not the whole 16-bit word (§2.5): on a contact

@@ -329,6 +329,14 @@ impl<'a> Lowerer<'a> {
             Group::Counter(kind) => self.counter(l, kind),
             Group::Move(double) => self.data(l, DataBox::Move(double)),
             Group::MoveAddress => self.move_address(l),
+            Group::SaveFlags(save) => {
+                self.operands(l, 0)?;
+                self.class(l, Class::Output);
+                self.flags_changed = true;
+                self.edged(l.options, |s| s.emit(Op::Omron(OmronBox::Flags { save })));
+                Ok(())
+            }
+            Group::Iorf => self.iorf(l),
             Group::Compare(double, signed) => self.data(l, DataBox::Compare(double, signed)),
             Group::Arith(op) => self.data(l, DataBox::Arith(op)),
             Group::Control(flow) => self.flow(l, flow),

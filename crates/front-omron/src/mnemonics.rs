@@ -32,6 +32,10 @@ pub(crate) enum Group {
     Move(bool),
     /// `MOVR(560)`: an effective address into an index register.
     MoveAddress,
+    /// `CCS(282)` (true: save) / `CCL(283)` (load) the condition flags.
+    SaveFlags(bool),
+    /// `IORF(097) St E`: refresh of expansion I/O words.
+    Iorf,
     /// `CMP`/`CMPL`/`CPS`/`CPSL`: (double, signed).
     Compare(bool, bool),
     /// The arithmetic of §3.6.
@@ -188,6 +192,9 @@ pub(crate) const TABLE: &[Mnemonic] = &[
     m("MOV", Some(21), G::Move(false), UP_IMM),
     m("MOVL", Some(498), G::Move(true), UP_IMM),
     m("MOVR", Some(560), G::MoveAddress, UP),
+    m("CCS", Some(282), G::SaveFlags(true), UP),
+    m("CCL", Some(283), G::SaveFlags(false), UP),
+    m("IORF", Some(97), G::Iorf, UP),
     m("CMP", Some(20), G::Compare(false, false), IMM),
     m("CMPL", Some(60), G::Compare(true, false), IMM),
     m("CPS", Some(114), G::Compare(false, true), IMM),
@@ -211,15 +218,7 @@ pub(crate) const TABLE: &[Mnemonic] = &[
 
 /// Instructions of the CP series this front end recognises but does not lower yet (E011 with
 /// "not supported yet"), with their function codes.
-pub(crate) const NOT_YET: &[(&str, u16)] = &[
-    ("STEP", 8),
-    ("SNXT", 9),
-    ("BPRG", 96),
-    ("BEND", 801),
-    ("IORF", 97),
-    ("CCS", 282),
-    ("CCL", 283),
-];
+pub(crate) const NOT_YET: &[(&str, u16)] = &[("STEP", 8), ("SNXT", 9), ("BPRG", 96), ("BEND", 801)];
 
 /// The comparison relations with their function-code offsets (§3.1: `=`(300) … `>=`(325)).
 const RELATIONS: [(&str, CmpOp, u16); 6] = [

@@ -111,6 +111,10 @@ fn data_boxes_and_every_arithmetic_op() {
          omron compare double=1 signed=1 lhs=I.0 rhs=Dm.4
          load bit Flags.1.2
          assign bit=Q.1.3 immediate=0
+         load bit I.1.2
+         omron flags save=1
+         load bit I.1.3
+         omron flags save=0
          load bit Flags.0.3
          omron move double=0 src=const(0) dst=Dm.40
          load bit Flags.0.5

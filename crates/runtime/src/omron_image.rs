@@ -420,17 +420,27 @@ pub fn unpack_ref(p: u32) -> Option<OmronRef> {
 
 /// An Omron box as one integer for the JIT's shim (`stljit_rt_omron_box`): `MOV` 0, `MOVL` 1,
 /// the compares 2–5 (`2 + 2·double + signed`), `MOVR` 6, the arithmetic
-/// `7 + position in OmronArith::ALL`.
+/// `7 + position in OmronArith::ALL`, `CCS` 64, `CCL` 65.
 pub fn box_code(b: &OmronBox) -> u32 {
     match *b {
         OmronBox::Move { double, .. } => u32::from(double),
         OmronBox::Compare { double, signed, .. } => 2 + 2 * u32::from(double) + u32::from(signed),
         OmronBox::SetIndex { .. } => 6,
+        OmronBox::Flags { save } => {
+            if save {
+                CODE_CCS
+            } else {
+                CODE_CCS + 1
+            }
+        }
         OmronBox::Arith { op, .. } => {
             7 + OmronArith::ALL.iter().position(|&a| a == op).unwrap_or(0) as u32
         }
     }
 }
+
+/// [`box_code`] of CCS(282); CCL(283) is the next.
+const CODE_CCS: u32 = 64;
 
 /// Runs the box of code `code` (see [`box_code`]) on the operand values `a` and `b` (Omron
 /// order: a double's low word in the low 16 bits), writing a result to image offset `dst`
@@ -468,6 +478,29 @@ fn run_box_at(
             let double = code >= 4;
             let signed = code % 2 == 1;
             apply_flags(img, layout, data::compare(double, signed, a, b));
+        }
+        CODE_CCS | 65 => {
+            // CCS/CCL: the twelve condition flags to or from their save area (bytes 4–5).
+            let (flags, saved) = (
+                layout.base(Area::Flags),
+                layout.base(Area::Flags) + omron::SAVED_FLAGS,
+            );
+            let (from, to) = if code == CODE_CCS {
+                (flags, saved)
+            } else {
+                (saved, flags)
+            };
+            if layout.area_size(Area::Flags) >= omron::SAVED_FLAGS + 2 {
+                let v = u16::from_le_bytes([mem::get_u8(img, from), mem::get_u8(img, from + 1)]);
+                let w = FlagWrites {
+                    mask: SystemBit::CONDITION_FLAGS,
+                    value: v,
+                };
+                let old = u16::from_le_bytes([mem::get_u8(img, to), mem::get_u8(img, to + 1)]);
+                let [lo, hi] = w.apply_bits(old).to_le_bytes();
+                mem::set_u8(img, to, lo);
+                mem::set_u8(img, to + 1, hi);
+            }
         }
         6 => {
             // MOVR: the index register takes the effective address (big-endian dword).

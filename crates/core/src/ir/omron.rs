@@ -244,6 +244,13 @@ pub enum OmronBox {
         /// The index register 0..=15.
         ir: u8,
     },
+    /// `CCS(282)` (`save`) / `CCL(283)`: copy the condition flags to their save area, or back
+    /// (spec §3.4; the save area survives the task-start clearing, so flags can pass between
+    /// tasks).
+    Flags {
+        /// CCS instead of CCL.
+        save: bool,
+    },
     /// An arithmetic instruction: `dst := lhs op rhs` ([`OmronArith::result_words`] words from
     /// `dst`); on ER nothing is written.
     Arith {
@@ -403,6 +410,12 @@ impl OmronBox {
                 dst: Some(dst),
                 src_words: op.operand_words(),
                 dst_words: op.result_words(),
+            },
+            OmronBox::Flags { .. } => BoxOperands {
+                sources: [None, None],
+                dst: None,
+                src_words: 0,
+                dst_words: 0,
             },
         }
     }

@@ -194,6 +194,7 @@ fn omron_uses(b: &OmronBox) -> Uses {
             let w = omron_width(if double { 2 } else { 1 });
             Uses::of(&[read(lhs, w), read(rhs, w)])
         }
+        OmronBox::Flags { .. } => Uses::of(&[]),
         OmronBox::SetIndex { ir, .. } => Uses::of(&[write(
             Operand::Mem(super::Loc {
                 area: crate::area::Area::IndexReg,

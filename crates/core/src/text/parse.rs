@@ -387,6 +387,9 @@ fn omron_box(line: &mut Line<'_>) -> Result<OmronBox> {
             lhs: line.field("lhs")?.operand()?,
             rhs: line.field("rhs")?.operand()?,
         },
+        "flags" => OmronBox::Flags {
+            save: line.field("save")?.flag()?,
+        },
         "set_index" => OmronBox::SetIndex {
             ea: line.field("ea")?.number("effective address")?,
             ir: line.field("ir")?.number("index register")?,

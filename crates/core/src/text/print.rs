@@ -219,6 +219,7 @@ fn write_omron(out: &mut String, b: &OmronBox) -> fmt::Result {
             Opd(rhs)
         ),
         OmronBox::SetIndex { ea, ir } => write!(out, "set_index ea={ea} ir={ir}"),
+        OmronBox::Flags { save } => write!(out, "flags save={}", Flag(save)),
         OmronBox::Arith { op, lhs, rhs, dst } => write!(
             out,
             "arith op={op:?} lhs={} rhs={} dst={}",

@@ -228,7 +228,7 @@ impl Lower<'_, '_> {
                 self.guarded(pf, |s| s.omron_arith(op, &lhs, &rhs, &dst));
                 return;
             }
-            OmronBox::Arith { .. } | OmronBox::SetIndex { .. } => {}
+            OmronBox::Arith { .. } | OmronBox::SetIndex { .. } | OmronBox::Flags { .. } => {}
         }
         let bx = *bx;
         self.guarded(pf, move |s| {
@@ -260,6 +260,7 @@ impl Lower<'_, '_> {
                     });
                     (s.iconst(I32, i64::from(ea)), zero, Some(dst))
                 }
+                OmronBox::Flags { .. } => (zero, zero, None),
             };
             let at = match dst {
                 Some(Operand::Mem(loc)) => s.loc_addr(loc).off,
@@ -280,7 +281,7 @@ impl Lower<'_, '_> {
             OmronBox::Move { src, dst, .. } => is_ref(src) || is_ref(dst),
             OmronBox::Compare { lhs, rhs, .. } => is_ref(lhs) || is_ref(rhs),
             OmronBox::Arith { lhs, rhs, dst, .. } => is_ref(lhs) || is_ref(rhs) || is_ref(dst),
-            OmronBox::SetIndex { .. } => false,
+            OmronBox::SetIndex { .. } | OmronBox::Flags { .. } => false,
         }
     }
 
