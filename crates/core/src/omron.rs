@@ -326,7 +326,10 @@ const OMRON_TIMERS: &[TimerRange] = &[];
 
 /// The CP1H (and CP1L-M), spec omron-cp.md §1.1; built-in I/O only: input words CIO 0–1, output
 /// words CIO 100–101.
-pub static CP1H: CpuProfile = CpuProfile {
+pub static CP1H: CpuProfile = CP1H_DATA;
+
+/// The CP1H's data, which the CP1E profile starts from (a `static` cannot be copied).
+const CP1H_DATA: CpuProfile = CpuProfile {
     id: ProfileId::Cp1h,
     family: Family::Omron,
     omron: OmronAreas {
@@ -372,45 +375,21 @@ pub static CP1H: CpuProfile = CpuProfile {
 /// [uncertain]; these are the listed defaults).
 pub static CP1E: CpuProfile = CpuProfile {
     id: ProfileId::Cp1e,
-    family: Family::Omron,
     omron: OmronAreas {
-        cio: 6144,
-        first_input_word: 0,
-        first_output_word: 100,
         work: 100,
         holding: 50,
         aux: 754,
-        aux_read_only: 448,
         dm: 2048,
-        max_jump: 255,
         // [uncertain] U9: the CP1E manuals allow `Dn.bb`.
         dm_bits: true,
+        ..CP1H_DATA.omron
     },
     model: "CP1E",
-    inputs: 4,
-    outputs: 4,
-    bit_memory: 0,
-    sequence_relays: 0,
-    special_memory: 0,
-    special_memory_read_only: 0,
-    variable_memory: 0,
-    // Not an Omron area: the front end's private words (the FOR/NEXT loop counters), one frame
-    // per call level like S7's L memory; no Omron operand can name them.
-    local_frame: 32,
-    analog_inputs: 0,
-    analog_outputs: 0,
     timers: 256,
     counters: 256,
-    high_speed_counters: 0,
-    accumulators: 0,
     max_edges: 4096,
-    max_label: 1023,
     max_subroutine: 127,
-    // SBS nesting: the image has `L_FRAMES - 1` call frames (CS/CJ allow 16 levels; the
-    // deeper ones are not modelled, a call beyond is skipped as on S7).
-    max_call_depth: 8,
-    max_for_depth: 15,
-    timer_table: OMRON_TIMERS,
+    ..CP1H_DATA
 };
 
 #[cfg(test)]
