@@ -90,14 +90,9 @@ impl Width {
         (1i64 << (self.bits - 1)) - 1
     }
 
-    /// Decimal digits of a BCD operand.
-    fn digits(self) -> u32 {
-        self.bits / 4
-    }
-
-    /// `10^digits`: the BCD modulus.
+    /// `10^digits`: the BCD modulus (a constant per width, so no `pow` on the hot path).
     fn bcd_modulus(self) -> u64 {
-        10u64.pow(self.digits())
+        if self.bits == 16 { 10_000 } else { 100_000_000 }
     }
 
     /// The value of BCD operand `v`, or `None` if it is not BCD.
@@ -112,6 +107,33 @@ impl Width {
     /// `v` (below `10^(2·digits)`) as BCD of `2·digits` digits, as a double-width result.
     fn to_bcd(v: u64) -> u64 {
         bcd::bin_to_bcd64(v).unwrap_or(0) // callers pass products and quotients that fit
+    }
+}
+
+/// The binary sums and differences (`+`, `+L`, `+C`, `+CL`, `-`, `-L`, `-C`, `-CL`): what
+/// compiled code may compute inline, with the flag rule of `add`/`sub` here (the JIT's copy is
+/// held equal to it by the differential tests; `binary_sum_shapes` below holds this table
+/// equal to [`execute`]'s dispatch).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BinarySum {
+    /// `+` forms; else `-` forms (CY is the borrow).
+    pub add: bool,
+    /// The `C` forms: the carry flag before the instruction is added (subtracted).
+    pub carry_in: bool,
+}
+
+impl BinarySum {
+    /// The shape of `kind`, if it is a binary sum or difference.
+    pub fn of(kind: OmronArith) -> Option<BinarySum> {
+        use OmronArith::*;
+        let (add, carry_in) = match kind {
+            Add | AddL => (true, false),
+            AddC | AddCL => (true, true),
+            Sub | SubL => (false, false),
+            SubC | SubCL => (false, true),
+            _ => return None,
+        };
+        Some(BinarySum { add, carry_in })
     }
 }
 
@@ -189,8 +211,10 @@ fn add_bcd(w: Width, a: u32, b: u32, cin: bool) -> ArithOutcome {
         return ArithOutcome::ERROR;
     };
     let sum = x + y + u64::from(cin);
-    let r = sum % w.bcd_modulus();
-    bcd_result(r, sum >= w.bcd_modulus())
+    // Both operands are below the modulus, so the sum is below twice it.
+    let carry = sum >= w.bcd_modulus();
+    let r = if carry { sum - w.bcd_modulus() } else { sum };
+    bcd_result(r, carry)
 }
 
 /// `-B`, `-BL`, `-BC`, `-BCL`: `a − b − bin` if not negative (CY OFF), else its ten's
