@@ -7,17 +7,21 @@ use super::mem::OnFail;
 use super::state::{BoxState, Pred};
 use super::value::{B, Stack};
 use crate::helpers::Helper;
-use cranelift_codegen::ir::{InstBuilder, Value, condcodes::IntCC, types::I32};
+use cranelift_codegen::ir::{
+    InstBuilder, Value,
+    condcodes::IntCC,
+    types::{I16, I32, I64},
+};
 use stljit_core::ir::{
     BoxOperands, OmronArith, OmronBox, OmronCounterKind, OmronTimerKind, Operand,
 };
-use stljit_core::layout::{COUNTER_STATE_SIZE, Sched, TimerState};
+use stljit_core::layout::{CounterState, Sched, TimerState};
 use stljit_core::{Area, FatalCode, Width};
 use stljit_runtime::ffi::{OMRON_ARITH_HAS_RESULT, OMRON_CTL_KIND_SHIFT, OMRON_NO_OPERAND};
-use stljit_runtime::omron::Flag;
-use stljit_runtime::omron::FlagWrites;
+use stljit_runtime::omron::arith::{self, BinarySum};
 use stljit_runtime::omron::data;
-use stljit_runtime::omron_image;
+use stljit_runtime::omron::{Flag, FlagWrites};
+use stljit_runtime::omron_image::{self, CounterFixed, CounterLevels};
 
 impl Lower<'_, '_> {
     /// The Omron value of a direct operand: a word, or a double word with its low 16 bits in
@@ -90,60 +94,88 @@ impl Lower<'_, '_> {
         self.put_constant_flags(w);
     }
 
-    /// `CNT`…`CNTRX n sv`: as [`Lower::omron_timer`].
+    /// `CNT`…`CNTRX n sv`: as [`Lower::omron_timer`]. With a constant set value under an open
+    /// gate, the runtime's outcomes of a reset and of a quiet execution (no count edge,
+    /// `omron_image::counter_fixed`, computed now) are stored inline; only a count calls.
     pub(crate) fn omron_counter(&mut self, kind: OmronCounterKind, n: u16, sv: &Operand) {
         let l = self.env.layout;
         if u32::from(n) >= l.area_size(Area::CounterBit) {
             return;
         }
-        let [v, b, s] = l.counter_bytes(n).map(|(off, len)| (Addr::img(off), len));
+        let ranges = l.counter_bytes(n).map(|(off, len)| (Addr::img(off), len));
         let code = omron_kind_code(OmronCounterKind::ALL, kind);
-        // With every input OFF under an open gate and a constant set value, the runtime's step
-        // does not depend on the counter's state: its outcome (`counter_idle_outcome`, computed
-        // now) is stored inline and the call is made only when an input is ON.
-        let idle = match (*sv, self.block.gate) {
-            (Operand::Const(k), B::K(true)) => omron_image::counter_idle_outcome(kind, k as u16),
-            _ => None,
+        let fixed = match (*sv, self.block.gate) {
+            (Operand::Const(k), B::K(true)) => omron_image::counter_fixed(kind, k as u16),
+            _ => CounterFixed {
+                reset: None,
+                quiet: None,
+            },
         };
         let sv = self.omron_value(sv, false);
-        let Some(idle) = idle else {
-            self.omron_fast(Helper::OmronCounterFast, &[v, b, s], code, sv);
-            return;
+        let call = move |s: &mut Self| s.omron_fast(Helper::OmronCounterFast, &ranges, code, sv);
+        let levels = CounterLevels::of(kind);
+        let count = self.block.stack.level(levels.count);
+        let reset = self.block.stack.level(levels.reset);
+        let dec = levels.dec.map(|l| self.block.stack.level(l));
+        let state = ranges[2].0;
+        let inputs = [
+            (Some(count), CounterState::PREV_UP),
+            (dec, CounterState::PREV_DOWN),
+        ];
+        // The count edges: an input ON whose memory is OFF.
+        let mut edge = B::K(false);
+        if fixed.quiet.is_some() {
+            for (input, at) in inputs {
+                if let Some(input) = input {
+                    let memory = self.byte(state.plus(at));
+                    let rising = input.and_not(&mut self.b, B::Bit { v: memory, pos: 0 });
+                    edge = edge.or(&mut self.b, rising);
+                }
+            }
+        }
+        let record = move |s: &mut Self| {
+            for (input, at) in inputs {
+                if let Some(input) = input {
+                    let v = input.to01(&mut s.b);
+                    s.set_byte(state.plus(at), v);
+                }
+            }
         };
-        let inputs = (0..usize::from(kind.conditions())).map(|i| self.block.stack.level(i));
-        let mut any = B::K(false);
-        for input in inputs.collect::<Vec<_>>() {
-            any = any.or(&mut self.b, input);
-        }
-        match any {
-            B::K(false) => self.store_counter_idle(n, idle),
-            B::K(true) => self.omron_fast(Helper::OmronCounterFast, &[v, b, s], code, sv),
+        let on_reset = move |s: &mut Self| match fixed.reset {
+            Some((pv, flag, w)) => {
+                let (value, bit) = (ranges[0].0, ranges[1].0);
+                for (at, byte) in [(value, pv[0]), (value.plus(1), pv[1]), (bit, flag)] {
+                    let k = s.iconst(I32, i64::from(byte));
+                    s.set_byte(at, k);
+                }
+                record(s);
+                s.put_constant_flags(w);
+            }
+            None => call(s),
+        };
+        let otherwise = move |s: &mut Self| match fixed.quiet {
+            Some(w) if edge == B::K(false) => {
+                record(s);
+                s.put_constant_flags(w);
+            }
+            Some(w) if edge != B::K(true) => {
+                let c = edge.cond(&mut s.b);
+                s.diamond(c, call, move |s| {
+                    record(s);
+                    s.put_constant_flags(w);
+                });
+            }
+            _ => call(s),
+        };
+        match reset {
+            B::K(true) => on_reset(self),
+            B::K(false) => otherwise(self),
+            _ if fixed.reset.is_none() && fixed.quiet.is_none() => call(self),
             _ => {
-                let c = any.cond(&mut self.b);
-                self.diamond(
-                    c,
-                    |s2| s2.omron_fast(Helper::OmronCounterFast, &[v, b, s], code, sv),
-                    |s2| s2.store_counter_idle(n, idle),
-                );
+                let c = reset.cond(&mut self.b);
+                self.diamond(c, on_reset, otherwise);
             }
         }
-    }
-
-    /// Stores a counter's all-inputs-OFF outcome computed at compile time: the private state
-    /// bytes it sets and the flag writes.
-    fn store_counter_idle(
-        &mut self,
-        n: u16,
-        (bytes, w): ([Option<u8>; COUNTER_STATE_SIZE as usize], FlagWrites),
-    ) {
-        let (state, _) = self.env.layout.counter_bytes(n)[2];
-        for (i, byte) in bytes.iter().enumerate() {
-            if let Some(k) = byte {
-                let k = self.iconst(I32, i64::from(*k));
-                self.set_byte(Addr::img(state + i as u32), k);
-            }
-        }
-        self.put_constant_flags(w);
     }
 
     /// The condition flags := the constant writes `w`.
@@ -221,6 +253,10 @@ impl Lower<'_, '_> {
                 rhs,
             } => {
                 self.omron_free(pf, |s| s.omron_compare(double, signed, &lhs, &rhs));
+                return;
+            }
+            OmronBox::Arith { op, lhs, rhs, dst } if BinarySum::of(op).is_some() => {
+                self.omron_free(pf, |s| s.omron_binary_sum(op, &lhs, &rhs, &dst));
                 return;
             }
             OmronBox::Arith { op, lhs, rhs, dst } if op.result_words() <= 2 => {
@@ -427,13 +463,7 @@ impl Lower<'_, '_> {
         let double = op.operand_words() == 2;
         let a = self.omron_value(lhs, double);
         let b = self.omron_value(rhs, double);
-        let cy_at = self.area_addr(Area::Flags, 0);
-        let cy = self.byte(cy_at);
-        let cy = self
-            .b
-            .ins()
-            .ushr_imm_s(cy, i64::from(Flag::Cy.system_bit().bit_loc().bit));
-        let cy = self.b.ins().band_imm_s(cy, 1);
+        let cy = self.flag_bit(Flag::Cy);
         let code = self.iconst(I32, i64::from(omron_kind_code(OmronArith::ALL, op)));
         let out = self.call_pure(Helper::OmronArith, &[code, a, b, cy]);
         // The flag writes, repacked as a fast shim's (mask 16–31, values 0–15).
@@ -459,6 +489,110 @@ impl Lower<'_, '_> {
             self.write_static(a, width, v);
         }
         self.apply_packed_flags(packed);
+    }
+
+    /// The binary sums and differences inline (`runtime::omron::arith`'s `add`/`sub`): the
+    /// exact result one size wider gives CY (the unsigned result does not fit, or the borrow),
+    /// OF/UF (the signed result above / below the range), `=` and N from the stored result.
+    fn omron_binary_sum(&mut self, op: OmronArith, lhs: &Operand, rhs: &Operand, dst: &Operand) {
+        let Some(shape) = BinarySum::of(op) else {
+            return;
+        };
+        let double = op.operand_words() == 2;
+        let bits = if double { 32 } else { 16 };
+        let mask = (1i64 << bits) - 1;
+        let a = self.omron_value(lhs, double);
+        let b = self.omron_value(rhs, double);
+        let (ua, sa) = self.widened(a, double);
+        let (ub, sb) = self.widened(b, double);
+        let cin = if shape.carry_in {
+            let cy = self.flag_bit(Flag::Cy);
+            Some(self.b.ins().uextend(I64, cy))
+        } else {
+            None
+        };
+        let (r, cy, exact) = if shape.add {
+            let sum = self.b.ins().iadd(ua, ub);
+            let exact = self.b.ins().iadd(sa, sb);
+            let (sum, exact) = match cin {
+                Some(c) => (self.b.ins().iadd(sum, c), self.b.ins().iadd(exact, c)),
+                None => (sum, exact),
+            };
+            let r = self.b.ins().band_imm_s(sum, mask);
+            let cy = self
+                .b
+                .ins()
+                .icmp_imm_s(IntCC::UnsignedGreaterThan, sum, mask);
+            (r, cy, exact)
+        } else {
+            let (y, exact) = match cin {
+                Some(c) => {
+                    let e = self.b.ins().isub(sa, sb);
+                    (self.b.ins().iadd(ub, c), self.b.ins().isub(e, c))
+                }
+                None => (ub, self.b.ins().isub(sa, sb)),
+            };
+            let diff = self.b.ins().isub(ua, y);
+            let r = self.b.ins().band_imm_s(diff, mask);
+            let cy = self.b.ins().icmp(IntCC::UnsignedLessThan, ua, y);
+            (r, cy, exact)
+        };
+        let of = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::SignedGreaterThan, exact, mask >> 1);
+        let uf = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::SignedLessThan, exact, -(mask >> 1) - 1);
+        let eq = self.b.ins().icmp_imm_s(IntCC::Equal, r, 0);
+        let n = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::SignedGreaterThan, r, mask >> 1);
+        if let Operand::Mem(loc) = *dst {
+            let r = self.b.ins().ireduce(I32, r);
+            let at = self.area_addr(loc.area, loc.offset);
+            let (width, stored) = if double {
+                (Width::DWord, self.swap_halves(r))
+            } else {
+                (Width::Word, r)
+            };
+            self.write_static(at, width, stored);
+        }
+        let writes = arith::execute(op, 0, 0, false).flags;
+        self.put_flag_values(
+            writes.mask,
+            &[
+                (Flag::Cy, cy),
+                (Flag::Eq, eq),
+                (Flag::N, n),
+                (Flag::Of, of),
+                (Flag::Uf, uf),
+            ],
+        );
+    }
+
+    /// An Omron value as i64, zero-extended and sign-extended from its 16 or 32 bits.
+    fn widened(&mut self, v: Value, double: bool) -> (Value, Value) {
+        let narrow = if double {
+            v
+        } else {
+            self.b.ins().ireduce(I16, v)
+        };
+        (
+            self.b.ins().uextend(I64, narrow),
+            self.b.ins().sextend(I64, narrow),
+        )
+    }
+
+    /// Condition flag `flag` as a 0/1 `i32`.
+    fn flag_bit(&mut self, flag: Flag) -> Value {
+        let at = flag.system_bit().bit_loc();
+        let byte = self.area_addr(Area::Flags, at.byte);
+        let v = self.byte(byte);
+        let v = self.b.ins().ushr_imm_s(v, i64::from(at.bit));
+        self.b.ins().band_imm_s(v, 1)
     }
 
     /// `v` with its 16-bit halves swapped: an Omron double word to the IR's big-endian dword
