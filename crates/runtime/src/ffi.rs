@@ -37,15 +37,15 @@
 //! | `stljit_rt_omron_box(img, l, code, a, b, dst)` | [`crate::omron_image::run_box`] | status |
 //! | `stljit_rt_omron_box_refs(img, l, code, lhs_ref, lhs_val, rhs_ref, rhs_val, dst_ref, dst_off, words)` | [`crate::omron_image::run_box_refs`] | status |
 //! | `stljit_rt_omron_arith(op, a, b, cy)` | [`crate::omron::arith::execute`] | u64: result, flag writes |
-//! | `stljit_rt_omron_timer_fast(value, flag, state, now, ctl, sv)` | [`crate::omron_image::timer_step`] | packed flag writes |
-//! | `stljit_rt_omron_counter_fast(value, flag, state, ctl, sv)` | [`crate::omron_image::counter_step`] | packed flag writes |
+//! | `stljit_rt_omron_{tim,timx,timh,timhx,tmhh,tmhhx,ttim,ttimx}_fast(value, flag, state, now, ctl, sv)` | [`crate::omron_image::timer_step`] | packed flag writes |
+//! | `stljit_rt_omron_{cnt,cntx,cntr,cntrx}_fast(value, flag, state, ctl, sv)` | [`crate::omron_image::counter_step`] | packed flag writes |
 //!
 //! Enum arguments (`area`, and inside [`ValueOp`]'s encoding `op`, `func`, `conv`) are
 //! [`FfiCode`]s: the position in the enum's declaration order (`ArithOp`: Add 0, Sub 1, Mul 2,
 //! Div 3; `Area`: its position in `Area::ALL`).
 //!
-//! Two kinds of shim break the first convention on purpose. The six `_fast` shims
-//! (`ffi/fast.rs`) take pointers to the few bytes one timer or counter execution touches,
+//! Two kinds of shim break the first convention on purpose. The `_fast` shims (`ffi/fast.rs`
+//! and, for the Omron kinds, `ffi/omron.rs`; one per kind) take pointers to the few bytes one timer or counter execution touches,
 //! computed by the JIT from the layout at compile time, and they cannot panic, so they skip the
 //! layout, the slice and `catch_unwind`. The value shim (`ffi/value.rs`) takes no image at all:
 //! it returns the value and the SMB1 masks of one box computation for compiled code to apply.

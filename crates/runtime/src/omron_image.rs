@@ -183,6 +183,42 @@ pub fn timer_reset_outcome(kind: OmronTimerKind, sv: u16) -> Option<([u8; 2], u8
     (outcome(idle)? == a).then_some(a)
 }
 
+/// What a TIM-family timer with the constant set value `sv` does when its execution condition
+/// is ON under an open gate and it is not running (a start, §2.12), if that does not depend on
+/// its previous PV and flag: the PV word, the completion flag and the flag writes it stores;
+/// `running` becomes 1, the unconverted milliseconds 0 and the time of the last execution the
+/// scan's time (`TimerState::LAST`, the native-endian `T_NOW`). Like [`timer_reset_outcome`]
+/// it is `timer_step` itself, run on several states at two times.
+pub fn timer_start_outcome(kind: OmronTimerKind, sv: u16) -> Option<([u8; 2], u8, FlagWrites)> {
+    if kind.totalizing() {
+        return None;
+    }
+    let (run, rem, last) = (
+        TimerState::RUN as usize,
+        TimerState::TOF as usize,
+        TimerState::LAST as usize,
+    );
+    let mut seen = Seen::Nothing;
+    for (pv, flag, fill) in [
+        ([0x12, 0x34], 1, 0xA5),
+        ([0, 0], 0, 0),
+        ([0xAB, 0xCD], 1, 0x3C),
+    ] {
+        for t in [1_000u64, 0x0123_4567_89AB] {
+            let mut state = [fill; TIMER_STATE_SIZE as usize];
+            state[run] = 0;
+            let mut b: TimerBytes = (pv, flag, state);
+            let w = timer_step((&mut b.0, &mut b.1, &mut b.2), t, kind, 1, Gate::Open, sv);
+            let mut want = state;
+            want[run] = 1;
+            want[rem] = 0;
+            want[last..last + 8].copy_from_slice(&t.to_ne_bytes());
+            seen = seen.and((b.2 == want).then_some((b.0, b.1, w)));
+        }
+    }
+    seen.always()
+}
+
 /// What an Omron counter with a constant set value does under an open gate on the two paths
 /// whose outcome does not depend on its PV and flag. On both, the count-input memories take the
 /// inputs (`PREV_UP` := the count input; CNTR: `PREV_DOWN` := the decrement input; the rest of
@@ -627,6 +663,23 @@ mod tests {
         // Binary set values are always valid; TTIM has no reset-by-EC path.
         assert!(timer_reset_outcome(OmronTimerKind::TimX, 0x12A4).is_some());
         assert_eq!(timer_reset_outcome(OmronTimerKind::Ttim, 3), None);
+    }
+
+    #[test]
+    fn a_timer_start_is_state_free_only_with_a_valid_set_value() {
+        // §2.12: EC ON, not running → PV := SV, flag := (SV = 0), running, rem 0, last := t.
+        let start = |kind, sv| timer_start_outcome(kind, sv);
+        assert_eq!(
+            start(OmronTimerKind::Tim, 0x0030),
+            Some(([0x00, 0x30], 0, FlagWrites::OK))
+        );
+        assert_eq!(
+            start(OmronTimerKind::TimHX, 0),
+            Some(([0, 0], 1, FlagWrites::OK))
+        );
+        // A non-BCD SV: ER and nothing changes, so the outcome is the state's.
+        assert_eq!(start(OmronTimerKind::Tmhh, 0x00A0), None);
+        assert_eq!(start(OmronTimerKind::TtimX, 5), None);
     }
 
     #[test]

@@ -12,14 +12,16 @@ use cranelift_codegen::ir::{
     condcodes::IntCC,
     types::{I16, I32, I64},
 };
+use std::cmp::Ordering;
 use stljit_core::ir::{
     BoxOperands, OmronArith, OmronBox, OmronCounterKind, OmronTimerKind, Operand,
 };
 use stljit_core::layout::{CounterState, Sched, TimerState};
 use stljit_core::{Area, FatalCode, Width};
-use stljit_runtime::ffi::{OMRON_ARITH_HAS_RESULT, OMRON_CTL_KIND_SHIFT, OMRON_NO_OPERAND};
+use stljit_runtime::ffi::{OMRON_ARITH_HAS_RESULT, OMRON_NO_OPERAND};
 use stljit_runtime::omron::arith::{self, BinarySum};
 use stljit_runtime::omron::data;
+use stljit_runtime::omron::flags::compare_writes;
 use stljit_runtime::omron::{Flag, FlagWrites};
 use stljit_runtime::omron_image::{self, CounterFixed, CounterLevels};
 
@@ -48,7 +50,10 @@ impl Lower<'_, '_> {
     }
 
     /// `TIM`…`TTIMX n sv`: the fast shim on the timer's own bytes and the scan time, its flag
-    /// writes applied here.
+    /// writes applied here. With a constant set value under an open gate, a reset (EC OFF) and
+    /// a start (EC ON, not running) are the runtime's outcomes computed now
+    /// (`omron_image::timer_reset_outcome`, `timer_start_outcome`), stored inline: only a
+    /// running timer calls.
     pub(crate) fn omron_timer(&mut self, kind: OmronTimerKind, n: u16, sv: &Operand) {
         let l = self.env.layout;
         if u32::from(n) >= l.area_size(Area::TimerBit) {
@@ -56,26 +61,56 @@ impl Lower<'_, '_> {
         }
         let [v, b, s] = l.timer_bytes(n).map(|(off, len)| (Addr::img(off), len));
         let ranges = [v, b, s, (self.sched(Sched::T_NOW), 8)];
-        let code = omron_kind_code(OmronTimerKind::ALL, kind);
-        // EC OFF under an open gate with a constant set value is the runtime's reset, whose
-        // outcome it computes now (`timer_reset_outcome`): stored inline, no call.
-        let reset = match (*sv, self.block.gate) {
-            (Operand::Const(k), B::K(true)) => omron_image::timer_reset_outcome(kind, k as u16),
-            _ => None,
+        let (reset, start) = match (*sv, self.block.gate) {
+            (Operand::Const(k), B::K(true)) => (
+                omron_image::timer_reset_outcome(kind, k as u16),
+                omron_image::timer_start_outcome(kind, k as u16),
+            ),
+            _ => (None, None),
         };
         let sv = self.omron_value(sv, false);
+        let h = Helper::omron_timer_fast(kind);
+        let call = move |s: &mut Self| s.omron_fast(h, &ranges, sv);
+        let on = move |s: &mut Self| match start {
+            Some(outcome) => {
+                let running = s.byte(ranges[2].0.plus(TimerState::RUN));
+                s.diamond(running, call, move |s| s.store_timer_start(n, outcome));
+            }
+            None => call(s),
+        };
         match (reset, self.block.stack.top()) {
             (Some(r), B::K(false)) => self.store_timer_reset(n, r),
-            (Some(r), ec) if ec != B::K(true) => {
+            (_, B::K(true)) => on(self),
+            (Some(r), ec) => {
                 let c = ec.cond(&mut self.b);
-                self.diamond(
-                    c,
-                    |s| s.omron_fast(Helper::OmronTimerFast, &ranges, code, sv),
-                    |s| s.store_timer_reset(n, r),
-                );
+                self.diamond(c, on, move |s| s.store_timer_reset(n, r));
             }
-            _ => self.omron_fast(Helper::OmronTimerFast, &ranges, code, sv),
+            (None, _) => call(self),
         }
+    }
+
+    /// Stores a timer start computed at compile time: PV, flag, the flag writes, `running`
+    /// ON, no unconverted milliseconds and the scan's time as the last execution.
+    fn store_timer_start(&mut self, n: u16, (pv, flag, w): ([u8; 2], u8, FlagWrites)) {
+        let [(v, _), (b, _), (s, _)] = self.env.layout.timer_bytes(n);
+        for (at, byte) in [
+            (v, pv[0]),
+            (v + 1, pv[1]),
+            (b, flag),
+            (s + TimerState::RUN, 1),
+            (s + TimerState::TOF, 0),
+        ] {
+            let k = self.iconst(I32, i64::from(byte));
+            self.set_byte(Addr::img(at), k);
+        }
+        // `LAST := T_NOW`: both native-endian u64, copied as two 4-byte halves (any byte order
+        // copies the same bytes).
+        let (now, last) = (self.sched(Sched::T_NOW), Addr::img(s + TimerState::LAST));
+        for half in [0, 4] {
+            let word = self.read_static(now.plus(half), Width::DWord);
+            self.write_static(last.plus(half), Width::DWord, word);
+        }
+        self.put_constant_flags(w);
     }
 
     /// Stores a timer reset computed at compile time: PV, flag, `running` and the flag writes.
@@ -103,7 +138,6 @@ impl Lower<'_, '_> {
             return;
         }
         let ranges = l.counter_bytes(n).map(|(off, len)| (Addr::img(off), len));
-        let code = omron_kind_code(OmronCounterKind::ALL, kind);
         let fixed = match (*sv, self.block.gate) {
             (Operand::Const(k), B::K(true)) => omron_image::counter_fixed(kind, k as u16),
             _ => CounterFixed {
@@ -112,7 +146,8 @@ impl Lower<'_, '_> {
             },
         };
         let sv = self.omron_value(sv, false);
-        let call = move |s: &mut Self| s.omron_fast(Helper::OmronCounterFast, &ranges, code, sv);
+        let h = Helper::omron_counter_fast(kind);
+        let call = move |s: &mut Self| s.omron_fast(h, &ranges, sv);
         let levels = CounterLevels::of(kind);
         let count = self.block.stack.level(levels.count);
         let reset = self.block.stack.level(levels.reset);
@@ -195,14 +230,10 @@ impl Lower<'_, '_> {
     }
 
     /// Calls a fast Omron shim on the image ranges `ranges` (pointers, in order) with `ctl`
-    /// (stack levels 0–2, the gate, `kind`) and `sv`, then applies the flag writes it returns.
-    fn omron_fast(&mut self, h: Helper, ranges: &[(Addr, u32)], kind: u32, sv: Value) {
+    /// (stack levels 0–2, the gate) and `sv`, then applies the flag writes it returns.
+    fn omron_fast(&mut self, h: Helper, ranges: &[(Addr, u32)], sv: Value) {
         let stack = self.omron_conditions();
         let ctl = self.fast_ctl(stack);
-        let ctl = self
-            .b
-            .ins()
-            .bor_imm_s(ctl, i64::from(kind << OMRON_CTL_KIND_SHIFT));
         let image = self.func.image;
         let mut args: Vec<Value> = ranges
             .iter()
@@ -421,8 +452,9 @@ impl Lower<'_, '_> {
         self.put_flag_values(writes.mask, &[(Flag::Eq, zero), (Flag::N, n)]);
     }
 
-    /// `CMP`/`CMPL`/`CPS`/`CPSL` inline with `data::compare`'s flags: the six comparison flags
-    /// from the order of the operands, ER OFF.
+    /// `CMP`/`CMPL`/`CPS`/`CPSL` inline: the order of the operands as an index (0 less, 1
+    /// equal, 2 greater) selects each flag byte's bits from a table of the runtime's own
+    /// writes for the three orders (`flags::compare_writes`), so no flag formula is restated.
     fn omron_compare(&mut self, double: bool, signed: bool, lhs: &Operand, rhs: &Operand) {
         let a = self.omron_value(lhs, double);
         let b = self.omron_value(rhs, double);
@@ -438,22 +470,28 @@ impl Lower<'_, '_> {
         };
         let lt = self.b.ins().icmp(lt_cc, a, b);
         let gt = self.b.ins().icmp(gt_cc, a, b);
-        let eq = self.b.ins().icmp(IntCC::Equal, a, b);
-        let ge = self.b.ins().bxor_imm_s(lt, 1);
-        let le = self.b.ins().bxor_imm_s(gt, 1);
-        let ne = self.b.ins().bxor_imm_s(eq, 1);
-        let mask = data::compare(double, signed, 0, 0).mask;
-        self.put_flag_values(
-            mask,
-            &[
-                (Flag::Lt, lt),
-                (Flag::Gt, gt),
-                (Flag::Eq, eq),
-                (Flag::Ge, ge),
-                (Flag::Le, le),
-                (Flag::Ne, ne),
-            ],
-        );
+        let lt = self.b.ins().uextend(I32, lt);
+        let gt = self.b.ins().uextend(I32, gt);
+        // (gt − lt + 1) · 8: the bit offset of the order's entry in a byte table.
+        let order = self.b.ins().isub(gt, lt);
+        let shift = self.b.ins().ishl_imm_s(order, 3);
+        let shift = self.b.ins().iadd_imm_s(shift, 8);
+        let table = [Ordering::Less, Ordering::Equal, Ordering::Greater].map(compare_writes);
+        let mask = table[0].mask;
+        for byte in 0..2u32 {
+            let bits_of = |w: FlagWrites| u32::from((w.value & mask) >> (8 * byte)) & 0xFF;
+            let packed = table
+                .iter()
+                .enumerate()
+                .fold(0u32, |acc, (i, w)| acc | bits_of(*w) << (8 * i));
+            if (mask >> (8 * byte)) & 0xFF == 0 {
+                continue;
+            }
+            let packed = self.iconst(I32, i64::from(packed));
+            let bits = self.b.ins().ushr(packed, shift);
+            let bits = self.b.ins().band_imm_s(bits, 0xFF);
+            self.put_omron_flags(byte, mask, bits);
+        }
     }
 
     /// An arithmetic instruction with at most two result words: the runtime's pure arithmetic

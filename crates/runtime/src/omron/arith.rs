@@ -214,7 +214,7 @@ fn add_bcd(w: Width, a: u32, b: u32, cin: bool) -> ArithOutcome {
     // Both operands are below the modulus, so the sum is below twice it.
     let carry = sum >= w.bcd_modulus();
     let r = if carry { sum - w.bcd_modulus() } else { sum };
-    bcd_result(r, carry)
+    bcd_result(w, r, carry)
 }
 
 /// `-B`, `-BL`, `-BC`, `-BCL`: `a − b − bin` if not negative (CY OFF), else its ten's
@@ -225,19 +225,25 @@ fn sub_bcd(w: Width, a: u32, b: u32, bin: bool) -> ArithOutcome {
     };
     let y = y + u64::from(bin);
     if x >= y {
-        bcd_result(x - y, false)
+        bcd_result(w, x - y, false)
     } else {
         // y − x ≤ 10^digits, so the complement is 0 ..= 10^digits − 1.
-        bcd_result(w.bcd_modulus() - (y - x), true)
+        bcd_result(w, w.bcd_modulus() - (y - x), true)
     }
 }
 
 /// A BCD sum or difference `r` (below the modulus): ER OFF, CY, `=`.
-fn bcd_result(r: u64, carry: bool) -> ArithOutcome {
+fn bcd_result(w: Width, r: u64, carry: bool) -> ArithOutcome {
     let flags = FlagWrites::OK
         .write(Flag::Cy, carry)
         .write(Flag::Eq, r == 0);
-    ArithOutcome::ok(Width::to_bcd(r), flags)
+    // `r` has the operands' digits, so the encoding of their width always succeeds.
+    let bcd = if w.bits == 16 {
+        bcd::bin_to_bcd16(r as u16).map(u64::from)
+    } else {
+        bcd::bin_to_bcd32(r as u32).map(u64::from)
+    };
+    ArithOutcome::ok(bcd.unwrap_or(0), flags)
 }
 
 /// A product of double width: ER OFF, `=` := it is 0, and (binary forms) N := its top bit.
