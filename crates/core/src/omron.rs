@@ -369,6 +369,7 @@ const CP1H_DATA: CpuProfile = CpuProfile {
     max_call_depth: 8,
     max_for_depth: 15,
     timer_table: OMRON_TIMERS,
+    instruction_sets: &[],
 };
 
 /// The CP1E (E type), with the smaller ranges of spec §1.1 (U9: the per-model table is

@@ -101,7 +101,9 @@ impl Lowerer<'_> {
                     matches!(ps.kind, PouKind::Interrupt(_)),
                     "an interrupt routine",
                 )?;
-                Op::Return { conditional: false }
+                Op::Return {
+                    conditional: m == "CRETI",
+                }
             }
             Flow::Jump => {
                 let (n, id) = self.label_operand(ps, line)?;

@@ -316,7 +316,10 @@ pub fn print_op(program: &Program, pou: &Pou, op: &Op) -> String {
                     .map_or("?", |p| p.name.as_str())
             ),
         },
-        Op::Return { conditional: true } => "CRET".into(),
+        Op::Return { conditional: true } => match pou.kind {
+            PouKind::Interrupt(_) => "CRETI".into(),
+            _ => "CRET".into(),
+        },
         Op::Return { conditional: false } => match pou.kind {
             PouKind::Interrupt(_) => "RETI".into(),
             _ => "RET".into(),

@@ -4,6 +4,7 @@
 
 use crate::classes::Cx;
 use crate::lexer::{Line, Tok, upper};
+use crate::mnemonics;
 use crate::spelling::{counter_mnemonic, timer_mnemonic};
 use crate::stack::StackCheck;
 use crate::structure::PouSrc;
@@ -112,25 +113,38 @@ impl<'s> Lowerer<'s> {
             self.unknown(line.mnemonic);
             return;
         };
+        if let Some(set) = mnemonics::family(m)
+            && !self.cx.profile.has(set)
+        {
+            self.cx.report(
+                Code::NotAvailable,
+                line.mnemonic,
+                format!(
+                    "`{m}` is not available on the {}: it has no {}",
+                    self.cx.profile.model,
+                    set.describe()
+                ),
+                Some(mnemonics::instead(set).to_owned()),
+            );
+            return;
+        }
         // Errors are already reported; lowering simply moves on to the next line.
         let _ = self.instr(ps, m, line);
     }
 
-    /// Reports an unknown or out-of-scope mnemonic.
+    /// Reports an unknown mnemonic, or a known one that is not supported yet.
     pub(crate) fn unknown(&mut self, t: Tok<'_>) {
         let up = t.text.to_ascii_uppercase();
-        if crate::mnemonics::OUT_OF_SCOPE.contains(&up.as_str())
-            || crate::mnemonics::is_string_compare(&up)
-        {
+        if let Some(set) = mnemonics::family(&up) {
             self.cx.report(
                 Code::Unsupported,
                 t,
-                format!("`{}` is not supported in this version", clip(t.text)),
-                Some("see spec §4.12 for the instructions left out of version 1".into()),
+                format!("`{}` is not supported yet", clip(t.text)),
+                Some(mnemonics::not_yet(set).into()),
             );
             return;
         }
-        let help = crate::mnemonics::closest(&up).map(|s| format!("did you mean `{s}`?"));
+        let help = mnemonics::closest(&up).map(|s| format!("did you mean `{s}`?"));
         self.cx.report(
             Code::UnknownMnemonic,
             t,

@@ -106,8 +106,8 @@ codes! {
     OddAnalog = "E025", Error, "AIW/AQW addresses must be even";
     /// LDS out of range.
     LdsRange = "E026", Error, "LDS takes a stack level 0..8";
-    /// Out-of-scope instruction.
-    Unsupported = "E027", Error, "the instruction is not supported in this version";
+    /// Known instruction, not supported yet.
+    Unsupported = "E027", Error, "the instruction is known but not supported yet";
     /// Subroutine parameters.
     SubroutineParams = "E028", Error, "subroutine parameters are not supported yet";
     /// Block structure.
@@ -118,6 +118,8 @@ codes! {
     ScrBitShared = "E031", Error, "one S bit is used as an SCR segment flag in two blocks";
     /// Jump into a FOR body.
     JumpIntoLoop = "E032", Error, "a JMP enters a FOR loop's body from outside the loop";
+    /// Instruction the selected CPU does not have.
+    NotAvailable = "E033", Error, "the instruction is not available on the selected CPU";
     /// Contact or stack operation consuming an unloaded level.
     StackUnderflow = "W001", Warning, "a contact or ALD/OLD/LPP/LRD consumes a stack level that nothing loaded";
     /// Too many live stack levels.
