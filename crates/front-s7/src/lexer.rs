@@ -138,6 +138,42 @@ pub(crate) fn lex_line(line: &str, number: u32) -> Option<Line<'_>> {
     Some(out)
 }
 
+/// Every operand of a line, however many (a `CALL` may pass 16 parameters; [`Line`] keeps only
+/// the first [`MAX_OPS`]): `rest` split at commas outside quotes, with columns.
+pub(crate) fn all_operands<'a>(line: &Line<'a>) -> Vec<Tok<'a>> {
+    let rest = line.rest;
+    if rest.text.is_empty() {
+        return Vec::new();
+    }
+    let ascii = rest.text.is_ascii();
+    let b = rest.text.as_bytes();
+    let mut out = Vec::with_capacity(line.n_ops);
+    let (mut quote, mut piece) = (0u8, 0);
+    for i in 0..=b.len() {
+        let c = b.get(i).copied().unwrap_or(b',');
+        if quote != 0 {
+            if c == quote {
+                quote = 0;
+            }
+            if i < b.len() {
+                continue;
+            }
+        } else if c == b'"' || c == b'\'' {
+            quote = c;
+            continue;
+        }
+        if c == b',' || i == b.len() {
+            let t = tok(rest.text, ascii, piece, i);
+            out.push(Tok {
+                col: rest.col + t.col - 1,
+                ..t
+            });
+            piece = i + 1;
+        }
+    }
+    out
+}
+
 /// Uppercases an ASCII mnemonic into `buf`; `None` when it is too long or not ASCII (then it
 /// cannot be a known mnemonic).
 pub(crate) fn upper<'b>(s: &str, buf: &'b mut [u8; 16]) -> Option<&'b str> {
@@ -202,6 +238,17 @@ mod tests {
     fn many_operands_counted() {
         let l = lex_line("CALL SBR0, a, b, c, d, e", 1).unwrap();
         assert_eq!(l.n_ops, 6);
+    }
+
+    #[test]
+    fn all_operands_of_a_long_call() {
+        let l = lex_line("\tCALL   SCALE, L60.0, VW0, +3, \"a,b\", VW20 // c", 1).unwrap();
+        let ops = all_operands(&l);
+        let texts: Vec<_> = ops.iter().map(|t| t.text).collect();
+        assert_eq!(texts, ["SCALE", "L60.0", "VW0", "+3", "\"a,b\"", "VW20"]);
+        assert_eq!(ops[0].col, l.ops[0].col);
+        assert_eq!(ops[3].col, l.ops[3].col);
+        assert_eq!(ops[5].col, 39);
     }
 
     #[test]

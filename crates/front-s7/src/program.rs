@@ -4,11 +4,13 @@
 
 use crate::classes::Cx;
 use crate::lexer::{Line, Tok, upper};
+use crate::locals::Locals;
 use crate::mnemonics;
 use crate::spelling::{counter_mnemonic, timer_mnemonic};
 use crate::stack::StackCheck;
 use crate::structure::PouSrc;
 use std::collections::HashMap;
+use std::rc::Rc;
 use stljit_core::ir::{
     BitLoc, CounterDecl, CounterKind, EdgeDecl, Op, Pou, PouKind, Program, SrcLoc, TimerDecl,
     TimerKind, loop_entered_by,
@@ -87,6 +89,13 @@ pub(crate) struct Lowerer<'s> {
     pub(crate) scr_bits: HashMap<BitLoc, (PouId, Span)>,
     /// The op being lowered's mnemonic token.
     pub(crate) mnemonic: Tok<'s>,
+    /// Every POU's local variable table, by POU index (a CALL checks its actuals against the
+    /// callee's).
+    pub(crate) locals: Vec<Rc<Locals>>,
+    /// Every POU's name and where it is declared, by POU index (for CALL messages).
+    pub(crate) pou_names: Vec<String>,
+    /// See `pou_names`.
+    pub(crate) pou_spans: Vec<Span>,
 }
 
 impl<'s> Lowerer<'s> {
@@ -234,6 +243,7 @@ impl<'s> Lowerer<'s> {
             stack: StackCheck::new(start, 9),
         };
         self.cx.file = src.file;
+        self.cx.locals = self.locals.get(id.index()).cloned();
         for line in &src.lines {
             self.lower_line(&mut ps, line);
         }
@@ -286,6 +296,10 @@ pub(crate) fn lower<'s>(
         names.entry(p.name.clone()).or_insert((id, p.kind));
     }
     cx.file = srcs.first().map_or(cx.file, |p| p.file);
+    let locals = srcs
+        .iter()
+        .map(|p| Rc::new(Locals::build(p.decls.clone(), p.kind, &mut cx.diags)))
+        .collect();
     let mut lw = Lowerer {
         cx,
         subs,
@@ -295,6 +309,9 @@ pub(crate) fn lower<'s>(
         edges: 0,
         scr_bits: HashMap::new(),
         mnemonic: Tok::default(),
+        locals,
+        pou_names: srcs.iter().map(|p| p.name.clone()).collect(),
+        pou_spans: srcs.iter().map(|p| p.decl).collect(),
     };
     let mut states = Vec::with_capacity(srcs.len());
     let mut pous = Vec::with_capacity(srcs.len());

@@ -186,8 +186,10 @@ fn gate_flow(pou: &Pou, exits_one: &[bool]) -> (Vec<bool>, bool) {
         let out = match &pou.ops[i] {
             Op::ScrBegin { .. } => false,
             Op::ScrEnd => true,
-            Op::Call(p) => inp && exits_one.get(p.index()).copied().unwrap_or(false),
-            _ => inp,
+            op => match op.callee() {
+                Some(p) => inp && exits_one.get(p.index()).copied().unwrap_or(false),
+                None => inp,
+            },
         };
         if pou.ops[i].may_exit() && !out {
             exit_ok = false;

@@ -1,9 +1,10 @@
 //! The structural facts of every op, stated once: where control goes next ([`Op::successors`]),
 //! what it does to the logic stack ([`Op::stack_effect`]), and which FOR loop a jump would enter
-//! ([`loop_entered_by`]). The verifier, the JIT's analyses and the front ends' stack checks read
+//! ([`loop_entered_by`]), and which subroutine it calls ([`Op::callee`]). The verifier, the JIT's analyses and the front ends' stack checks read
 //! these instead of matching on ops themselves, so a new op states its facts here and nowhere else.
 
 use super::{CounterKind, Op, Pou};
+use crate::index::PouId;
 
 /// Where control can go after an op: the next op, and one branch target (an op index, where
 /// `ops.len()` is the POU's end).
@@ -130,6 +131,15 @@ impl Op {
         matches!(self, Op::Return { .. } | Op::End { .. })
     }
 
+    /// The subroutine the op calls (`CALL`, with or without parameters).
+    pub fn callee(&self) -> Option<PouId> {
+        match self {
+            Op::Call(p) => Some(*p),
+            Op::CallArgs(c) => Some(c.callee),
+            _ => None,
+        }
+    }
+
     /// The op's effect on the logic stack.
     pub fn stack_effect(&self) -> StackEffect {
         match self {
@@ -177,6 +187,7 @@ impl Op {
             | Op::Box(_)
             | Op::Jump(_)
             | Op::Call(_)
+            | Op::CallArgs(_)
             | Op::Stop
             | Op::Wdr
             | Op::For { .. }
