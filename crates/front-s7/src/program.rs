@@ -117,6 +117,15 @@ impl<'s> Lowerer<'s> {
     fn lower_line(&mut self, ps: &mut PouState, line: &Line<'s>) {
         self.cx.line = line.line;
         self.mnemonic = line.mnemonic;
+        let before = ps.ops.len();
+        self.lower_checked(ps, line);
+        if ps.ops.len() == before {
+            ps.stack.lost_line();
+        }
+    }
+
+    /// Lowers one line after the availability check; errors are reported, not returned.
+    fn lower_checked(&mut self, ps: &mut PouState, line: &Line<'s>) {
         let mut buf = [0u8; 16];
         let Some(m) = upper(line.mnemonic.text, &mut buf) else {
             self.unknown(line.mnemonic);
