@@ -267,6 +267,8 @@ pub(crate) fn structure<'a>(
 fn structure_file<'a>(b: &mut Builder<'a, '_>, file: FileId, text: &'a str) {
     // The open block and whether its BEGIN was seen; the linear POU lines go to.
     let mut block: Option<(BlockKind, usize, Span)> = None;
+    // Inside a `DATA_BLOCK` (skipped, reported once at its header).
+    let mut in_data = false;
     // The open `VAR_…` section: where it opened, its section and the POU it declares for.
     let mut in_var: Option<(Span, Section, usize)> = None;
     let mut linear: Option<usize> = None;
@@ -301,6 +303,26 @@ fn structure_file<'a>(b: &mut Builder<'a, '_>, file: FileId, text: &'a str) {
         if upper_prefix("TITLE")
             && (m.text[5..].starts_with('=') || line.rest.text.starts_with('='))
         {
+            continue;
+        }
+        if in_data {
+            in_data = !is(&m, "END_DATA_BLOCK");
+            continue;
+        }
+        if is(&m, "DATA_BLOCK") {
+            // MicroWIN exports the data block (V-memory initial values) in the same file; they
+            // are not loaded yet, which must not pass silently.
+            b.diags.push(
+                Diagnostic::new(
+                    Code::Unsupported,
+                    s,
+                    m.text,
+                    "`DATA_BLOCK` is not supported yet: its V-memory initial values would be lost",
+                )
+                .help("set the initial values in the first scan (LD SM0.1 / MOV…) meanwhile"),
+            );
+            used_blocks = true;
+            in_data = true;
             continue;
         }
         let kind = [
