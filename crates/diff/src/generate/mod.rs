@@ -8,11 +8,13 @@
 //! eight, pointers stepped past their area, loops left to the watchdog.
 //!
 //! The parts: [`operands`] picks operands per operand class, [`programs`] builds networks and
-//! POUs, [`stimulus`] builds the per-scan inputs and scan times.
+//! POUs, [`params`] gives subroutines parameters and calls them with actuals, [`stimulus`] builds
+//! the per-scan inputs and scan times.
 
 pub mod boxes;
 pub mod control;
 pub mod operands;
+pub mod params;
 pub mod programs;
 pub mod stimulus;
 
@@ -135,6 +137,8 @@ pub(crate) struct Gen<'c, 'a> {
     pub(crate) pending_wild: Vec<LabelId>,
     /// Wild-jump labels of the current POU already placed (targets of backward jumps).
     pub(crate) placed_wild: Vec<LabelId>,
+    /// Each POU's parameters (empty for the main program and most subroutines), by POU index.
+    pub(crate) params: Vec<Vec<params::Param>>,
 }
 
 impl<'c, 'a> Gen<'c, 'a> {
@@ -157,6 +161,7 @@ impl<'c, 'a> Gen<'c, 'a> {
             in_interrupt: false,
             pending_wild: Vec::new(),
             placed_wild: Vec::new(),
+            params: Vec::new(),
         }
     }
 
@@ -225,6 +230,12 @@ impl<'c, 'a> Gen<'c, 'a> {
         self.wild_jumps = self.c.chance(1, 12);
         let plan = self.plan_subroutines();
         self.n_pous = 1 + plan.len() as u32;
+        self.params = std::iter::once(Vec::new())
+            .chain(plan.iter().map(|_| Vec::new()))
+            .collect();
+        for i in 1..self.params.len() {
+            self.params[i] = self.signature();
+        }
         let mut pous = Vec::with_capacity(self.n_pous as usize);
         self.pou = Program::MAIN;
         self.main_body(&plan);
