@@ -87,8 +87,9 @@ pub fn generate_case(c: &mut Choices<'_>, cfg: &GenConfig) -> Case {
 pub fn generate_program(c: &mut Choices<'_>, cfg: &GenConfig) -> Program {
     let profile = match cfg.profile {
         Some(p) => p,
-        // The A5 is the product; the S7-200 table exercises the kind-by-number timer rules.
-        None => [ProfileId::A5, ProfileId::S7_200][c.weighted(&[4, 1])],
+        // The A5 is the product; the S7-200 table exercises the kind-by-number timer rules, the
+        // SMART its larger areas.
+        None => [ProfileId::A5, ProfileId::S7_200, ProfileId::Smart][c.weighted(&[4, 1, 1])],
     };
     let mut g = Gen::new(c, cfg, profile);
     g.program()
