@@ -5,6 +5,7 @@
 #![allow(unsafe_code)]
 
 use crate::build::{self, Built};
+use crate::lower::Baked;
 use crate::{JitError, JitOptions};
 use cranelift_jit::JITModule;
 use cranelift_module::Module;
@@ -13,7 +14,8 @@ use stljit_core::ir::Program;
 use stljit_core::layout::Layout;
 use stljit_core::{PouId, ScanStatus};
 use stljit_runtime::rules::Rules;
-use stljit_runtime::{Engine, Image, scan};
+use stljit_runtime::scan::{self, ScanPlan};
+use stljit_runtime::{Engine, Image};
 
 type PouFn = unsafe extern "C" fn(*mut u8, i32) -> i32;
 type RunFn = unsafe extern "C" fn(*mut u8, u64, u64, u64, *mut u64) -> i32;
@@ -25,6 +27,8 @@ pub struct JitProgram {
     run: RunFn,
     /// Boxed so its address, baked into the code for the runtime shims, never moves.
     layout: Box<Layout>,
+    /// What the scan prologue touches; boxed for the same reason.
+    plan: Box<ScanPlan>,
     op_count: usize,
     /// The executed-op counter of an instrumented build ([`JitProgram::compile_counting`]).
     counter: Option<Box<AtomicU64>>,
@@ -74,18 +78,21 @@ impl JitProgram {
         rules: Rules,
     ) -> Result<JitProgram, JitError> {
         let layout = Box::new(Layout::of(program.profile));
-        let layout_ptr = &*layout as *const Layout as i64;
+        let plan = Box::new(ScanPlan::of(program));
         // An atomic so that the code's plain stores through its address are legal interior
         // mutation; it is only read between scans.
         let counter = count.then(|| Box::new(AtomicU64::new(0)));
-        let counter_ptr = counter.as_deref().map(|c| c.as_ptr() as i64);
+        let baked = Baked {
+            layout: &*layout as *const Layout as i64,
+            scan_plan: &*plan as *const ScanPlan as i64,
+            op_counter: counter.as_deref().map(|c| c.as_ptr() as i64),
+        };
         let Built { mut module, run_id } = build::build(
             program,
             opts,
             rules,
             &layout,
-            layout_ptr,
-            counter_ptr,
+            baked,
             true,
             &mut |_, _, _| {},
         )?;
@@ -116,6 +123,7 @@ impl JitProgram {
             main,
             run,
             layout,
+            plan,
             op_count: program.op_count(),
             counter,
         })
@@ -129,14 +137,18 @@ impl JitProgram {
     /// Whether `image` has the layout this program was compiled for (anything else is refused:
     /// the code addresses the image at constant offsets).
     fn fits(&self, image: &Image) -> bool {
-        *image.layout() == *self.layout && image.bytes().len() == self.layout.size as usize
+        // An image's layout is `Layout::of` its profile (the only constructor), so the profile
+        // names it: comparing it instead of the whole table keeps this check off the per-scan
+        // cost.
+        debug_assert!(
+            image.layout().profile != self.layout.profile || *image.layout() == *self.layout
+        );
+        image.layout().profile == self.layout.profile
+            && image.bytes().len() == self.layout.size as usize
     }
 
-    /// Runs up to `n` scans at times `t0_ms + i * scan_ms` in one native call, stopping after
-    /// the first scan that does not return [`ScanStatus::Ok`]. Returns the number of scans run
-    /// (including that last one) and the last status (`Ok` when all `n` ran, or `n` is 0).
-    /// Equivalent to calling [`Engine::scan`] in a loop.
-    pub fn run_scans(
+    /// [`Engine::run_scans`] in one native call (the compiled N-scan loop).
+    fn native_scans(
         &mut self,
         image: &mut Image,
         t0_ms: u64,
@@ -194,7 +206,17 @@ impl Engine for JitProgram {
             return ScanStatus::Fatal;
         }
         let (bytes, layout) = image.split_mut();
-        scan::run(bytes, layout, t_ms, |b, _| self.body(b))
+        scan::run(bytes, layout, &self.plan, t_ms, |b, _| self.body(b))
+    }
+
+    fn run_scans(
+        &mut self,
+        image: &mut Image,
+        t0_ms: u64,
+        scan_ms: u64,
+        n: u64,
+    ) -> (u64, ScanStatus) {
+        self.native_scans(image, t0_ms, scan_ms, n)
     }
 }
 
