@@ -343,6 +343,8 @@ const CP1H_DATA: CpuProfile = CpuProfile {
         dm: 32768,
         max_jump: 255,
         dm_bits: false,
+        // CP Programming Manual §2-1-3: up to 32 cyclic tasks, numbers 0–31.
+        cyclic_tasks: 32,
     },
     model: "CP1H",
     inputs: 4,
@@ -382,6 +384,8 @@ pub static CP1E: CpuProfile = CpuProfile {
         dm: 2048,
         // [uncertain] U9: the CP1E manuals allow `Dn.bb`.
         dm_bits: true,
+        // [uncertain]: one cyclic task.
+        cyclic_tasks: 1,
         ..CP1H_DATA.omron
     },
     model: "CP1E",

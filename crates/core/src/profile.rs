@@ -181,6 +181,8 @@ pub struct OmronAreas {
     pub max_jump: u16,
     /// Whether DM words are bit-addressable (`D10.03`; omron-cp.md §1.1, U9).
     pub dm_bits: bool,
+    /// Cyclic tasks `0` … `cyclic_tasks - 1` (omron-cp.md §2.1).
+    pub cyclic_tasks: u8,
 }
 
 impl OmronAreas {
@@ -196,6 +198,7 @@ impl OmronAreas {
         dm: 0,
         max_jump: 0,
         dm_bits: false,
+        cyclic_tasks: 0,
     };
 }
 

@@ -108,7 +108,7 @@ impl StackEffect {
 pub enum GateEffect {
     /// Leaves it as it is.
     Keeps,
-    /// Sets it to 1 (`SCRE`, `ILC`).
+    /// Sets it to 1 (`SCRE`, `ILC`, a task start).
     Opens,
     /// Sets it to a value known only at run time (`LSCR`, `IL`).
     Sets,
@@ -148,7 +148,7 @@ impl Op {
     pub fn gate_effect(&self) -> GateEffect {
         match self {
             Op::ScrBegin { .. } | Op::Interlock => GateEffect::Sets,
-            Op::ScrEnd | Op::InterlockEnd => GateEffect::Opens,
+            Op::ScrEnd | Op::InterlockEnd | Op::TaskStart => GateEffect::Opens,
             Op::Call(_) => GateEffect::Callee,
             _ => GateEffect::Keeps,
         }
@@ -215,7 +215,9 @@ impl Op {
                     StackEffect::NONE
                 }
             }
-            Op::Label(_) | Op::Nop | Op::ScrEnd | Op::InterlockEnd => StackEffect::NONE,
+            Op::Label(_) | Op::Nop | Op::ScrEnd | Op::InterlockEnd | Op::TaskStart => {
+                StackEffect::NONE
+            }
         }
     }
 }

@@ -339,6 +339,7 @@ fn locations(program: &Program, layout: &Layout, op: &Op) -> Result<(), OpRule> 
     let op_family = match op {
         Op::Interlock
         | Op::InterlockEnd
+        | Op::TaskStart
         | Op::OmronTimer { .. }
         | Op::OmronCounter { .. }
         | Op::Omron(_) => Some(Family::Omron),
