@@ -1,7 +1,8 @@
 //! The Omron CP-series mnemonic (instruction-list) front end of stljit (omron-cp.md).
 //!
-//! [`compile`] takes the files of one task program (UTF-8 or GBK), an optional CX-Programmer
-//! symbol table and an Omron profile (`cp1h`, `cp1e`), and returns the checked
+//! [`compile`] takes the files of one project (UTF-8 or GBK, concatenated; `$TASK` directives
+//! split it into task programs, docs/omron.md "Tasks"), an optional CX-Programmer symbol table
+//! and an Omron profile (`cp1h`, `cp1e`), and returns the checked
 //! [`stljit_core::ir::Program`] with every diagnostic (codes `OMR-E…`/`OMR-W…`, §5). It never
 //! panics and never stops at the first error. [`parse_address`]/[`print_address`] read and
 //! write single addresses in Omron spelling; [`looks_like_omron`]/[`looks_like_s7`] guess a
@@ -9,7 +10,7 @@
 //!
 //! Pipeline: `lexer` (one instruction per line) → `lower` (dispatch over `mnemonics::TABLE`,
 //! the circuit machine of `circuit`, operands through `operand`/`resolve`, timers and data in
-//! `boxes`, regions and jumps in `control`) → IR.
+//! `boxes`, regions and jumps in `control`, program units in `tasks`) → IR.
 //!
 //! # Lowering (the lead's decisions)
 //!
@@ -58,6 +59,12 @@
 //!   `P_…` flags are `SystemBit`s, `P_First_Cycle` is A200.11; constants are `Operand::Const`
 //!   in Omron value order (a double constant's low 16 bits are the low word).
 //!
+//! * Tasks: each `$TASK CYCLIC n` program is lowered like a program of its own; the main POU
+//!   is the started cyclic tasks in ascending number, every task's body with its op indices
+//!   and labels moved behind the previous one, `TaskStart` before every task but the first,
+//!   and only the last task's `End` kept (the others fall through into the next task). Only
+//!   the running tasks' subroutines are POUs. Standby tasks, `$TASK UNASSIGNED` programs and
+//!   `$FB` bodies are checked and dropped.
 //! * `CCS(282)`/`CCL(283)`: `Omron(Flags{save})`; `IORF(097) St E`: its operands checked, no
 //!   op (the model has only the built-in I/O, on which IORF has no effect).
 //!
@@ -81,6 +88,7 @@ mod mnemonics;
 mod operand;
 mod resolve;
 mod symbols;
+mod tasks;
 
 pub use address::{AddressError, parse_address, print_address};
 pub use detect::{looks_like_omron, looks_like_s7};
@@ -100,8 +108,9 @@ pub type Compilation = stljit_source::Compilation<SymbolTable>;
 /// Depth of the IR logic stack of an Omron program (see the crate doc).
 pub const LOGIC_STACK_DEPTH: u8 = 16;
 
-/// Compiles a task program: every file in `files` (in order, together one task), the optional
-/// symbol table, against the Omron `profile`. All diagnostics of all files are reported.
+/// Compiles a project: every file in `files` (in order, concatenated; its `$TASK` directives
+/// split it into tasks), the optional symbol table, against the Omron `profile`. All
+/// diagnostics of all files are reported.
 pub fn compile(
     files: &[SourceFile],
     symbols: Option<&SourceFile>,
@@ -116,7 +125,8 @@ pub fn compile(
         line: 0,
         mn: String::new(),
     };
-    let mut lw = lower::Lowerer::new(cx);
+    let names = files.iter().map(|f| f.name.clone()).collect();
+    let mut lw = lower::Lowerer::new(cx, names);
     let mut last = Span {
         file: FileId(0),
         line: 1,
@@ -149,12 +159,13 @@ pub fn compile(
     let mut diags = std::mem::take(&mut lw.cx.diags);
     diags.sort_by_key(|d| (d.file, d.line, d.col));
     let ok = diags.iter().all(|d| d.severity != Severity::Error);
+    let edges = std::mem::take(&mut lw.edges);
     let program = ok.then(|| Program {
         profile,
-        pous: lw.pous.into_iter().map(|p| p.pou).collect(),
+        pous: lw.assemble(),
         timers: Vec::new(),
         counters: Vec::new(),
-        edges: lw.edges,
+        edges,
         logic_stack_depth: LOGIC_STACK_DEPTH,
         files: files.iter().map(|f| f.name.clone()).collect(),
     });

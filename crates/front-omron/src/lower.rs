@@ -10,7 +10,8 @@ use crate::lexer::{Line, Options, Tok};
 use crate::mnemonics::{self, Group, Join, Mnemonic};
 use crate::operand::Syn;
 use crate::resolve::{Cx, Reported};
-use stljit_core::ir::{Contact, EdgeDecl, OmronBox, Op, Operand, Pou, PouKind, SrcLoc};
+use crate::tasks::Project;
+use stljit_core::ir::{Contact, EdgeDecl, OmronBox, Op, Operand, Pou, SrcLoc};
 use stljit_core::omron::{SystemBit, tr_bit};
 use stljit_core::{Area, EdgeSlot, LabelId, OpIdx};
 use stljit_source::{Code, clip};
@@ -19,28 +20,33 @@ use stljit_source::{Code, clip};
 pub(crate) struct PouBuild {
     /// The finished part.
     pub(crate) pou: Pou,
+    /// The program unit it belongs to (an index into `Project::units`).
+    pub(crate) unit: usize,
 }
 
-/// The lowering state of a whole task.
+/// The lowering state of a whole project.
 pub(crate) struct Lowerer<'a> {
     /// Profile, symbols, diagnostics and the current line.
     pub(crate) cx: Cx<'a>,
-    /// The POUs: main first, then the subroutines in source order.
+    /// The POUs in source order: each unit's main body, and the subroutines.
     pub(crate) pous: Vec<PouBuild>,
+    /// The units, subroutines, calls and the pairs left open.
+    pub(crate) project: Project,
     /// Every edge slot.
     pub(crate) edges: Vec<EdgeDecl>,
     /// The circuit machine of the current POU.
     pub(crate) circuit: Circuit,
-    /// Regions, jumps, interlocks and calls.
+    /// Regions, jumps and interlocks of the current unit.
     pub(crate) control: Control,
     /// Timer and counter numbers in use, with the line of their first use (E021).
     pub(crate) objects: std::collections::HashMap<(Area, u16), u32>,
     /// Source location of the current line.
     pub(crate) loc: SrcLoc,
     /// Bits driven by OUT/OUT NOT/KEEP/DIFU/DIFD and direct words written by data
-    /// instructions, with the line of their first write (W020).
+    /// instructions in the current unit, with the line of their first write (W020).
     pub(crate) written: std::collections::HashMap<Written, u32>,
-    /// Whether an instruction that changes condition flags has been lowered yet (W034).
+    /// Whether an instruction of the current unit that changes condition flags has been
+    /// lowered yet (W034).
     pub(crate) flags_changed: bool,
     /// The execution condition when it is exactly `P_On`/`P_First_Cycle` (true: ON in every
     /// cycle but perhaps the first) or `P_Off` (false), for W031.
@@ -57,19 +63,13 @@ pub(crate) enum Written {
 }
 
 impl<'a> Lowerer<'a> {
-    /// A lowerer with an empty main POU.
-    pub(crate) fn new(cx: Cx<'a>) -> Self {
+    /// A lowerer for a project whose files are named `files`; the first unit starts at the first
+    /// directive or instruction.
+    pub(crate) fn new(cx: Cx<'a>, files: Vec<String>) -> Self {
         Lowerer {
             cx,
-            pous: vec![PouBuild {
-                pou: Pou {
-                    name: "MAIN".into(),
-                    kind: PouKind::Main,
-                    ops: Vec::new(),
-                    locs: Vec::new(),
-                    labels: Vec::new(),
-                },
-            }],
+            pous: Vec::new(),
+            project: Project::new(files),
             edges: Vec::new(),
             circuit: Circuit::default(),
             control: Control::default(),
@@ -79,6 +79,15 @@ impl<'a> Lowerer<'a> {
             flags_changed: false,
             constant_ec: None,
         }
+    }
+
+    /// Forgets the state of the previous unit (a new unit is lowered like a program of its own).
+    pub(crate) fn reset_unit_state(&mut self) {
+        self.circuit.reset();
+        self.control = Control::default();
+        self.written.clear();
+        self.flags_changed = false;
+        self.constant_ec = None;
     }
 
     /// Appends `op` to the current POU with the current line's location.
@@ -188,6 +197,11 @@ impl<'a> Lowerer<'a> {
     /// Lowers one lexed line.
     pub(crate) fn line(&mut self, l: &Line) {
         self.cx.mn = format!("{}{}", l.options.text(), l.mnemonic);
+        if l.mnemonic.starts_with('$') {
+            self.directive(l);
+            return;
+        }
+        self.ensure_unit(self.cx.span(&l.head));
         if !self.admit(l) {
             return;
         }

@@ -269,6 +269,15 @@ pub(crate) fn compare(mnemonic: &str) -> Option<CompareContact> {
     })
 }
 
+/// `mnemonic` with its function code as messages write it (`CJP(510)`), or as it is if it has
+/// none.
+pub(crate) fn with_code(mnemonic: &str) -> String {
+    match lookup(mnemonic).and_then(|m| m.code) {
+        Some(c) => format!("{mnemonic}({c:03})"),
+        None => mnemonic.to_owned(),
+    }
+}
+
 /// The arithmetic instruction named `mnemonic`.
 pub(crate) fn arith(mnemonic: &str) -> Option<OmronArith> {
     OmronArith::ALL

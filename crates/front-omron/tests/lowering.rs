@@ -407,3 +407,50 @@ fn symbols_stand_for_their_addresses() {
     assert_eq!(p.pous[0].ops[..2], [Op::Load(c(i0(0))), assign(q0(0))]);
     assert_eq!(out.symbols.map(|s| s.len()), Some(2));
 }
+
+#[test]
+fn tasks_run_in_ascending_number_with_a_task_start_between() {
+    // Task 1 is written first; its jump label and its subroutine are moved behind task 0's.
+    // Task 2 is in standby and the unassigned program never runs: neither is in the IR.
+    let p = program(
+        "$TASK CYCLIC 1\nLD 0.01\nJMP(004) &1\nJME(005) &1\nLD 0.02\nSBS(091) 7\nSBN(092) 7\nLD 0.03\nOUT 100.01\nRET(093)\nEND(001)\n\
+         $TASK CYCLIC 0\nLD 0.00\nJMP(004) &1\nJME(005) &1\nEND(001)\n\
+         $TASK CYCLIC 2 STANDBY\nLD 0.05\nOUT 100.05\nSBN(092) 8\nRET(093)\nEND(001)\n\
+         $TASK UNASSIGNED\nLD 0.06\nOUT 100.06\nEND(001)\n",
+    );
+    let main = &p.pous[0];
+    assert_eq!(
+        main.ops,
+        [
+            // Task 0; its END falls through into task 1.
+            Op::Load(c(i0(0))),
+            Op::Not,
+            Op::Jump(LabelId(0)),
+            Op::Not,
+            Op::Label(LabelId(0)),
+            Op::TaskStart,
+            // Task 1.
+            Op::Load(c(i0(1))),
+            Op::Not,
+            Op::Jump(LabelId(1)),
+            Op::Not,
+            Op::Label(LabelId(1)),
+            Op::Load(c(i0(2))),
+            Op::Call(PouId(1)),
+            Op::End { conditional: false },
+        ]
+    );
+    assert_eq!(main.labels, [OpIdx(4), OpIdx(10)]);
+    assert_eq!(p.pous.len(), 2, "only the running tasks' subroutines");
+    assert_eq!(p.pous[1].kind, PouKind::Subroutine(7));
+    // The task start has the location of the first instruction of the task it starts.
+    assert_eq!(main.locs[5].line, 2);
+}
+
+#[test]
+fn a_project_without_directives_is_task_0() {
+    let plain = program("LD 0.00\nOUT 100.00\nEND(001)\n");
+    let task0 = program("$TASK CYCLIC 0\nLD 0.00\nOUT 100.00\nEND(001)\n");
+    assert_eq!(plain.pous[0].ops, task0.pous[0].ops);
+    assert!(!plain.pous[0].ops.contains(&Op::TaskStart));
+}

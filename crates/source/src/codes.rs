@@ -174,6 +174,8 @@ codes! {
     OmrJump = "OMR-E023", Error, "a jump has no JME after it, a JME is defined twice, or a jump crosses an IL region";
     /// JMP0 without JME0.
     OmrJmp0 = "OMR-E024", Error, "JMP0(515) has no JME0(516)";
+    /// A paired instruction split between tasks.
+    OmrSplitPair = "OMR-E025", Error, "the two instructions of a pair (IL/ILC, JMP/JME, SBS/SBN, FOR/NEXT, JMP0/JME0, BPRG/BEND) are in different tasks";
     /// A FOR–NEXT region broken.
     OmrInRegion = "OMR-E026", Error, "an instruction is not allowed inside its region (a FOR–NEXT loop too deep, unclosed, or entered by a jump)";
     /// An instruction allowed only inside a region.
@@ -188,6 +190,10 @@ codes! {
     OmrFlagAtStart = "OMR-W032", Warning, "a circuit starts with a condition flag";
     /// A condition flag read before anything could set it.
     OmrFlagNeverSet = "OMR-W034", Warning, "a condition flag is read before any instruction of the task can have changed it (flags are cleared at task start)";
+    /// The task structure.
+    OmrTask = "OMR-E036", Error, "no cyclic task starts at RUN, or a task number is given to two programs";
+    /// A program assigned to no task.
+    OmrUnassigned = "OMR-W037", Warning, "a program is assigned to no task and never runs";
     /// A DM bit on a model without DM bit addressing.
     OmrDmBit = "OMR-E038", Error, "bit access to D words is not supported on the selected model";
     /// More than 8 pending blocks.
