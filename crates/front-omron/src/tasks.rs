@@ -234,13 +234,22 @@ impl Lowerer<'_> {
                 Code::OmrOperand,
                 "$FB expects the function block's name".into(),
             )),
-            (other, _) => Err(self.at_head(
-                l,
-                Code::OmrInstruction,
-                format!("{} is not a directive ($TASK, $FB)", clip(other)),
-            )),
+            (other, _) => {
+                // Not a directive at all: reported, and the current unit goes on.
+                self.at_head(
+                    l,
+                    Code::OmrInstruction,
+                    format!("{} is not a directive ($TASK, $FB)", clip(other)),
+                );
+                return;
+            }
         };
-        let kind = kind.unwrap_or(UnitKind::Unassigned);
+        // A malformed directive still starts a unit (the lines after it belong to it); it is
+        // checked like an unassigned program, without a W037 on top of the error.
+        let (kind, well_formed) = match kind {
+            Ok(k) => (k, true),
+            Err(Reported) => (UnitKind::Unassigned, false),
+        };
         if let UnitKind::Cyclic { number, .. } = kind
             && let Some(first) = self
                 .project
@@ -260,7 +269,7 @@ impl Lowerer<'_> {
                 format!("task {number} is given twice: {what} at {place} is task {number} too"),
             );
         }
-        if kind == UnitKind::Unassigned {
+        if kind == UnitKind::Unassigned && well_formed {
             self.at_head(
                 l,
                 Code::OmrUnassigned,
