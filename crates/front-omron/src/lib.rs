@@ -82,6 +82,7 @@ mod boxes;
 mod circuit;
 mod control;
 mod detect;
+mod discipline;
 mod lexer;
 mod lower;
 mod mnemonics;

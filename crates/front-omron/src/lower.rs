@@ -6,6 +6,7 @@
 
 use crate::circuit::{Circuit, Class};
 use crate::control::Control;
+use crate::discipline::FlagBranches;
 use crate::lexer::{Line, Options, Tok};
 use crate::mnemonics::{self, Group, Join, Mnemonic};
 use crate::operand::Syn;
@@ -14,6 +15,7 @@ use crate::tasks::Project;
 use stljit_core::ir::{Contact, EdgeDecl, OmronBox, Op, Operand, Pou, SrcLoc};
 use stljit_core::omron::{SystemBit, tr_bit};
 use stljit_core::{Area, EdgeSlot, LabelId, OpIdx};
+use stljit_runtime::omron_written::flags_changed_by;
 use stljit_source::{Code, clip};
 
 /// A POU being built.
@@ -51,6 +53,8 @@ pub(crate) struct Lowerer<'a> {
     /// The execution condition when it is exactly `P_On`/`P_First_Cycle` (true: ON in every
     /// cycle but perhaps the first) or `P_Off` (false), for W031.
     pub(crate) constant_ec: Option<bool>,
+    /// The flag-changing instructions and branch points of the current circuit (W033).
+    pub(crate) flag_branches: FlagBranches,
 }
 
 /// A bit or a word one instruction writes (the key of W020's check).
@@ -78,6 +82,7 @@ impl<'a> Lowerer<'a> {
             written: Default::default(),
             flags_changed: false,
             constant_ec: None,
+            flag_branches: FlagBranches::default(),
         }
     }
 
@@ -88,6 +93,7 @@ impl<'a> Lowerer<'a> {
         self.written.clear();
         self.flags_changed = false;
         self.constant_ec = None;
+        self.flag_branches.new_circuit();
     }
 
     /// Appends `op` to the current POU with the current line's location.
@@ -165,6 +171,9 @@ impl<'a> Lowerer<'a> {
         for (code, message) in findings {
             self.at_head(l, code, message);
         }
+        if new_circuit || class == Class::Unconditional {
+            self.flag_branches.new_circuit();
+        }
         new_circuit
     }
 
@@ -225,10 +234,24 @@ impl<'a> Lowerer<'a> {
         if let (Some(falling), Some(on)) = (edge_of_ec, prev) {
             self.never_fires(l, falling, on);
         }
+        let (pou, start) = (self.control.pou, self.pous[self.control.pou].pou.ops.len());
         if !self.options_allowed(l, &m) || self.dispatch(l, &m).is_err() {
             // The error is reported; advance the circuit as the instruction would have, so
             // the lines after it are not blamed for it.
             let _ = self.circuit.step(class_of(m.group), "");
+            return;
+        }
+        let what = format!("{}{}", l.options.text(), mnemonics::with_code(&l.mnemonic));
+        if edge_of_ec.is_some() {
+            let found = self.flag_branches.differentiated(&what, l.line);
+            self.cx.diags.extend(found);
+        }
+        if self.control.pou == pou {
+            let mask = self.pous[pou].pou.ops[start..]
+                .iter()
+                .fold(0, |m, op| m | flags_changed_by(op));
+            let differentiated = l.options.edge.is_some();
+            self.flag_branches.wrote(what, l.line, mask, differentiated);
         }
     }
 
@@ -373,6 +396,7 @@ impl<'a> Lowerer<'a> {
                 ));
             }
             self.class(l, Class::LoadTr);
+            self.flag_branches.load_tr(n);
             if !self.circuit.tr_set(n) {
                 let line = l.line;
                 self.cx.report(
@@ -418,6 +442,18 @@ impl<'a> Lowerer<'a> {
                     clip(&tok.text)
                 ),
             );
+        }
+        if let (false, true, Syn::Flag(f)) = (new_circuit, self.flags_changed, syn)
+            && f.index() < SystemBit::CONDITION_FLAGS.count_ones()
+        {
+            let span = self.cx.span(tok);
+            let mut found: Vec<_> = self.flag_branches.read(f, tok, span).into_iter().collect();
+            if l.options.edge.is_some() && found.is_empty() {
+                // A differentiated contact on a flag: the read itself is differentiated.
+                let what = format!("{}{}", l.options.text(), l.mnemonic);
+                found = self.flag_branches.differentiated(&what, l.line);
+            }
+            self.cx.diags.extend(found);
         }
         if let (true, Syn::Flag(f)) = (new_circuit, syn)
             && f.index() < SystemBit::CONDITION_FLAGS.count_ones()
@@ -555,6 +591,7 @@ impl<'a> Lowerer<'a> {
                 ));
             }
             self.class(l, Class::Output);
+            self.flag_branches.store_tr(n);
             if !self.circuit.store_tr(n) {
                 let line = l.line;
                 self.cx.report(

@@ -188,6 +188,9 @@ codes! {
     OmrNeverFires = "OMR-W031", Warning, "a rising-edge instruction fed only by P_On or P_First_Cycle, or a falling-edge one fed only by P_Off, never executes";
     /// A circuit starting with a condition flag.
     OmrFlagAtStart = "OMR-W032", Warning, "a circuit starts with a condition flag";
+    /// A condition flag read after another instruction overwrote it, or by a differentiated
+    /// instruction.
+    OmrFlagOverwritten = "OMR-W033", Warning, "a condition flag is read after an intervening instruction changed it, or its reading depends on a differentiated instruction";
     /// A condition flag read before anything could set it.
     OmrFlagNeverSet = "OMR-W034", Warning, "a condition flag is read before any instruction of the task can have changed it (flags are cleared at task start)";
     /// The task structure.
