@@ -345,6 +345,8 @@ const CP1H_DATA: CpuProfile = CpuProfile {
         dm_bits: false,
         // CP Programming Manual §2-1-3: up to 32 cyclic tasks, numbers 0–31.
         cyclic_tasks: 32,
+        // "20K steps" [uncertain: K read as 1024].
+        program_steps: 20 * 1024,
     },
     model: "CP1H",
     inputs: 4,
@@ -386,6 +388,8 @@ pub static CP1E: CpuProfile = CpuProfile {
         dm_bits: true,
         // [uncertain]: one cyclic task.
         cyclic_tasks: 1,
+        // The N type's 8K steps (the E type has 2K) [uncertain].
+        program_steps: 8 * 1024,
         ..CP1H_DATA.omron
     },
     model: "CP1E",

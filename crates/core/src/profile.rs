@@ -183,6 +183,8 @@ pub struct OmronAreas {
     pub dm_bits: bool,
     /// Cyclic tasks `0` … `cyclic_tasks - 1` (omron-cp.md §2.1).
     pub cyclic_tasks: u8,
+    /// User-memory capacity in steps, all tasks together (seed §1-1-11, E035).
+    pub program_steps: u32,
 }
 
 impl OmronAreas {
@@ -199,6 +201,7 @@ impl OmronAreas {
         max_jump: 0,
         dm_bits: false,
         cyclic_tasks: 0,
+        program_steps: 0,
     };
 }
 

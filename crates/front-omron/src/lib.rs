@@ -79,6 +79,7 @@
 
 mod address;
 mod boxes;
+mod capacity;
 mod circuit;
 mod control;
 mod detect;

@@ -4,6 +4,7 @@
 //! boxes are in `boxes`, program control and regions in `control`. The patterns are the ones
 //! the crate doc lists.
 
+use crate::capacity::Capacity;
 use crate::circuit::{Circuit, Class};
 use crate::control::Control;
 use crate::discipline::FlagBranches;
@@ -55,6 +56,8 @@ pub(crate) struct Lowerer<'a> {
     pub(crate) constant_ec: Option<bool>,
     /// The flag-changing instructions and branch points of the current circuit (W033).
     pub(crate) flag_branches: FlagBranches,
+    /// The project's user-memory steps so far (E035).
+    pub(crate) capacity: Capacity,
 }
 
 /// A bit or a word one instruction writes (the key of W020's check).
@@ -83,6 +86,7 @@ impl<'a> Lowerer<'a> {
             flags_changed: false,
             constant_ec: None,
             flag_branches: FlagBranches::default(),
+            capacity: Capacity::default(),
         }
     }
 
@@ -211,6 +215,7 @@ impl<'a> Lowerer<'a> {
             return;
         }
         self.ensure_unit(self.cx.span(&l.head));
+        self.count_steps(l);
         if !self.admit(l) {
             return;
         }
@@ -247,9 +252,12 @@ impl<'a> Lowerer<'a> {
             self.cx.diags.extend(found);
         }
         if self.control.pou == pou {
-            let mask = self.pous[pou].pou.ops[start..]
+            let ops = std::mem::take(&mut self.pous[pou].pou.ops);
+            self.count_constant_steps(&ops[start..], l);
+            let mask = ops[start..]
                 .iter()
                 .fold(0, |m, op| m | flags_changed_by(op));
+            self.pous[pou].pou.ops = ops;
             let differentiated = l.options.edge.is_some();
             self.flag_branches.wrote(what, l.line, mask, differentiated);
         }
@@ -264,6 +272,7 @@ impl<'a> Lowerer<'a> {
                 code: Some(c.code),
                 group: Group::Contact(c.join, false),
                 allowed: mnemonics::COMPARE_OPTIONS,
+                steps: mnemonics::COMPARE_STEPS,
             })
         });
         let model = self.cx.profile.model;

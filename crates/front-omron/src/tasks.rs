@@ -341,6 +341,7 @@ impl Lowerer<'_> {
         }
         self.resolve_pairs();
         self.resolve_calls();
+        self.check_capacity();
     }
 
     /// E025 for the halves whose partner is in another unit, the plain error for the rest.

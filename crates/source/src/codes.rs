@@ -193,6 +193,8 @@ codes! {
     OmrFlagOverwritten = "OMR-W033", Warning, "a condition flag is read after an intervening instruction changed it, or its reading depends on a differentiated instruction";
     /// A condition flag read before anything could set it.
     OmrFlagNeverSet = "OMR-W034", Warning, "a condition flag is read before any instruction of the task can have changed it (flags are cleared at task start)";
+    /// The program does not fit the model's user memory.
+    OmrCapacity = "OMR-E035", Error, "the program needs more steps than the model's user memory (UM) holds";
     /// The task structure.
     OmrTask = "OMR-E036", Error, "no cyclic task starts at RUN, or a task number is given to two programs";
     /// A program assigned to no task.
