@@ -12,7 +12,7 @@ use crate::lexer::{Line, Options, Tok};
 use crate::mnemonics::{self, Group, Join, Mnemonic};
 use crate::operand::Syn;
 use crate::resolve::{Cx, Reported};
-use crate::tasks::Project;
+use crate::tasks::{Project, UnitKind};
 use stljit_core::ir::{Contact, EdgeDecl, OmronBox, Op, Operand, Pou, SrcLoc};
 use stljit_core::omron::{SystemBit, tr_bit};
 use stljit_core::{Area, EdgeSlot, LabelId, OpIdx};
@@ -216,7 +216,7 @@ impl<'a> Lowerer<'a> {
         }
         self.ensure_unit(self.cx.span(&l.head));
         self.count_steps(l);
-        if !self.admit(l) {
+        if !self.admit(l) || !self.allowed_in_unit(l) {
             return;
         }
         let Some(m) = self.instruction(l) else {
@@ -261,6 +261,30 @@ impl<'a> Lowerer<'a> {
             let differentiated = l.options.edge.is_some();
             self.flag_branches.wrote(what, l.line, mask, differentiated);
         }
+    }
+
+    /// E039 for an instruction a function-block body may not use (the line is then skipped).
+    fn allowed_in_unit(&mut self, l: &Line) -> bool {
+        if !matches!(self.unit_kind(), UnitKind::FunctionBlock(_)) {
+            return true;
+        }
+        let listed = mnemonics::NOT_IN_FUNCTION_BLOCKS.contains(&l.mnemonic.as_str());
+        if !listed && !l.options.immediate {
+            return true;
+        }
+        let what = format!("{}{}", l.options.text(), mnemonics::with_code(&l.mnemonic));
+        let why = if listed {
+            ""
+        } else {
+            " (no `!` instruction is)"
+        };
+        self.at_head(
+            l,
+            Code::OmrFunctionBlock,
+            format!("{what} cannot be used inside a function block{why}"),
+        );
+        self.circuit.recover();
+        false
     }
 
     /// The supported instruction of the line, with its function code checked (E011).

@@ -237,6 +237,13 @@ pub(crate) const TABLE: &[Mnemonic] = &[
 /// "not supported yet"), with their function codes.
 pub(crate) const NOT_YET: &[(&str, u16)] = &[("STEP", 8), ("SNXT", 9), ("BPRG", 96), ("BEND", 801)];
 
+/// The instructions a function-block body may not use (omron-cp.md §2.9, seed §1-4), besides
+/// every instruction with the `!` option.
+pub(crate) const NOT_IN_FUNCTION_BLOCKS: &[&str] = &[
+    "BPRG", "BEND", "SBS", "GSBS", "RET", "MCRO", "SBN", "JMP", "CJP", "CJPN", "STEP", "SNXT",
+    "IORF", "TMHH",
+];
+
 /// The comparison relations with their function-code offsets (§3.1: `=`(300) … `>=`(325)).
 const RELATIONS: [(&str, CmpOp, u16); 6] = [
     ("<>", CmpOp::Ne, 305),

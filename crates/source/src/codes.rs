@@ -201,6 +201,8 @@ codes! {
     OmrUnassigned = "OMR-W037", Warning, "a program is assigned to no task and never runs";
     /// A DM bit on a model without DM bit addressing.
     OmrDmBit = "OMR-E038", Error, "bit access to D words is not supported on the selected model";
+    /// An instruction a function-block body may not use.
+    OmrFunctionBlock = "OMR-E039", Error, "the instruction is not allowed inside a function-block body";
     /// More than 8 pending blocks.
     OmrDeepBlocks = "OMR-W040", Warning, "more than 8 logic blocks are pending";
     /// More than 13 pending blocks.
