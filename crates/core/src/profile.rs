@@ -185,6 +185,8 @@ pub struct OmronAreas {
     pub cyclic_tasks: u8,
     /// User-memory capacity in steps, all tasks together (seed §1-1-11, E035).
     pub program_steps: u32,
+    /// Block programs `0` … `block_programs - 1` (`BPRG(096) N`).
+    pub block_programs: u16,
 }
 
 impl OmronAreas {
@@ -202,6 +204,7 @@ impl OmronAreas {
         dm_bits: false,
         cyclic_tasks: 0,
         program_steps: 0,
+        block_programs: 0,
     };
 }
 

@@ -2,12 +2,13 @@
 //! jumps, END, the subroutine region (SBN…RET, SBS), FOR/NEXT/BREAK, and which lines run at all
 //! (W002 after END, W028 between the subroutine region and END). Checks E001, E022/W022, E023,
 //! E024, E026, E027, E029; a pair left open in its POU goes to `tasks` (E025 if its partner is
-//! in another unit).
+//! in another unit). Step areas and block programs are in `regions`.
 
 use crate::circuit::Class;
 use crate::lexer::Line;
 use crate::lower::{Lowerer, PouBuild};
 use crate::mnemonics::{self, Flow};
+use crate::regions::{OpenBlock, StepArea};
 use crate::resolve::Reported;
 use crate::tasks::{Pair, UnitKind};
 use std::collections::HashMap;
@@ -38,6 +39,8 @@ struct PendingJump {
     what: String,
     span: Span,
     interlock: Option<u32>,
+    /// The block program it is in (its JME must be in the same one).
+    block: Option<u32>,
 }
 
 /// Region, interlock and jump state.
@@ -59,6 +62,14 @@ pub(crate) struct Control {
     jmp0: Vec<(LabelId, Span)>,
     /// The open FOR loops, innermost last.
     loops: Vec<OpenLoop>,
+    /// The open step area.
+    pub(crate) step: Option<StepArea>,
+    /// The open block program.
+    pub(crate) block: Option<OpenBlock>,
+    /// Block programs opened so far (ids).
+    pub(crate) blocks_opened: u32,
+    /// Block program numbers in use, with their BPRG line.
+    pub(crate) block_numbers: HashMap<u32, Span>,
 }
 
 /// A FOR(503) waiting for its NEXT(504).
@@ -158,6 +169,7 @@ impl Lowerer<'_> {
                 Some((Code::OmrInRegion, msg)),
             );
         }
+        self.close_regions();
         self.control.labels.clear();
         self.control.defined.clear();
         self.circuit.reset();
@@ -175,6 +187,34 @@ impl Lowerer<'_> {
 
     fn interlock_id(&self) -> Option<u32> {
         self.control.il.map(|(_, id)| id)
+    }
+
+    /// Whether an IL(002) is open.
+    pub(crate) fn control_in_interlock(&self) -> bool {
+        self.control.il.is_some()
+    }
+
+    /// Whether the line is in a subroutine (SBN … RET).
+    pub(crate) fn in_subroutine(&self) -> bool {
+        self.control.region == Region::Subroutine
+    }
+
+    /// BEND of block `id`: its jumps still waiting for a JME never get one (E023).
+    pub(crate) fn leave_block(&mut self, id: u32) {
+        let (mine, rest): (Vec<_>, Vec<_>) = std::mem::take(&mut self.control.jumps)
+            .into_iter()
+            .partition(|j| j.block == Some(id));
+        self.control.jumps = rest;
+        for j in mine {
+            self.report_span(
+                Code::OmrJump,
+                j.span,
+                format!(
+                    "line {}: JME {} is not in this block program; a jump inside BPRG(096)–BEND(801) pairs with a JME of the same block",
+                    j.span.line, j.number
+                ),
+            );
+        }
     }
 
     /// Lowers a program-control instruction.
@@ -218,11 +258,13 @@ impl Lowerer<'_> {
                 let span = self.head_span(l);
                 let interlock = self.interlock_id();
                 let what = mnemonics::with_code(&l.mnemonic);
+                let block = self.block_id();
                 self.control.jumps.push(PendingJump {
                     number: n,
                     what,
                     span,
                     interlock,
+                    block,
                 });
                 // JMP and CJPN jump when the condition is OFF, CJP when it is ON.
                 if flow == Flow::Cjp {
@@ -266,12 +308,20 @@ impl Lowerer<'_> {
                     .into_iter()
                     .partition(|j| j.number == n);
                 self.control.jumps = rest;
-                for j in mine.iter().filter(|j| j.interlock != here) {
+                let block = self.block_id();
+                for j in &mine {
+                    let region = if j.interlock != here {
+                        "an IL(002)–ILC(003) region"
+                    } else if j.block != block {
+                        "a BPRG(096)–BEND(801) block program"
+                    } else {
+                        continue;
+                    };
                     self.report_span(
                         Code::OmrJump,
                         j.span,
                         format!(
-                            "line {}: jump {n} crosses the boundary of an IL(002)–ILC(003) region",
+                            "line {}: jump {n} crosses the boundary of {region}",
                             j.span.line
                         ),
                     );
@@ -448,6 +498,10 @@ impl Lowerer<'_> {
                 // The rest of the pass is skipped and the loop ends: a jump past NEXT.
                 self.emit(Op::Jump(exit));
             }
+            Flow::Step => self.step(l)?,
+            Flow::Snxt => self.snxt(l)?,
+            Flow::Bprg => self.bprg(l)?,
+            Flow::Bend => self.bend(l)?,
             Flow::Sbs => {
                 let ops = self.operands(l, 1)?;
                 let n = self.cx.number(&ops[0], max_sub, "subroutine number")?;

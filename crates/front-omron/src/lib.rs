@@ -65,12 +65,18 @@
 //!   and only the last task's `End` kept (the others fall through into the next task). Only
 //!   the running tasks' subroutines are POUs. Standby tasks, `$TASK UNASSIGNED` programs and
 //!   `$FB` bodies are checked and dropped.
+//! * `STEP(008) B`: `InterlockEnd; Load(B); Interlock; Pop` (the gate is B: the step runs
+//!   while B is ON and is interlocked while it is OFF); inside IL–ILC the first STEP saves the
+//!   interlock's gate in a front-end bit (`Load(P_On); Assign(L bit); Pop`, the L byte after
+//!   the FOR counters) and every STEP ANDs it in. `STEP(008)`: `InterlockEnd`, and inside
+//!   IL–ILC `Load(L bit); Interlock; Pop`. `SNXT(009) B`: `SetRange(current step, 0);
+//!   SetRange(B, 1)`. `BPRG(096) N`: `Not; Jump; Not` to a label at `BEND(801)`.
 //! * `CCS(282)`/`CCL(283)`: `Omron(Flags{save})`; `IORF(097) St E`: its operands checked, no
 //!   op (the model has only the built-in I/O, on which IORF has no effect).
 //!
-//! **Not supported yet** (OMR-E011 "not supported yet"): STEP/SNXT, BPRG/BEND (the spec gives
-//! only their placement rules), indirect operands outside MOV/CMP/arithmetic (contacts, coils, timer set values),
-//! TK operands, strings.
+//! **Not supported yet** (OMR-E011 "not supported yet"): the block-program-only instructions
+//! (IF/ELSE/IEND, WAIT, TIMW, CNTW, BPPS/BPRS …), interrupt tasks, indirect operands outside
+//! MOV/CMP/arithmetic (contacts, coils, timer set values), TK operands, strings.
 //!
 //! **Known deviation:** `!` refreshes one bit, not the whole 16-bit word (§2.5): on a contact
 //! whose bit is in an input word it reads the physical input bit (`Contact::ImmediateInput`),
@@ -88,6 +94,7 @@ mod lexer;
 mod lower;
 mod mnemonics;
 mod operand;
+mod regions;
 mod resolve;
 mod symbols;
 mod tasks;

@@ -216,7 +216,7 @@ impl<'a> Lowerer<'a> {
         }
         self.ensure_unit(self.cx.span(&l.head));
         self.count_steps(l);
-        if !self.admit(l) || !self.allowed_in_unit(l) {
+        if !self.admit(l) || !self.allowed_in_unit(l) || !self.allowed_in_region(l) {
             return;
         }
         let Some(m) = self.instruction(l) else {
@@ -301,10 +301,7 @@ impl<'a> Lowerer<'a> {
         });
         let model = self.cx.profile.model;
         let Some(m) = found else {
-            let msg = match mnemonics::NOT_YET.iter().find(|(n, _)| *n == name) {
-                Some((n, code)) => format!("{n}({code:03}) is not supported yet"),
-                None => format!("{} is not an instruction of {model}", clip(name)),
-            };
+            let msg = format!("{} is not an instruction of {model}", clip(name));
             self.at_head(l, Code::OmrInstruction, msg);
             return None;
         };
@@ -729,7 +726,15 @@ fn class_of(group: Group) -> Class {
         Group::Timer(k) if k.conditions() > 1 => Class::Multi(u32::from(k.conditions())),
         Group::Counter(k) => Class::Multi(u32::from(k.conditions())),
         Group::Control(
-            Flow::Il | Flow::Jmp | Flow::Cjp | Flow::Cjpn | Flow::Jmp0 | Flow::Sbs | Flow::Break,
+            Flow::Il
+            | Flow::Jmp
+            | Flow::Cjp
+            | Flow::Cjpn
+            | Flow::Jmp0
+            | Flow::Sbs
+            | Flow::Break
+            | Flow::Snxt
+            | Flow::Bprg,
         ) => Class::Output,
         Group::Control(_) => Class::Unconditional,
         _ => Class::Output,

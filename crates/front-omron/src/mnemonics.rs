@@ -88,6 +88,14 @@ pub(crate) enum Flow {
     Next,
     /// `BREAK(514)`.
     Break,
+    /// `STEP(008) B` (start of step B) or `STEP(008)` (end of the step area).
+    Step,
+    /// `SNXT(009) B`.
+    Snxt,
+    /// `BPRG(096) N`.
+    Bprg,
+    /// `BEND(801)`.
+    Bend,
 }
 
 /// The options an instruction accepts (spec §2.5; anything else is E012).
@@ -231,11 +239,51 @@ pub(crate) const TABLE: &[Mnemonic] = &[
     m("FOR", Some(503), G::Control(Flow::For), NONE, 2),
     m("NEXT", Some(504), G::Control(Flow::Next), NONE, 1),
     m("BREAK", Some(514), G::Control(Flow::Break), NONE, 1),
+    m("STEP", Some(8), G::Control(Flow::Step), NONE, 2),
+    m("SNXT", Some(9), G::Control(Flow::Snxt), NONE, 2),
+    m("BPRG", Some(96), G::Control(Flow::Bprg), NONE, 2),
+    m("BEND", Some(801), G::Control(Flow::Bend), NONE, 1),
 ];
 
-/// Instructions of the CP series this front end recognises but does not lower yet (E011 with
-/// "not supported yet"), with their function codes.
-pub(crate) const NOT_YET: &[(&str, u16)] = &[("STEP", 8), ("SNXT", 9), ("BPRG", 96), ("BEND", 801)];
+/// The instructions only a block program (BPRG–BEND) may use, with their function codes
+/// (CS/CJ instruction list, [uncertain] for the CP1H): outside a block program OMR-E027, inside
+/// one OMR-E011 "not supported yet".
+pub(crate) const BLOCK_ONLY: &[(&str, u16)] = &[
+    ("IF", 802),
+    ("IF NOT", 802),
+    ("ELSE", 803),
+    ("IEND", 804),
+    ("WAIT", 805),
+    ("WAIT NOT", 805),
+    ("EXIT", 806),
+    ("EXIT NOT", 806),
+    ("LOOP", 809),
+    ("LEND", 810),
+    ("LEND NOT", 810),
+    ("BPPS", 811),
+    ("BPRS", 812),
+    ("TIMW", 813),
+    ("CNTW", 814),
+    ("TMHW", 815),
+    ("TIMWX", 816),
+    ("TMHWX", 817),
+    ("CNTWX", 818),
+];
+
+/// The instructions a step area (the first `STEP B` to `STEP` without operand) may not use
+/// (omron-cp.md §2.9, seed §1-2-2); SBN is OMR-E029, the rest OMR-E026.
+pub(crate) const NOT_IN_STEPS: &[&str] = &[
+    "FOR", "NEXT", "BREAK", "END", "IL", "ILC", "JMP", "JME", "CJP", "CJPN", "JMP0", "JME0", "SBN",
+    "RET", "IF", "IF NOT", "ELSE", "IEND", "BPRS", "BPPS",
+];
+
+/// The instructions a block program (BPRG–BEND) may not use (omron-cp.md §2.9, seed §1-2-2),
+/// besides the timer family and every `@`/`%` instruction; SBN is OMR-E029, the rest OMR-E026.
+/// A step area or another block program inside a block program is not allowed either [design].
+pub(crate) const NOT_IN_BLOCKS: &[&str] = &[
+    "FOR", "NEXT", "BREAK", "IL", "ILC", "JMP0", "JME0", "END", "UP", "DOWN", "DIFU", "DIFD",
+    "KEEP", "OUT", "OUT NOT", "SBN", "BPRG", "STEP",
+];
 
 /// The instructions a function-block body may not use (omron-cp.md §2.9, seed §1-4), besides
 /// every instruction with the `!` option.
@@ -369,6 +417,7 @@ mod tests {
         assert_eq!(steps("+L"), Some(4));
         assert_eq!(steps("LD>=SL"), Some(COMPARE_STEPS));
         assert_eq!(steps("XYZ"), None);
-        assert!(lookup("STEP").is_none());
+        assert_eq!(lookup("STEP").map(|m| m.code), Some(Some(8)));
+        assert!(lookup("IF").is_none());
     }
 }

@@ -75,6 +75,10 @@ pub(crate) enum Pair {
     Jmp0,
     /// FOR(503) … NEXT(504).
     Loop,
+    /// BPRG(096) … BEND(801).
+    Block,
+    /// SNXT(009) B … STEP(008) B.
+    Step(stljit_core::ir::BitLoc),
 }
 
 /// One half of a pair that found no partner in its own POU: reported as `plain` unless its
@@ -348,9 +352,15 @@ impl Lowerer<'_> {
     fn resolve_pairs(&mut self) {
         let dangling = std::mem::take(&mut self.project.dangling);
         for d in &dangling {
-            let partner = dangling
-                .iter()
-                .find(|o| o.pair == d.pair && o.opener != d.opener && o.unit != d.unit);
+            let partners = |same: bool| {
+                dangling.iter().filter(move |o| {
+                    o.pair == d.pair && o.opener != d.opener && (o.unit == d.unit) == same
+                })
+            };
+            // A partner in its own unit (another POU of it) makes it a plain error.
+            let partner = partners(false)
+                .next()
+                .filter(|_| partners(true).next().is_none());
             match (partner, &d.plain) {
                 (Some(o), _) if d.opener || d.plain.is_some() => {
                     let msg = format!(

@@ -454,3 +454,53 @@ fn a_project_without_directives_is_task_0() {
     assert_eq!(plain.pous[0].ops, task0.pous[0].ops);
     assert!(!plain.pous[0].ops.contains(&Op::TaskStart));
 }
+
+#[test]
+fn step_areas_and_block_programs() {
+    let w = |b: u8| bit(Area::Work, 1, b);
+    let saved = bit(Area::L, 30, 0);
+    let on = c(SystemBit::On.bit_loc());
+    let ops = main_ops(
+        "LD 0.00\nIL(002)\nLD P_On\nSNXT(009) W0.00\nSTEP(008) W0.00\nLD 0.01\nSNXT(009) W0.01\nSTEP(008) W0.01\nSTEP(008)\nILC(003)\nLD 0.02\nBPRG(096) &5\nLD 0.03\nSET 100.00\nBEND(801)",
+    );
+    assert_eq!(
+        ops,
+        [
+            Op::Load(c(i0(0))),
+            Op::Interlock,
+            Op::Load(on),
+            set(w(0), true),
+            // The first STEP inside IL–ILC saves the interlock's gate.
+            Op::Load(on),
+            assign(saved),
+            Op::Pop,
+            Op::InterlockEnd,
+            Op::Load(c(w(0))),
+            Op::And(c(saved)),
+            Op::Interlock,
+            Op::Pop,
+            Op::Load(c(i0(1))),
+            // SNXT: the current step OFF, the next ON.
+            set(w(0), false),
+            set(w(1), true),
+            Op::InterlockEnd,
+            Op::Load(c(w(1))),
+            Op::And(c(saved)),
+            Op::Interlock,
+            Op::Pop,
+            // The end of the area restores the interlock's gate.
+            Op::InterlockEnd,
+            Op::Load(c(saved)),
+            Op::Interlock,
+            Op::Pop,
+            Op::InterlockEnd,
+            Op::Load(c(i0(2))),
+            Op::Not,
+            Op::Jump(LabelId(0)),
+            Op::Not,
+            Op::Load(c(i0(3))),
+            set(q0(0), true),
+            Op::Label(LabelId(0)),
+        ]
+    );
+}
