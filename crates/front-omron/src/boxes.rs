@@ -3,6 +3,7 @@
 //! number-reuse check E021.
 
 use crate::circuit::Class;
+use crate::immediate::{Refresh, words_of};
 use crate::lexer::{Line, Tok};
 use crate::lower::{DataBox, Lowerer, Written};
 use crate::resolve::Reported;
@@ -162,7 +163,19 @@ impl Lowerer<'_> {
         }
         self.flags_changed = true;
         self.class(l, Class::Output);
-        self.edged(l.options, |s| s.emit(Op::Omron(op)));
+        let immediate = l.options.immediate;
+        self.edged(l.options, |s| {
+            let o = op.operands();
+            if immediate {
+                let sources = o.sources.iter().flatten();
+                let words: Vec<_> = sources.flat_map(|s| words_of(s, o.src_words)).collect();
+                s.refresh_inputs(&words, Refresh::WhenExecuted);
+            }
+            s.emit(Op::Omron(op));
+            if let (true, Some(dst)) = (immediate, o.dst) {
+                s.refresh_outputs(&words_of(&dst, o.dst_words), Refresh::WhenExecuted);
+            }
+        });
         Ok(())
     }
 

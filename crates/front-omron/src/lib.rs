@@ -78,18 +78,23 @@
 //! (IF/ELSE/IEND, WAIT, TIMW, CNTW, BPPS/BPRS …), interrupt tasks, indirect operands outside
 //! MOV/CMP/arithmetic (contacts, coils, timer set values), TK operands, strings.
 //!
-//! **Known deviation:** `!` refreshes one bit, not the whole 16-bit word (§2.5): on a contact
-//! whose bit is in an input word it reads the physical input bit (`Contact::ImmediateInput`),
-//! on OUT/SET/RSET/KEEP to an output word bit it writes the physical output bit too; on other
-//! operands and on data instructions it is accepted and has no effect.
+//! * `!` (immediate refresh of the whole 16-bit word, §2.5/§4): a source operand in a built-in
+//!   input word first has the whole word copied from the physical inputs (two
+//!   `Box(ImmediateRead)`, one per byte), a destination in a built-in output word afterwards
+//!   has the whole image word copied to the physical outputs (two `Box(ImmediateWrite)`).
+//!   Contacts, OUT, OUT NOT and KEEP refresh in every cycle (the boxes on a pushed `P_On`),
+//!   SET, RSET and the data instructions when they execute (on their power flow, inside the
+//!   `@`/`%` pattern). Other operands are not refreshed (no effect, as on expansion I/O).
 
 mod address;
 mod boxes;
 mod capacity;
 mod circuit;
+mod contacts;
 mod control;
 mod detect;
 mod discipline;
+mod immediate;
 mod lexer;
 mod lower;
 mod mnemonics;

@@ -3,8 +3,8 @@
 //! `2w + 1`; CIO 0–1 are area I, CIO 100–101 area Q).
 
 use stljit_core::ir::{
-    BitLoc, Contact, EdgeDecl, Loc, OmronArith, OmronBox, OmronCounterKind, OmronTimerKind, Op,
-    Operand, PouKind, Program, verify,
+    BitLoc, BoxOp, Contact, EdgeDecl, Loc, OmronArith, OmronBox, OmronCounterKind, OmronTimerKind,
+    Op, Operand, PouKind, Program, verify,
 };
 use stljit_core::omron::{SystemBit, tr_bit};
 use stljit_core::{Area, CounterId, EdgeSlot, LabelId, OpIdx, PouId, ProfileId, TimerId};
@@ -69,6 +69,16 @@ fn assign(b: BitLoc) -> Op {
         immediate: false,
     }
 }
+/// `ImmediateWrite` of Q byte `b` (the image byte to the physical output).
+fn write(b: u32) -> Op {
+    Op::Box(BoxOp::ImmediateWrite {
+        src: Operand::Mem(Loc {
+            area: Area::Q,
+            offset: b,
+        }),
+        output: b,
+    })
+}
 fn dm(w: u32) -> Operand {
     Operand::Mem(Loc {
         area: Area::Dm,
@@ -116,14 +126,27 @@ fn contacts_blocks_and_their_options() {
             EdgeDecl { init: true }
         ]
     );
-    // `!` on an input-word bit reads the physical input; on a W bit it is a plain contact.
-    assert_eq!(
-        main_ops("!LD 0.15\n!AND W3.08\nOUT 100.00")[..2],
-        [
-            Op::Load(Contact::ImmediateInput {
-                bit: i0(15),
-                negated: false
+    // `!` on an input-word bit first copies the whole physical input word into the image
+    // (whatever the condition: on a pushed P_On), then reads the bit; on a W bit it is a plain
+    // contact.
+    let on = c(SystemBit::On.bit_loc());
+    let read = |b: u32| {
+        Op::Box(BoxOp::ImmediateRead {
+            input: b,
+            dst: Operand::Mem(Loc {
+                area: Area::I,
+                offset: b,
             }),
+        })
+    };
+    assert_eq!(
+        main_ops("!LD 1.15\n!AND W3.08\nOUT 100.00")[..6],
+        [
+            Op::Load(on),
+            read(2),
+            read(3),
+            Op::Pop,
+            Op::Load(c(bit(Area::I, 2, 7))),
             Op::And(c(bit(Area::Work, 6, 0))),
         ]
     );
@@ -142,10 +165,50 @@ fn intermediate_and_outputs() {
             Op::Not,
             assign(q0(1)),
             Op::Not,
-            Op::Assign {
-                bit: q0(2),
-                immediate: true
-            },
+            // `!OUT`: the bit, then the whole image word 100 to the physical outputs.
+            assign(q0(2)),
+            Op::Load(c(SystemBit::On.bit_loc())),
+            write(0),
+            write(1),
+            Op::Pop,
+        ]
+    );
+    // `!SET` refreshes when it executes: on its own power flow.
+    assert_eq!(
+        main_ops("LD 0.00\n!SET 101.03")[1..],
+        [set(bit(Area::Q, 3, 3), true), write(2), write(3)]
+    );
+    // `!MOV` from an input word to an output word: the input word before, the output after.
+    assert_eq!(
+        main_ops("LD 0.00\n!MOV(021) 1 100")[1..],
+        [
+            Op::Box(BoxOp::ImmediateRead {
+                input: 2,
+                dst: Operand::Mem(Loc {
+                    area: Area::I,
+                    offset: 2
+                })
+            }),
+            Op::Box(BoxOp::ImmediateRead {
+                input: 3,
+                dst: Operand::Mem(Loc {
+                    area: Area::I,
+                    offset: 3
+                })
+            }),
+            Op::Omron(OmronBox::Move {
+                double: false,
+                src: Operand::Mem(Loc {
+                    area: Area::I,
+                    offset: 2
+                }),
+                dst: Operand::Mem(Loc {
+                    area: Area::Q,
+                    offset: 0
+                })
+            }),
+            write(0),
+            write(1),
         ]
     );
     // SET/RSET: SetRange count 1; @SET: Dup; Edge; SetRange; Pop; %RSET the falling edge.
