@@ -77,6 +77,7 @@ impl Lowerer<'_> {
 
     /// The TIM family and TTIM: `OmronTimer{kind, timer, set_value}`.
     pub(crate) fn timer(&mut self, l: &Line, kind: OmronTimerKind) -> Result<(), Reported> {
+        let kind = self.cx.options.tc_mode.timer(kind);
         let ops = self.operands(l, 2)?;
         let n = self.object_number(&ops[0], Area::TimerBit);
         let sv = self.set_value(&ops[1], kind.bcd());
@@ -98,6 +99,7 @@ impl Lowerer<'_> {
 
     /// CNT (2 conditions) and CNTR (3): `OmronCounter{kind, counter, set_value}`.
     pub(crate) fn counter(&mut self, l: &Line, kind: OmronCounterKind) -> Result<(), Reported> {
+        let kind = self.cx.options.tc_mode.counter(kind);
         let ops = self.operands(l, 2)?;
         let n = self.object_number(&ops[0], Area::CounterBit);
         let sv = self.set_value(&ops[1], kind.bcd());

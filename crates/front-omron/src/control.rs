@@ -43,6 +43,16 @@ struct PendingJump {
     block: Option<u32>,
 }
 
+/// Where a JME is: what a backward jump to it would have to stay inside.
+#[derive(Clone, Debug)]
+struct JmeSite {
+    span: Span,
+    interlock: Option<u32>,
+    block: Option<u32>,
+    /// The FOR loops around it (their `Op::For` indices).
+    loops: Vec<usize>,
+}
+
 /// Region, interlock and jump state.
 #[derive(Debug, Default)]
 pub(crate) struct Control {
@@ -55,8 +65,8 @@ pub(crate) struct Control {
     il_regions: u32,
     /// Labels of jump numbers of the current POU.
     labels: HashMap<u32, LabelId>,
-    /// JME numbers defined in the current POU, with their interlock region.
-    defined: HashMap<u32, Option<u32>>,
+    /// JME numbers defined in the current POU, with where they are.
+    defined: HashMap<u32, JmeSite>,
     jumps: Vec<PendingJump>,
     /// Open JMP0s: their labels and where they are.
     jmp0: Vec<(LabelId, Span)>,
@@ -199,6 +209,37 @@ impl Lowerer<'_> {
         self.control.region == Region::Subroutine
     }
 
+    /// A jump to a JME already placed (`site`): only with `allow_backward_jumps` (E023), and
+    /// only within the JME's interlock region and block program (E023) and into no FOR loop
+    /// (E026; the jump would reach NEXT with no FOR active).
+    fn backward_jump(&mut self, l: &Line, n: u32, site: &JmeSite) -> Result<(), Reported> {
+        if !self.cx.options.allow_backward_jumps {
+            let msg = format!("JME {n} is before this jump; backward jumps are not allowed");
+            let help = "a backward jump can loop for ever; the front-end option allow_backward_jumps (--allow-backward-jumps) admits it";
+            return Err(self.cx.report_help(
+                Code::OmrJump,
+                &l.head,
+                format!("line {}: {msg}", l.line),
+                help,
+            ));
+        }
+        let open: Vec<usize> = self.control.loops.iter().map(|lp| lp.head).collect();
+        let (code, region) = if site.interlock != self.interlock_id() {
+            (Code::OmrJump, "an IL(002)–ILC(003) region")
+        } else if site.block != self.block_id() {
+            (Code::OmrJump, "a BPRG(096)–BEND(801) block program")
+        } else if !site.loops.iter().all(|h| open.contains(h)) {
+            (Code::OmrInRegion, "a FOR(503)–NEXT(504) loop")
+        } else {
+            return Ok(());
+        };
+        let msg = format!(
+            "jump {n} back to JME at line {} crosses the boundary of {region}",
+            site.span.line
+        );
+        Err(self.at_head(l, code, msg))
+    }
+
     /// BEND of block `id`: its jumps still waiting for a JME never get one (E023).
     pub(crate) fn leave_block(&mut self, id: u32) {
         let (mine, rest): (Vec<_>, Vec<_>) = std::mem::take(&mut self.control.jumps)
@@ -249,23 +290,23 @@ impl Lowerer<'_> {
                 let ops = self.operands(l, 1)?;
                 let n = self.cx.number(&ops[0], max_jump, "jump number")?;
                 self.class(l, Class::Output);
-                if self.control.defined.contains_key(&n) {
-                    let msg =
-                        format!("JME {n} is before this jump; backward jumps are not allowed");
-                    return Err(self.at_head(l, Code::OmrJump, msg));
+                if let Some(site) = self.control.defined.get(&n).cloned() {
+                    self.backward_jump(l, n, &site)?;
                 }
                 let label = self.jump_label(n);
                 let span = self.head_span(l);
                 let interlock = self.interlock_id();
                 let what = mnemonics::with_code(&l.mnemonic);
                 let block = self.block_id();
-                self.control.jumps.push(PendingJump {
-                    number: n,
-                    what,
-                    span,
-                    interlock,
-                    block,
-                });
+                if !self.control.defined.contains_key(&n) {
+                    self.control.jumps.push(PendingJump {
+                        number: n,
+                        what,
+                        span,
+                        interlock,
+                        block,
+                    });
+                }
                 // JMP and CJPN jump when the condition is OFF, CJP when it is ON.
                 if flow == Flow::Cjp {
                     self.emit(Op::Jump(label));
@@ -301,7 +342,13 @@ impl Lowerer<'_> {
                     ));
                 }
                 let here = self.interlock_id();
-                self.control.defined.insert(n, here);
+                let site = JmeSite {
+                    span: self.head_span(l),
+                    interlock: here,
+                    block: self.block_id(),
+                    loops: self.control.loops.iter().map(|lp| lp.head).collect(),
+                };
+                self.control.defined.insert(n, site);
                 let span = self.head_span(l);
                 self.dangle(Pair::Jump(n), false, span, format!("JME(005) {n}"), None);
                 let (mine, rest): (Vec<_>, Vec<_>) = std::mem::take(&mut self.control.jumps)

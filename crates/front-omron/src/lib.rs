@@ -1,6 +1,7 @@
 //! The Omron CP-series mnemonic (instruction-list) front end of stljit (omron-cp.md).
 //!
-//! [`compile`] takes the files of one project (UTF-8 or GBK, concatenated; `$TASK` directives
+//! [`compile`] (or [`compile_with`] and the [`Options`] `tc_mode` and `allow_backward_jumps`)
+//! takes the files of one project (UTF-8 or GBK, concatenated; `$TASK` directives
 //! split it into task programs, docs/omron.md "Tasks"), an optional CX-Programmer symbol table
 //! and an Omron profile (`cp1h`, `cp1e`), and returns the checked
 //! [`stljit_core::ir::Program`] with every diagnostic (codes `OMR-E…`/`OMR-W…`, §5). It never
@@ -34,7 +35,8 @@
 //!   Pop`.
 //! * `IL(002)`/`ILC(003)`: `Interlock`/`InterlockEnd`. `JMP(004)`/`CJPN(511)`: `Not; Jump;
 //!   Not`; `CJP(510)`: `Jump`; `JME(005)`: `Label`; `JMP0(515)`: like JMP to a fresh label
-//!   placed at the next `JME0(516)`. Jumps go forward only, within one POU and one IL region.
+//!   placed at the next `JME0(516)`. Jumps go forward only (backward with
+//!   `allow_backward_jumps`), within one POU, one IL region and one block program.
 //! * `END(001)`: `End`; lines after it are W002 and not lowered. `SBN(092) n … RET(093)`: a
 //!   `PouKind::Subroutine(n)` ending in `Return`; `SBS(091) n`: `Call`. The main POU ends at
 //!   the first SBN or END (its `End` op is emitted at the END line).
@@ -49,7 +51,8 @@
 //!   (`core::omron::effective_address`; a bit's is `16 · word + bit`). Indirect operands
 //!   `@Dn`, `*Dn`, `c,IRn`, `DRm,IRn`, `,IRn+`, `,IRn++`, `,-IRn`, `,--IRn` are
 //!   `Operand::Omron` in MOV/CMP/arithmetic, resolved at run time (`DRn` is a word anywhere).
-//! * Timers: `OmronTimer`, counters: `OmronCounter`; numbers `0000`, `T0000` or `&0`, each
+//! * Timers: `OmronTimer`, counters: `OmronCounter` (with `tc_mode = binary` the plain BCD
+//!   kinds become their `X` kinds); numbers `0000`, `T0000` or `&0`, each
 //!   used once per area (E021); BCD set-value constants are checked (E015).
 //! * `MOV`/`MOVL`: `Omron(Move)`; `CMP`/`CMPL`/`CPS`/`CPSL`: `Omron(Compare)`; §3.6:
 //!   `Omron(Arith)`. Comparison contacts (`LD>=S D0 -5`): `Load(P_On); Omron(Compare); Pop;`
@@ -99,6 +102,7 @@ mod lexer;
 mod lower;
 mod mnemonics;
 mod operand;
+mod options;
 mod regions;
 mod resolve;
 mod symbols;
@@ -106,6 +110,7 @@ mod tasks;
 
 pub use address::{AddressError, parse_address, print_address};
 pub use detect::{looks_like_omron, looks_like_s7};
+pub use options::{Options, TcMode};
 pub use stljit_source::{
     Code, Diagnostic, Encoding, Severity, SourceFile, SourceText, Sources, render_human,
     render_json,
@@ -123,12 +128,22 @@ pub type Compilation = stljit_source::Compilation<SymbolTable>;
 pub const LOGIC_STACK_DEPTH: u8 = 16;
 
 /// Compiles a project: every file in `files` (in order, concatenated; its `$TASK` directives
-/// split it into tasks), the optional symbol table, against the Omron `profile`. All
-/// diagnostics of all files are reported.
+/// split it into tasks), the optional symbol table, against the Omron `profile`, with the
+/// default [`Options`]. All diagnostics of all files are reported.
 pub fn compile(
     files: &[SourceFile],
     symbols: Option<&SourceFile>,
     profile: ProfileId,
+) -> Compilation {
+    compile_with(files, symbols, profile, Options::default())
+}
+
+/// [`compile`] with the front end's `options`.
+pub fn compile_with(
+    files: &[SourceFile],
+    symbols: Option<&SourceFile>,
+    profile: ProfileId,
+    options: Options,
 ) -> Compilation {
     let (sources, table, diags) = decode_project(files, symbols, SymbolTable::parse);
     let cx = resolve::Cx {
@@ -138,6 +153,7 @@ pub fn compile(
         file: FileId(0),
         line: 0,
         mn: String::new(),
+        options,
     };
     let names = files.iter().map(|f| f.name.clone()).collect();
     let mut lw = lower::Lowerer::new(cx, names);
