@@ -259,7 +259,7 @@ fn clear_condition_flags(img: &mut [u8], layout: &Layout) {
 /// The Omron system bits of the cycle, omron-cp.md §2.2 step 3: `P_On` = 1, `P_Off` = 0, the
 /// clock pulses from `t_ms` (50 % duty, ON half first, §2.12) and `A200.11`
 /// (`P_First_Cycle`) ON in the first cycle only. The condition flags that share their bytes
-/// are kept here; [`task_start`] clears them.
+/// are kept here; `clear_condition_flags` clears them.
 fn omron_system_bits(img: &mut [u8], layout: &Layout, t_ms: u64, first: bool) {
     let mut bits: u32 = 1 << SystemBit::On.index();
     for (pulse, period) in SystemBit::PULSES {
