@@ -17,6 +17,7 @@
 //! |---|---|---|
 //! | `stljit_rt_scan_begin(img, l, plan, t_ms: u64)` | [`scan::begin`] | 1 run the program, 0 in STOP |
 //! | `stljit_rt_scan_end(img, l, status: u32)` | [`scan::end`] | final `ScanStatus` as u32 |
+//! | `stljit_rt_task_start(img, l)` | [`scan::task_start`] | status |
 //! | `stljit_rt_timer(img, l, n, kind, input, gate, preset: i32)` | [`timer::execute`] | status |
 //! | `stljit_rt_timer_reset(img, l, first, count)` | [`timer::reset_range`] | status |
 //! | `stljit_rt_counter(img, l, n, kind, stack, gate, preset: i32)` | [`counter::execute`] | status |
@@ -264,6 +265,21 @@ pub unsafe extern "C" fn stljit_rt_scan_begin(
             u32::from(scan::begin(b, l, plan, t_ms))
         })
         .unwrap_or(0)
+    }
+}
+
+/// [`scan::task_start`]: the resets before an Omron cyclic task after the first.
+///
+/// # Safety
+/// See the module conventions.
+pub unsafe extern "C" fn stljit_rt_task_start(image: *mut u8, layout: *const Layout) -> u32 {
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        with_image(image, layout, |b, l| {
+            scan::task_start(b, l);
+            RT_OK
+        })
+        .unwrap_or_else(|e| e)
     }
 }
 

@@ -33,12 +33,11 @@ use stljit_core::{Area, ErrorCode, Family, FatalCode, ScanStatus};
 /// `t / div − t_prev / div` saturated to `u32`, 0 in the first scan.
 pub const DELTAS: [(u32, u64); 3] = [(Sched::D1, 1), (Sched::D10, 10), (Sched::D100, 100)];
 
+/// The gate (SCR enable, Omron interlock and step) at the start of every task: open.
+pub const GATE_OPEN: (u32, u8) = (Sched::SCR_ENABLE, 1);
+
 /// The one-byte resets of step 5, `(field, value)`; the `u32` `LOOP_COUNT` is reset to 0 too.
-pub const RESETS: [(u32, u8); 3] = [
-    (Sched::ENO, 0),
-    (Sched::SCR_ENABLE, 1),
-    (Sched::STOP_REQ, 0),
-];
+pub const RESETS: [(u32, u8); 3] = [(Sched::ENO, 0), GATE_OPEN, (Sched::STOP_REQ, 0)];
 
 /// SMB0 (spec §2.3): the bits always ON (SM0.0, SM0.7).
 pub const SMB0_ALWAYS: u8 = 0x81;
@@ -219,7 +218,10 @@ pub fn begin(img: &mut [u8], layout: &Layout, plan: &ScanPlan, t_ms: u64) -> boo
             let v = smb0(t_ms, scan_no, first, lost);
             mem::set_u8(img, layout.base(Area::SM), v);
         }
-        Family::Omron => omron_system_bits(img, layout, t_ms, first),
+        Family::Omron => {
+            omron_system_bits(img, layout, t_ms, first);
+            clear_condition_flags(img, layout);
+        }
     }
 
     // Step 4: clock-driven refresh of the 1-ms and 10-ms timers in use.
@@ -231,9 +233,33 @@ pub fn begin(img: &mut [u8], layout: &Layout, plan: &ScanPlan, t_ms: u64) -> boo
     true
 }
 
-/// The Omron system bits at the start of the (single cyclic) task, omron-cp.md §2.2 step 3 and
-/// §2.3: every condition flag cleared, `P_On` = 1, `P_Off` = 0, the clock pulses from `t_ms`
-/// (50 % duty, ON half first, §2.12) and `A200.11` (`P_First_Cycle`) ON in the first cycle only.
+/// What is reset at the start of every task (omron-cp.md §2.3): the instruction conditions
+/// are released (the gate, which an S7 SCR segment or an Omron interlock or step closes, is
+/// [`GATE_OPEN`]) and the condition flags cleared. [`begin`] does both for the scan's first task
+/// (the gate among its [`RESETS`]); `Op::TaskStart` runs this before every later cyclic task
+/// of an Omron program.
+pub fn task_start(img: &mut [u8], layout: &Layout) {
+    let (gate, open) = GATE_OPEN;
+    mem::set_sched_u8(img, layout, gate, open);
+    clear_condition_flags(img, layout);
+}
+
+/// The Omron condition flags (§1.8 rule 2: cleared at every task start) OFF; the system bits
+/// sharing their bytes are kept. Nothing on a profile without the `Flags` area.
+fn clear_condition_flags(img: &mut [u8], layout: &Layout) {
+    if layout.area_size(Area::Flags) >= 2 {
+        let at = layout.base(Area::Flags);
+        let word = u16::from_le_bytes([mem::get_u8(img, at), mem::get_u8(img, at + 1)]);
+        let [lo, hi] = (word & !SystemBit::CONDITION_FLAGS).to_le_bytes();
+        mem::set_u8(img, at, lo);
+        mem::set_u8(img, at + 1, hi);
+    }
+}
+
+/// The Omron system bits of the cycle, omron-cp.md §2.2 step 3: `P_On` = 1, `P_Off` = 0, the
+/// clock pulses from `t_ms` (50 % duty, ON half first, §2.12) and `A200.11`
+/// (`P_First_Cycle`) ON in the first cycle only. The condition flags that share their bytes
+/// are kept here; `clear_condition_flags` clears them.
 fn omron_system_bits(img: &mut [u8], layout: &Layout, t_ms: u64, first: bool) {
     let mut bits: u32 = 1 << SystemBit::On.index();
     for (pulse, period) in SystemBit::PULSES {
@@ -242,8 +268,15 @@ fn omron_system_bits(img: &mut [u8], layout: &Layout, t_ms: u64, first: bool) {
         }
     }
     let base = layout.base(Area::Flags);
-    for (i, b) in bits.to_le_bytes().into_iter().enumerate() {
-        mem::set_u8(img, base + i as u32, b);
+    let flags = u32::from(SystemBit::CONDITION_FLAGS);
+    for (i, (b, keep)) in bits
+        .to_le_bytes()
+        .into_iter()
+        .zip(flags.to_le_bytes())
+        .enumerate()
+    {
+        let at = base + i as u32;
+        mem::set_u8(img, at, (mem::get_u8(img, at) & keep) | b);
     }
     let (word, bit) = omron::FIRST_CYCLE;
     let at = omron::bit_of_word(
@@ -453,6 +486,22 @@ mod tests {
         assert!(img.is_stopped());
         assert_eq!(img.fatal(), FatalCode::Watchdog as u16);
         assert_eq!(img.error_site(), (0, 7));
+    }
+
+    #[test]
+    fn a_task_start_clears_the_condition_flags_and_opens_the_gate() {
+        // omron-cp.md §2.3: every condition flag is cleared; P_On and the pulses stay.
+        let mut img = Image::blank(ProfileId::Cp1h);
+        scan(&mut img, 0);
+        let (b, l) = img.split_mut();
+        let at = l.base(Area::Flags) as usize;
+        let on = 1u16 << SystemBit::On.index();
+        let [lo, hi] = (on | SystemBit::CONDITION_FLAGS).to_le_bytes();
+        (b[at], b[at + 1]) = (lo, hi);
+        mem::set_sched_u8(b, l, Sched::SCR_ENABLE, 0);
+        task_start(b, l);
+        assert_eq!(u16::from_le_bytes([b[at], b[at + 1]]), on);
+        assert_eq!(mem::sched_u8(b, l, Sched::SCR_ENABLE), 1);
     }
 
     #[test]

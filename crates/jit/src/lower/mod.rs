@@ -616,6 +616,7 @@ impl<'e, 'f> Lower<'e, 'f> {
             Op::ScrCondEnd { end } => self.scr_cond_end(end.index()),
             Op::ScrEnd | Op::InterlockEnd => self.scr_end(),
             Op::Interlock => self.interlock(),
+            Op::TaskStart => self.task_start(),
             Op::OmronTimer {
                 kind,
                 timer,
