@@ -1,6 +1,7 @@
 //! The structural facts of every op, stated once: where control goes next ([`Op::successors`]),
-//! what it does to the logic stack ([`Op::stack_effect`]), and which FOR loop a jump would enter
-//! ([`loop_entered_by`]), and which subroutine it calls ([`Op::callee`]). The verifier, the JIT's analyses and the front ends' stack checks read
+//! what it does to the logic stack ([`Op::stack_effect`]) and to the gate ([`Op::gate_effect`]),
+//! which FOR loop a jump would enter ([`loop_entered_by`]) and which subroutine it calls
+//! ([`Op::callee`]). The verifier, the JIT's analyses and the front ends' stack checks read
 //! these instead of matching on ops themselves, so a new op states its facts here and nowhere else.
 
 use super::{CounterKind, Op, Pou};
@@ -103,6 +104,20 @@ impl StackEffect {
     }
 }
 
+/// What an op does to the gate (the SCR enable / Omron interlock byte that power flow is ANDed
+/// with).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GateEffect {
+    /// Leaves it as it is.
+    Keeps,
+    /// Sets it to 1 (`SCRE`, `ILC`, a task start).
+    Opens,
+    /// Sets it to a value known only at run time (`LSCR`, `IL`).
+    Sets,
+    /// Whatever the callee leaves it at (`CALL`; the JIT's analysis follows the callee).
+    Callee,
+}
+
 impl Op {
     /// Where control may go after this op of `pou`. A target outside the POU (only in a program
     /// the verifier rejects) is clamped to its end.
@@ -137,6 +152,16 @@ impl Op {
             Op::Call(p) => Some(*p),
             Op::CallArgs(c) => Some(c.callee),
             _ => None,
+        }
+    }
+
+    /// The op's effect on the gate.
+    pub fn gate_effect(&self) -> GateEffect {
+        match self {
+            Op::ScrBegin { .. } | Op::Interlock => GateEffect::Sets,
+            Op::ScrEnd | Op::InterlockEnd | Op::TaskStart => GateEffect::Opens,
+            Op::Call(_) | Op::CallArgs(_) => GateEffect::Callee,
+            _ => GateEffect::Keeps,
         }
     }
 
@@ -202,7 +227,9 @@ impl Op {
                     StackEffect::NONE
                 }
             }
-            Op::Label(_) | Op::Nop | Op::ScrEnd | Op::InterlockEnd => StackEffect::NONE,
+            Op::Label(_) | Op::Nop | Op::ScrEnd | Op::InterlockEnd | Op::TaskStart => {
+                StackEffect::NONE
+            }
         }
     }
 }

@@ -27,7 +27,7 @@ mod uses;
 mod verify;
 
 pub use call::{Arg, ArgDir, ArgValue, CallArgs};
-pub use facts::{StackEffect, Successors, enclosing_loop, loop_entered_by};
+pub use facts::{GateEffect, StackEffect, Successors, enclosing_loop, loop_entered_by};
 pub use omron::{
     BoxOperands, IndexOffset, IndexStep, OmronArith, OmronBox, OmronCounterKind, OmronRef,
     OmronTimerKind,

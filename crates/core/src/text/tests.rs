@@ -175,6 +175,9 @@ fn every_op() -> Vec<Op> {
         },
         Op::ScrCondEnd { end: OpIdx(12) },
         Op::ScrEnd,
+        Op::Interlock,
+        Op::InterlockEnd,
+        Op::TaskStart,
     ]);
     for &kind in TimerKind::ALL {
         ops.push(Op::Timer {
