@@ -1,5 +1,5 @@
 //! Optional instruction families of the S7 CPUs (s7-200-more.md Appendix A): which of them a CPU
-//! has is data of its profile ([`crate::CpuProfile::instruction_sets`]), so a front end rejects an
+//! lacks is data of its profile ([`crate::CpuProfile::lacks`]), so a front end rejects an
 //! instruction the selected CPU does not have with one lookup, and adding a CPU or an
 //! instruction changes data, not code. The front end maps each mnemonic to its family; what a
 //! family contains is documented here only as a guide.
@@ -82,56 +82,3 @@ impl InstrSet {
         }
     }
 }
-
-/// The families of the A5 (Appendix A, column "`a5` profile default" [design]): everything the
-/// classic S7-200 has except pulse outputs, which no A5 document describes.
-pub(crate) const A5_SETS: &[InstrSet] = &[
-    InstrSet::Interrupts,
-    InstrSet::Tables,
-    InstrSet::Ascii,
-    InstrSet::Strings,
-    InstrSet::Clock,
-    InstrSet::Pid,
-    InstrSet::HighSpeedCounters,
-    InstrSet::Freeport,
-    InstrSet::PortAddress,
-    InstrSet::NetReadWrite,
-    InstrSet::IntervalTimers,
-    InstrSet::DiagnosticLed,
-];
-
-/// The families of the classic S7-200 (CPU 226): no Ethernet (GET/PUT, GIP/SIP).
-pub(crate) const S7_200_SETS: &[InstrSet] = &[
-    InstrSet::Interrupts,
-    InstrSet::Tables,
-    InstrSet::Ascii,
-    InstrSet::Strings,
-    InstrSet::Clock,
-    InstrSet::Pid,
-    InstrSet::HighSpeedCounters,
-    InstrSet::PulseOutputs,
-    InstrSet::Freeport,
-    InstrSet::PortAddress,
-    InstrSet::NetReadWrite,
-    InstrSet::IntervalTimers,
-    InstrSet::DiagnosticLed,
-];
-
-/// The families of the S7-200 SMART: Ethernet instead of PPI network read/write (Micro/WIN
-/// SMART rejects `NETR`/`NETW`; the corpus's instruction probe confirms it).
-pub(crate) const SMART_SETS: &[InstrSet] = &[
-    InstrSet::Interrupts,
-    InstrSet::Tables,
-    InstrSet::Ascii,
-    InstrSet::Strings,
-    InstrSet::Clock,
-    InstrSet::Pid,
-    InstrSet::HighSpeedCounters,
-    InstrSet::PulseOutputs,
-    InstrSet::Freeport,
-    InstrSet::PortAddress,
-    InstrSet::GetPut,
-    InstrSet::IpAddress,
-    InstrSet::IntervalTimers,
-    InstrSet::DiagnosticLed,
-];

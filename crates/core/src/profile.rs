@@ -5,7 +5,7 @@
 //! the timer resolution that the front end stored in the IR.
 
 use crate::area::Area;
-use crate::instr_set::{self, InstrSet};
+use crate::instr_set::InstrSet;
 use crate::ir::TimerKind;
 use std::fmt;
 
@@ -265,9 +265,9 @@ pub struct CpuProfile {
     pub max_for_depth: u8,
     /// Timer number → resolution table, per timer kind.
     pub timer_table: &'static [TimerRange],
-    /// The optional instruction families the CPU has (empty on Omron profiles, whose front end
-    /// has its own instruction table).
-    pub instruction_sets: &'static [InstrSet],
+    /// The optional instruction families the CPU does not have (s7-200-more Appendix A, its
+    /// "rejected" entries; every family on Omron profiles, whose front end has its own table).
+    pub lacks: &'static [InstrSet],
 }
 
 const ALL_TIMER_KINDS: &[TimerKind] = &[TimerKind::On, TimerKind::Retentive, TimerKind::Off];
@@ -319,7 +319,12 @@ pub static A5: CpuProfile = CpuProfile {
             resolution: Resolution::Ms100,
         },
     ],
-    instruction_sets: instr_set::A5_SETS,
+    // No A5 document describes pulse outputs; Ethernet (GET/PUT, GIP/SIP) is the SMART's.
+    lacks: &[
+        InstrSet::PulseOutputs,
+        InstrSet::GetPut,
+        InstrSet::IpAddress,
+    ],
 };
 
 /// The Siemens timer table (s7-200-more §3.5.3): the number fixes both the kind family and the
@@ -425,7 +430,7 @@ pub static S7_200: CpuProfile = CpuProfile {
     max_call_depth: 8,
     max_for_depth: 8,
     timer_table: SIEMENS_TIMERS,
-    instruction_sets: instr_set::S7_200_SETS,
+    lacks: &[InstrSet::GetPut, InstrSet::IpAddress],
 };
 
 /// A Siemens S7-200 SMART, sized as its largest standard CPU, the ST60 (s7-200-more §0.2; the
@@ -457,7 +462,8 @@ pub static SMART: CpuProfile = CpuProfile {
     max_call_depth: 8,
     max_for_depth: 8,
     timer_table: SIEMENS_TIMERS,
-    instruction_sets: instr_set::SMART_SETS,
+    // Micro/WIN SMART rejects NETR/NETW (the corpus's instruction probe confirms it).
+    lacks: &[InstrSet::NetReadWrite],
 };
 
 impl CpuProfile {
@@ -515,7 +521,7 @@ impl CpuProfile {
 
     /// Whether the CPU has the instruction family `set`.
     pub fn has(&self, set: InstrSet) -> bool {
-        self.instruction_sets.contains(&set)
+        !self.lacks.contains(&set)
     }
 
     /// Timer kinds allowed on number `n` (empty when the number does not exist).
@@ -604,7 +610,7 @@ mod tests {
                 assert!(has(p, s), "{p} {s:?}");
             }
         }
-        assert!(ProfileId::Cp1h.profile().instruction_sets.is_empty());
+        assert!(!ProfileId::Cp1h.profile().has(Interrupts));
     }
 
     #[test]

@@ -110,11 +110,21 @@ pub(crate) fn lex_line(line: &str, number: u32) -> Option<Line<'_>> {
     if out.rest.text.is_empty() {
         return Some(out);
     }
-    // Split the operand text at commas outside quotes.
-    let b = code.as_bytes();
-    let mut quote = 0u8;
-    let mut piece = mn_end;
-    for i in mn_end..=b.len() {
+    comma_pieces(code, mn_end, |start, end| {
+        if out.n_ops < MAX_OPS {
+            out.ops[out.n_ops] = tok(line, ascii, start, end);
+        }
+        out.n_ops += 1;
+    });
+    Some(out)
+}
+
+/// Calls `piece(start, end)` for each comma-separated piece of `text` from byte `from` on, commas
+/// inside `"…"` or `'…'` not counting.
+fn comma_pieces(text: &str, from: usize, mut piece: impl FnMut(usize, usize)) {
+    let b = text.as_bytes();
+    let (mut quote, mut start) = (0u8, from);
+    for i in from..=b.len() {
         let c = b.get(i).copied().unwrap_or(b',');
         if quote != 0 {
             if c == quote {
@@ -128,14 +138,10 @@ pub(crate) fn lex_line(line: &str, number: u32) -> Option<Line<'_>> {
             continue;
         }
         if c == b',' || i == b.len() {
-            if out.n_ops < MAX_OPS {
-                out.ops[out.n_ops] = tok(line, ascii, piece, i);
-            }
-            out.n_ops += 1;
-            piece = i + 1;
+            piece(start, i);
+            start = i + 1;
         }
     }
-    Some(out)
 }
 
 /// Every operand of a line, however many (a `CALL` may pass 16 parameters; [`Line`] keeps only
@@ -146,31 +152,14 @@ pub(crate) fn all_operands<'a>(line: &Line<'a>) -> Vec<Tok<'a>> {
         return Vec::new();
     }
     let ascii = rest.text.is_ascii();
-    let b = rest.text.as_bytes();
     let mut out = Vec::with_capacity(line.n_ops);
-    let (mut quote, mut piece) = (0u8, 0);
-    for i in 0..=b.len() {
-        let c = b.get(i).copied().unwrap_or(b',');
-        if quote != 0 {
-            if c == quote {
-                quote = 0;
-            }
-            if i < b.len() {
-                continue;
-            }
-        } else if c == b'"' || c == b'\'' {
-            quote = c;
-            continue;
-        }
-        if c == b',' || i == b.len() {
-            let t = tok(rest.text, ascii, piece, i);
-            out.push(Tok {
-                col: rest.col + t.col - 1,
-                ..t
-            });
-            piece = i + 1;
-        }
-    }
+    comma_pieces(rest.text, 0, |start, end| {
+        let t = tok(rest.text, ascii, start, end);
+        out.push(Tok {
+            col: rest.col + t.col - 1,
+            ..t
+        });
+    });
     out
 }
 

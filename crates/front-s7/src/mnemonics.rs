@@ -302,7 +302,7 @@ pub(crate) const TABLE: &[(&str, Group)] = &[
 ];
 
 /// The optional instruction families (s7-200-more Appendix A) and their mnemonics: whether the
-/// selected CPU has a family is profile data (`CpuProfile::instruction_sets`). A mnemonic listed
+/// selected CPU lacks a family is profile data (`CpuProfile::lacks`). A mnemonic listed
 /// here and not in [`TABLE`] is known but not supported yet; the string compare contacts
 /// (`LDS=`, …) belong to [`InstrSet::Strings`] through [`is_string_compare`] and the table find
 /// (`FND=`, …) to [`InstrSet::Tables`].

@@ -5,7 +5,7 @@
 use crate::exec::{Exit, Machine};
 use crate::operand::Addr;
 use stljit_core::ErrorCode;
-use stljit_core::ir::{Arg, ArgValue, BitLoc, CallArgs};
+use stljit_core::ir::{Arg, ArgValue, BitLoc, CallArgs, Operand};
 
 /// Where an actual lives once resolved.
 #[derive(Clone, Copy)]
@@ -49,24 +49,7 @@ impl Machine<'_> {
         let callee_frame = depth + 1;
         for (a, &place) in call.args.iter().zip(&places) {
             if a.dir.copies_in() {
-                match (a.value, place) {
-                    (ArgValue::Bit { formal, .. }, Place::Bit(actual)) => {
-                        let v = self.bit(actual, depth);
-                        self.set_bit(formal, callee_frame, v);
-                    }
-                    (ArgValue::Value { width, formal, .. }, Place::Value(at)) => {
-                        let v = self.load(at, width);
-                        if let Ok(f) = self.resolve(
-                            &stljit_core::ir::Operand::Mem(formal),
-                            width,
-                            callee_frame,
-                            true,
-                        ) {
-                            self.store(f, width, v);
-                        }
-                    }
-                    _ => {}
-                }
+                self.copy(a.value, place, (depth, callee_frame), true);
             }
         }
         if self.run_pou(call.callee.index(), callee_frame, 1) == Exit::Fatal {
@@ -74,29 +57,37 @@ impl Machine<'_> {
         }
         for (a, &place) in call.args.iter().zip(&places) {
             if a.dir.copies_out() {
-                match (a.value, place) {
-                    (ArgValue::Bit { formal, .. }, Place::Bit(actual)) => {
-                        let v = self.bit(formal, callee_frame);
-                        self.set_bit(actual, depth, v);
-                    }
-                    (ArgValue::Value { width, formal, .. }, Place::Value(at)) => {
-                        let f = self.resolve(
-                            &stljit_core::ir::Operand::Mem(formal),
-                            width,
-                            callee_frame,
-                            false,
-                        );
-                        if let Ok(f) = f {
-                            let v = self.load(f, width);
-                            self.store(at, width, v);
-                        }
-                    }
-                    _ => {}
-                }
+                self.copy(a.value, place, (depth, callee_frame), false);
             }
         }
         self.set_eno(true);
         Ok(())
+    }
+
+    /// Copies one parameter between the actual's `place` (in the caller's frame) and the formal
+    /// (in the callee's): into the callee (copy-in) or back (copy-back).
+    fn copy(&mut self, value: ArgValue, place: Place, (caller, callee): (u32, u32), into: bool) {
+        match (value, place) {
+            (ArgValue::Bit { formal, .. }, Place::Bit(actual)) => {
+                let ((from, from_frame), (to, to_frame)) = if into {
+                    ((actual, caller), (formal, callee))
+                } else {
+                    ((formal, callee), (actual, caller))
+                };
+                let v = self.bit(from, from_frame);
+                self.set_bit(to, to_frame, v);
+            }
+            (ArgValue::Value { width, formal, .. }, Place::Value(at)) => {
+                let Ok(f) = self.resolve(&Operand::Mem(formal), width, callee, into) else {
+                    return;
+                };
+                let (from, to) = if into { (at, f) } else { (f, at) };
+                let v = self.load(from, width);
+                self.store(to, width, v);
+            }
+            // The verifier pairs bit formals with bit actuals and values with values.
+            _ => {}
+        }
     }
 
     /// Resolves one actual in the caller's frame `frame` (writes for IN_OUT and OUT).
