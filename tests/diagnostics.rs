@@ -2,8 +2,8 @@
 //! diagnostics compared with the `.expected` file next to it. A case is a `.stl`/`.awl` file
 //! (with an optional `<stem>.symbols.txt` or `<stem>.symbols.csv`), or a `<name>.project/`
 //! directory whose program files form one project (with `symbols.txt`/`symbols.csv` and
-//! `expected` inside). A stem containing `.s7-200` selects that CPU; the default is the A5.
-//! Cases under `omron/` (`.omr` files) compile with the Omron dialect on the CP1H. A few
+//! `expected` inside). A stem containing `.s7-200` or `.smart` selects that CPU; the default is
+//! the A5. Cases under `omron/` (`.omr` files) compile with the Omron dialect on the CP1H. A few
 //! programs are too long to commit and are generated here ([`generated`]); their `.expected`
 //! files are committed like any other.
 //! `STLJIT_BLESS=1` rewrites the expectations (read them before committing).
@@ -64,6 +64,8 @@ fn discover(dir: &Path, out: &mut Vec<Case>) {
             (Dialect::Omron, ProfileId::Cp1h)
         } else if name.contains(".s7-200") {
             (Dialect::S7, ProfileId::S7_200)
+        } else if name.contains(".smart") {
+            (Dialect::S7, ProfileId::Smart)
         } else {
             (Dialect::S7, ProfileId::A5)
         };

@@ -203,6 +203,8 @@ struct ScanSpec {
     /// `(name, address, raw)` of every driven address.
     inputs: Vec<(String, Address, u32)>,
     expect: Vec<(WatchSpec, Want)>,
+    /// L memory of call levels (`frame = { 1 = { "LW9" = … } }`).
+    frames: Vec<super::frames::FrameExpect>,
     status: ScanStatus,
     fatal: Option<FatalCode>,
     last_err: Option<u16>,
@@ -360,6 +362,7 @@ fn check_scan(image: &Image, status: ScanStatus, spec: &ScanSpec) -> Vec<(String
             format!("expected 16#{code:04X}, got 16#{:04X}", image.last_error()),
         ));
     }
+    out.extend(super::frames::check(image, &spec.frames));
     for (watch, want) in &spec.expect {
         let Some(raw) = watch.read(image) else {
             out.push((watch.text.clone(), "address outside the image".to_string()));
@@ -566,7 +569,7 @@ const CASE_KEYS: &[&str] = &[
     "allow_backward_jumps",
 ];
 const SCAN_KEYS: &[&str] = &[
-    "scan", "t_ms", "inputs", "expect", "status", "fatal", "last_err",
+    "scan", "t_ms", "inputs", "expect", "frame", "status", "fatal", "last_err",
 ];
 
 fn check_keys(t: &Table, allowed: &[&str], what: &str) -> Result<(), String> {
@@ -719,6 +722,7 @@ fn parse_scan(
         };
         expect.push((watch, want));
     }
+    let frames = super::frames::parse(&table("frame")?, resolve, &raw_value)?;
     let status = match string(row, "status")? {
         None | Some("ok") => ScanStatus::Ok,
         Some("stopped") => ScanStatus::Stopped,
@@ -748,6 +752,7 @@ fn parse_scan(
     Ok(ScanSpec {
         inputs,
         expect,
+        frames,
         status,
         fatal,
         last_err,

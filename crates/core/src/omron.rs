@@ -11,6 +11,7 @@
 //! lower-numbered word holds the low 16 bits, spec §1.6); only Omron ops read them.
 
 use crate::area::Area;
+use crate::instr_set::InstrSet;
 use crate::ir::{BitLoc, Loc};
 use crate::profile::{CpuProfile, Family, OmronAreas, ProfileId, TimerRange};
 
@@ -376,6 +377,7 @@ const CP1H_DATA: CpuProfile = CpuProfile {
     max_call_depth: 8,
     max_for_depth: 15,
     timer_table: OMRON_TIMERS,
+    lacks: InstrSet::ALL,
 };
 
 /// The CP1E (E type), with the smaller ranges of spec §1.1 (U9: the per-model table is

@@ -139,6 +139,7 @@ pub fn mnemonic(op: &Op) -> &'static str {
         Op::Jump(_) => "JMP",
         Op::Label(_) => "LBL",
         Op::Call(_) => "CALL",
+        Op::CallArgs(_) => "CALL (parameters)",
         Op::Return { conditional } => {
             if *conditional {
                 "CRET"

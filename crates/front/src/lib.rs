@@ -62,7 +62,7 @@ pub use stljit_front_omron::TcMode;
 
 /// The dialects' profiles (Omron's models are the CP ones).
 const OMRON_PROFILES: [ProfileId; 2] = [ProfileId::Cp1h, ProfileId::Cp1e];
-const S7_PROFILES: [ProfileId; 2] = [ProfileId::A5, ProfileId::S7_200];
+const S7_PROFILES: [ProfileId; 3] = [ProfileId::A5, ProfileId::S7_200, ProfileId::Smart];
 
 impl Dialect {
     /// Every dialect.

@@ -8,6 +8,7 @@
 //! recorded run-time error, never a panic.
 
 mod boxes;
+mod call;
 mod exec;
 mod omron;
 mod operand;

@@ -189,9 +189,9 @@ fn gate_flow(pou: &Pou, exits_one: &[bool]) -> (Vec<bool>, bool) {
             GateEffect::Keeps => inp,
             GateEffect::Opens => true,
             GateEffect::Sets => false,
-            GateEffect::Callee => match op {
-                Op::Call(p) => inp && exits_one.get(p.index()).copied().unwrap_or(false),
-                _ => false,
+            GateEffect::Callee => match op.callee() {
+                Some(p) => inp && exits_one.get(p.index()).copied().unwrap_or(false),
+                None => false,
             },
         };
         if pou.ops[i].may_exit() && !out {

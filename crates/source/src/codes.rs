@@ -106,10 +106,10 @@ codes! {
     OddAnalog = "E025", Error, "AIW/AQW addresses must be even";
     /// LDS out of range.
     LdsRange = "E026", Error, "LDS takes a stack level 0..8";
-    /// Out-of-scope instruction.
-    Unsupported = "E027", Error, "the instruction is not supported in this version";
-    /// Subroutine parameters.
-    SubroutineParams = "E028", Error, "subroutine parameters are not supported yet";
+    /// Known instruction, not supported yet.
+    Unsupported = "E027", Error, "the instruction is known but not supported yet";
+    /// CALL with the wrong number of parameters.
+    CallParamCount = "E028", Error, "a CALL passes a different number of parameters than the subroutine declares";
     /// Block structure.
     Structure = "E029", Error, "the block structure (OB/SBR/INT blocks, SBR/INT markers) is malformed";
     /// Undecodable input.
@@ -118,10 +118,26 @@ codes! {
     ScrBitShared = "E031", Error, "one S bit is used as an SCR segment flag in two blocks";
     /// Jump into a FOR body.
     JumpIntoLoop = "E032", Error, "a JMP enters a FOR loop's body from outside the loop";
+    /// Instruction the selected CPU does not have.
+    NotAvailable = "E033", Error, "the instruction is not available on the selected CPU";
+    /// Actual parameter that does not fit its declared parameter.
+    CallParamKind = "E034", Error, "a CALL's actual parameter does not fit the declared parameter (type, width, direction)";
+    /// Malformed local variable declaration.
+    LocalDecl = "E035", Error, "a local variable declaration (VAR_INPUT … END_VAR) is malformed or not allowed here";
+    /// Local variable table beyond the CPU's limits.
+    LocalLimit = "E036", Error, "the local variables exceed 64 bytes of L memory or 16 parameters";
+    /// `Symbol:Address` whose symbol names another address.
+    SymbolMismatch = "E037", Error, "in a `symbol:address` operand the symbol names a different address";
     /// Contact or stack operation consuming an unloaded level.
     StackUnderflow = "W001", Warning, "a contact or ALD/OLD/LPP/LRD consumes a stack level that nothing loaded";
     /// Too many live stack levels.
     StackOverflow = "W002", Warning, "more than nine stack levels are live; the bottom one is lost";
+    /// Locals reaching into L60–L63.
+    LadLocals = "W003", Warning, "the local variables use L60-L63, which LAD/FBD-generated code also uses";
+    /// A local variable named without `#`.
+    UnprefixedLocal = "W004", Warning, "a name without `#` is taken as the block's local variable";
+    /// `Symbol:Address` with a symbol no table defines.
+    UncheckedSymbol = "W005", Warning, "in a `symbol:address` operand the symbol is not defined; the address is used";
 
     // ---- Omron CP dialect (omron-cp.md §5; the spec's numbers with the `OMR-` prefix) --------
     /// A task program without END.

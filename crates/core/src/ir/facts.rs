@@ -1,9 +1,11 @@
 //! The structural facts of every op, stated once: where control goes next ([`Op::successors`]),
 //! what it does to the logic stack ([`Op::stack_effect`]) and to the gate ([`Op::gate_effect`]),
-//! and which FOR loop a jump would enter ([`loop_entered_by`]). The verifier, the JIT's analyses and the front ends' stack checks read
+//! which FOR loop a jump would enter ([`loop_entered_by`]) and which subroutine it calls
+//! ([`Op::callee`]). The verifier, the JIT's analyses and the front ends' stack checks read
 //! these instead of matching on ops themselves, so a new op states its facts here and nowhere else.
 
 use super::{CounterKind, Op, Pou};
+use crate::index::PouId;
 
 /// Where control can go after an op: the next op, and one branch target (an op index, where
 /// `ops.len()` is the POU's end).
@@ -144,12 +146,21 @@ impl Op {
         matches!(self, Op::Return { .. } | Op::End { .. })
     }
 
+    /// The subroutine the op calls (`CALL`, with or without parameters).
+    pub fn callee(&self) -> Option<PouId> {
+        match self {
+            Op::Call(p) => Some(*p),
+            Op::CallArgs(c) => Some(c.callee),
+            _ => None,
+        }
+    }
+
     /// The op's effect on the gate.
     pub fn gate_effect(&self) -> GateEffect {
         match self {
             Op::ScrBegin { .. } | Op::Interlock => GateEffect::Sets,
             Op::ScrEnd | Op::InterlockEnd | Op::TaskStart => GateEffect::Opens,
-            Op::Call(_) => GateEffect::Callee,
+            Op::Call(_) | Op::CallArgs(_) => GateEffect::Callee,
             _ => GateEffect::Keeps,
         }
     }
@@ -201,6 +212,7 @@ impl Op {
             | Op::Box(_)
             | Op::Jump(_)
             | Op::Call(_)
+            | Op::CallArgs(_)
             | Op::Stop
             | Op::Wdr
             | Op::For { .. }

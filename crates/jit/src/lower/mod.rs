@@ -18,6 +18,7 @@
 pub(crate) mod bits;
 pub(crate) mod boxes;
 pub(crate) mod cache;
+pub(crate) mod call;
 pub(crate) mod control;
 pub(crate) mod flow;
 pub(crate) mod mem;
@@ -601,6 +602,7 @@ impl<'e, 'f> Lower<'e, 'f> {
             Op::Jump(l) => self.jump(l),
             Op::Label(_) | Op::Nop => {}
             Op::Call(callee) => self.call(callee),
+            Op::CallArgs(ref c) => self.call_args(c),
             Op::Return { conditional } | Op::End { conditional } => self.ret(conditional),
             Op::Stop => self.stop(),
             Op::Wdr => self.wdr(),
