@@ -15,7 +15,6 @@ mod engines;
 mod fuzz;
 mod project;
 mod run;
-mod used;
 
 /// Compile PLC statement-list programs to native code, run them on virtual time, and prove the
 /// JIT equal to the reference interpreter.

@@ -1,24 +1,27 @@
 //! `stljit run`: simulate a program on virtual time with either engine.
 //!
-//! Scan k starts at k × scan time. A stimulus file drives inputs and HMI writes, `--watch` prints
+//! The run goes through the embedding API (`stljit_api::Plc`), as every other tool that drives
+//! a PLC does. Scan k starts at k × scan time. A stimulus file drives inputs and HMI writes, `--watch` prints
 //! one CSV row per scan, `--trace` writes a CSV or VCD file. Exit codes: 0 ok, 1 program errors,
 //! 2 usage or stimulus errors, 3 the PLC stopped on a fatal runtime error.
 
 use crate::check::Input;
 use crate::duration::parse_duration;
-use crate::engines::{EngineKind, OptArg, build_engine};
+use crate::engines::{EngineKind, OptArg};
 use anyhow::{Context as _, bail};
 use std::io::{IsTerminal as _, Write as _};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
+use stljit_api::used::{self, Names};
+use stljit_api::{Compiled, Options, Plc, Run};
 use stljit_core::ir::{Address, Program};
-use stljit_front::{Compilation, Dialect};
 use stljit_runtime::Image;
 use stljit_sim::{
-    CsvTrace, Observer, Outcome, Progress, RunReport, ScanEvent, Simulation, Stimulus, TimeBase,
-    Until, VcdTrace, WatchSpec,
+    CsvTrace, Observer, Outcome, Progress, RunReport, ScanEvent, Stimulus, TimeBase, Until,
+    VcdTrace, WatchSpec,
 };
 
 /// Arguments of `stljit run`.
@@ -57,17 +60,12 @@ pub(crate) struct Args {
 }
 
 pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
-    let compilation = args.input.compile()?;
-    let Some(program) = crate::project::checked_program(&compilation) else {
+    let compiled = Arc::new(args.input.compiled()?);
+    let Some(program) = crate::project::checked_program(compiled.compilation()) else {
         return Ok(ExitCode::from(1));
     };
-    let dialect = args.input.dialect()?;
     let profile = program.profile.profile();
-    let resolve = |name: &str| -> Result<Address, String> {
-        dialect
-            .parse_address(name, program.profile, compilation.symbols.as_ref())
-            .map_err(|e| e.to_string())
-    };
+    let resolve = |name: &str| compiled.resolve(name);
     let stimulus = match &args.inputs {
         Some(path) => {
             let text = std::fs::read_to_string(path)
@@ -78,8 +76,13 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
         None => Stimulus::empty(TimeBase::Scan, profile),
     };
     let layout = stljit_core::Layout::new(profile);
-    let watch = watch_list(&args, program, (dialect, &compilation), &resolve, &layout)?;
-    let mut engine = build_engine(args.engine, args.opt, program)?;
+    let watch = watch_list(&args, program, &compiled, &resolve, &layout)?;
+    let options = Options {
+        engine: args.engine.into(),
+        opt: args.opt.into(),
+        scan_ms: args.scan_time,
+    };
+    let mut plc = Plc::new(compiled.clone(), &options)?;
     let until = match (args.scans, args.duration) {
         (Some(n), _) => Until::Scans(n),
         (None, Some(ms)) => Until::Duration(ms),
@@ -94,9 +97,6 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     let mut stats = ScanStats::default();
     let mut stdout = std::io::stdout().lock();
     let report = {
-        let mut sim = Simulation::new(engine.as_mut(), Image::cold_start(program), args.scan_time)?
-            .with_cancel(&CANCEL)
-            .with_progress(&mut progress);
         let mut observers: Vec<Box<dyn Observer + '_>> = Vec::new();
         if args.stats {
             observers.push(Box::new(&mut stats));
@@ -107,18 +107,16 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
             (None, true) => {}
         }
         let mut all = Fanout(observers);
-        let report = sim.run(until, &stimulus, &mut all)?;
+        let run = Run::new(until)
+            .stimulus(&stimulus)
+            .observer(&mut all)
+            .cancel(&CANCEL)
+            .progress(&mut progress);
+        let report = plc.simulate(run).map_err(sim_error)?;
         all.finish()?;
-        summarise(
-            &args,
-            program,
-            (dialect, &compilation),
-            &report,
-            sim.image(),
-            &stats,
-        );
         report
     };
+    summarise(&args, program, &compiled, &report, plc.image(), &stats);
     bar.clear();
     Ok(match report.outcome {
         Outcome::Fatal { .. } => ExitCode::from(3),
@@ -126,18 +124,27 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     })
 }
 
+/// A simulation error as the CLI reported it before the API existed (the `SimError` itself, so
+/// its cause is printed once).
+fn sim_error(e: stljit_api::Error) -> anyhow::Error {
+    match e {
+        stljit_api::Error::Sim(e) => e.into(),
+        other => other.into(),
+    }
+}
+
 /// The watch list: `--watch` as given, or for a trace without one, every I/Q/M bit the program
 /// reads or writes.
 fn watch_list(
     args: &Args,
     program: &Program,
-    (dialect, compilation): (Dialect, &Compilation),
+    compiled: &Compiled,
     resolve: &dyn Fn(&str) -> Result<Address, String>,
     layout: &stljit_core::Layout,
 ) -> anyhow::Result<Vec<WatchSpec>> {
     let names: Vec<String> = if args.watch.is_empty() && args.trace.is_some() {
-        let names = crate::used::Names::new(program, dialect, compilation.symbols.as_ref());
-        crate::used::io_bits(program)
+        let names: Names = compiled.names();
+        used::io_bits(program)
             .into_iter()
             .map(|b| names.watch_name(&Address::Bit(b)))
             .collect()
@@ -239,7 +246,7 @@ impl ScanStats {
 fn summarise(
     args: &Args,
     program: &Program,
-    (dialect, compilation): (Dialect, &Compilation),
+    compiled: &Compiled,
     report: &RunReport,
     image: &Image,
     stats: &ScanStats,
@@ -277,11 +284,11 @@ fn summarise(
         );
     }
     if args.watch.is_empty() {
-        let outputs = crate::used::outputs(program);
+        let outputs = used::outputs(program);
         if !outputs.is_empty() {
             let _ = writeln!(err, "outputs after the last scan:");
-            let names = crate::used::Names::new(program, dialect, compilation.symbols.as_ref());
-            for (name, value) in crate::used::describe(&outputs, image, &names) {
+            let names = compiled.names();
+            for (name, value) in used::describe(&outputs, image, &names) {
                 let _ = writeln!(err, "  {name:<24} {value}");
             }
         }
