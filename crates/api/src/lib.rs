@@ -75,7 +75,7 @@ pub use project::{
     Compiled, DetectError, Project, detect_dialect, dialect_named, read_source, resolve_cpu,
 };
 pub use recorder::Recorder;
-pub use snapshot::Snapshot;
+pub use snapshot::{Snapshot, fnv1a as fingerprint};
 
 pub use stljit_core::ScanStatus;
 pub use stljit_front::{Dialect, SourceFile};

@@ -267,6 +267,13 @@ impl Plc {
         Ok(handle.decode(self.get_raw(handle)?))
     }
 
+    /// The value written at `handle` from outside: for an input the physical input copy (what
+    /// the next scan's input refresh will read), for anything else the image, as [`Plc::get`].
+    pub fn get_written(&self, handle: &Handle) -> Result<Value, Error> {
+        handle.check_image(&self.image)?;
+        Ok(handle.decode(handle.load(self.image.bytes(), handle.write_offset())))
+    }
+
     /// The raw bits at `handle` (zero-extended).
     pub fn get_raw(&self, handle: &Handle) -> Result<u32, Error> {
         handle.check_image(&self.image)?;

@@ -114,8 +114,9 @@ impl<'a> Reader<'a> {
     }
 }
 
-/// FNV-1a, 64 bits: a fingerprint that is the same on every machine and Rust version.
-pub(crate) fn fnv1a(bytes: &[u8]) -> u64 {
+/// FNV-1a, 64 bits: a fingerprint that is the same on every machine and Rust version (of a
+/// program's IR text, of an FMU's contents).
+pub fn fnv1a(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
         (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
     })

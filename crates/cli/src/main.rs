@@ -12,6 +12,7 @@ mod dump_clif;
 mod dump_ir;
 mod duration;
 mod engines;
+mod fmu;
 mod fuzz;
 mod project;
 mod run;
@@ -41,6 +42,8 @@ enum Command {
     Diff(diff::Args),
     /// Differential fuzzing: generated programs on the JIT and the interpreter, compared.
     Fuzz(fuzz::Args),
+    /// Export programs as an FMI 2.0 co-simulation FMU.
+    Fmu(fmu::Args),
 }
 
 fn main() -> ExitCode {
@@ -63,6 +66,7 @@ fn main() -> ExitCode {
         Command::Fuzz(args) => fuzz::main(args),
         Command::DumpClif(args) => dump_clif::main(args),
         Command::Bench(args) => bench::main(args),
+        Command::Fmu(args) => fmu::main(args),
     };
     match result {
         Ok(code) => code,
