@@ -259,7 +259,7 @@ impl Plc {
 
     /// Resolves a name once for fast reads and writes ([`crate::handle`] for the syntax).
     pub fn handle(&self, name: &str) -> Result<Handle, Error> {
-        Handle::resolve(name, self.image.layout(), &|n| self.compiled.resolve(n))
+        self.compiled.handle(name)
     }
 
     /// The value at `handle`.

@@ -236,6 +236,13 @@ impl Compiled {
             .map_err(|e| e.to_string())
     }
 
+    /// Resolves a name (an address or symbol with an optional `:i`/`:u`/`:real` suffix) to a
+    /// [`crate::Handle`] for any PLC of this program ([`crate::Plc::handle`] is the same).
+    pub fn handle(&self, name: &str) -> Result<crate::Handle, Error> {
+        let layout = stljit_core::Layout::of(self.profile);
+        crate::Handle::resolve(name, &layout, &|n| self.resolve(n))
+    }
+
     /// The name to show for an address: its symbol when the table has one, else the address in
     /// the dialect's spelling.
     pub fn names(&self) -> crate::used::Names {

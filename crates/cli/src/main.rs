@@ -5,6 +5,7 @@
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
+mod batch;
 mod bench;
 mod check;
 mod diff;
@@ -16,6 +17,7 @@ mod fmu;
 mod fuzz;
 mod project;
 mod run;
+mod shard;
 
 /// Compile PLC statement-list programs to native code, run them on virtual time, and prove the
 /// JIT equal to the reference interpreter.

@@ -1,7 +1,8 @@
 //! `stljit run`: simulate a program on virtual time with either engine.
 //!
 //! The run goes through the embedding API (`stljit_api::Plc`), as every other tool that drives
-//! a PLC does. Scan k starts at k × scan time. A stimulus file drives inputs and HMI writes, `--watch` prints
+//! a PLC does. Scan k starts at k × scan time. Several stimulus files or a parameter sweep make
+//! a batch of runs on every core (`crate::batch`). A stimulus file drives inputs and HMI writes, `--watch` prints
 //! one CSV row per scan, `--trace` writes a CSV or VCD file. Exit codes: 0 ok, 1 program errors,
 //! 2 usage or stimulus errors, 3 the PLC stopped on a fatal runtime error.
 
@@ -44,16 +45,31 @@ pub(crate) struct Args {
     /// Virtual time per scan.
     #[arg(long, value_name = "DURATION", default_value = "10ms", value_parser = parse_duration)]
     scan_time: u64,
-    /// Stimulus CSV: `scan,ADDR,...` or `t_ms,ADDR,...`.
-    #[arg(long, value_name = "STIMULUS.csv")]
-    inputs: Option<PathBuf>,
+    /// Stimulus CSV: `scan,ADDR,...` or `t_ms,ADDR,...`. Several files make a batch: one run
+    /// per file.
+    #[arg(long, value_name = "STIMULUS.csv", num_args = 1.., action = clap::ArgAction::Append)]
+    inputs: Vec<PathBuf>,
+    /// A parameter sweep, ADDR=V1,V2,...: one run per value, written like an HMI write before
+    /// the first scan (several --sweep: every combination). Makes a batch.
+    #[arg(long, value_name = "ADDR=V1,V2,...")]
+    pub(crate) sweep: Vec<String>,
+    /// Batch: the directory that gets one CSV trace per run (of --watch, or of every I/Q/M bit
+    /// the program uses), named by run.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out_dir: Option<PathBuf>,
+    /// Batch: worker threads (default: every core).
+    #[arg(long)]
+    pub(crate) jobs: Option<usize>,
+    /// Batch: run only shard K of N (run i belongs to shard i mod N), e.g. 0/4.
+    #[arg(long, value_parser = crate::shard::parse_shard)]
+    pub(crate) shard: Option<(u64, u64)>,
     /// Addresses to print after each scan, e.g. `Q0.0,VW10,VD50:real,T37`.
     #[arg(long, value_delimiter = ',', value_name = "ADDR,...")]
     watch: Vec<String>,
     /// Write the watched addresses (all I/Q/M bits the program uses when no --watch) to a
     /// `.vcd` or `.csv` file.
     #[arg(long, value_name = "OUT.vcd|OUT.csv")]
-    trace: Option<PathBuf>,
+    pub(crate) trace: Option<PathBuf>,
     /// Add scan-time figures (wall clock per scan) to the summary.
     #[arg(long)]
     stats: bool,
@@ -66,28 +82,41 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     };
     let profile = program.profile.profile();
     let resolve = |name: &str| compiled.resolve(name);
-    let stimulus = match &args.inputs {
-        Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .with_context(|| format!("cannot read {}", path.display()))?;
-            Stimulus::parse(&text, profile, &resolve)
-                .map_err(|e| anyhow::anyhow!("{}:{e}", path.display()))?
-        }
-        None => Stimulus::empty(TimeBase::Scan, profile),
-    };
+    let mut stimuli = Vec::new();
+    for path in &args.inputs {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("cannot read {}", path.display()))?;
+        let stimulus = Stimulus::parse(&text, profile, &resolve)
+            .map_err(|e| anyhow::anyhow!("{}:{e}", path.display()))?;
+        let stem = path
+            .file_stem()
+            .map_or_else(|| "run".into(), |s| s.to_string_lossy().into_owned());
+        stimuli.push((stem, stimulus));
+    }
+    if stimuli.is_empty() {
+        stimuli.push(("run".to_string(), Stimulus::empty(TimeBase::Scan, profile)));
+    }
     let layout = stljit_core::Layout::new(profile);
-    let watch = watch_list(&args, program, &compiled, &resolve, &layout)?;
+    let batch = args.is_batch();
+    let watch = watch_list(&args, program, &compiled, &resolve, &layout, batch)?;
     let options = Options {
         engine: args.engine.into(),
         opt: args.opt.into(),
         scan_ms: args.scan_time,
     };
-    let mut plc = Plc::new(compiled.clone(), &options)?;
     let until = match (args.scans, args.duration) {
         (Some(n), _) => Until::Scans(n),
         (None, Some(ms)) => Until::Duration(ms),
         (None, None) => Until::Scans(100),
     };
+    if options.scan_ms == 0 {
+        anyhow::bail!("scan time must be at least 1 ms");
+    }
+    if batch {
+        return crate::batch::main(&args, compiled.clone(), stimuli, watch, options, until);
+    }
+    let stimulus = &stimuli[0].1;
+    let mut plc = Plc::new(compiled.clone(), &options)?;
 
     // Ctrl-C stops the run between two scans; the trace collected so far is still written.
     static CANCEL: AtomicBool = AtomicBool::new(false);
@@ -108,7 +137,7 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
         }
         let mut all = Fanout(observers);
         let run = Run::new(until)
-            .stimulus(&stimulus)
+            .stimulus(stimulus)
             .observer(&mut all)
             .cancel(&CANCEL)
             .progress(&mut progress);
@@ -133,16 +162,28 @@ fn sim_error(e: stljit_api::Error) -> anyhow::Error {
     }
 }
 
-/// The watch list: `--watch` as given, or for a trace without one, every I/Q/M bit the program
-/// reads or writes.
+impl Args {
+    /// Whether the arguments ask for a batch (several stimulus files, a sweep, or a batch option).
+    fn is_batch(&self) -> bool {
+        self.inputs.len() > 1
+            || !self.sweep.is_empty()
+            || self.out_dir.is_some()
+            || self.jobs.is_some()
+            || self.shard.is_some()
+    }
+}
+
+/// The watch list: `--watch` as given, or for a trace (or a batch's traces) without one, every
+/// I/Q/M bit the program reads or writes.
 fn watch_list(
     args: &Args,
     program: &Program,
     compiled: &Compiled,
     resolve: &dyn Fn(&str) -> Result<Address, String>,
     layout: &stljit_core::Layout,
+    batch: bool,
 ) -> anyhow::Result<Vec<WatchSpec>> {
-    let names: Vec<String> = if args.watch.is_empty() && args.trace.is_some() {
+    let names: Vec<String> = if args.watch.is_empty() && (args.trace.is_some() || batch) {
         let names: Names = compiled.names();
         used::io_bits(program)
             .into_iter()
