@@ -1,6 +1,6 @@
 """Per-scan cost of driving a PLC from a Python loop, on top of the program itself.
 
-    python crates/python/bench/scan_overhead.py [--scans N] [--rounds R]
+    python crates/python/bench/scan_overhead.py [--scans N] [--rounds R] [--max-overhead-us X]
 
 For each engine and program it times (best of R rounds, N scans each):
   run       plc.run(scans=N): the scans in one call, the program's own cost plus the driver
@@ -8,7 +8,8 @@ For each engine and program it times (best of R rounds, N scans each):
   closed    for _ in range(N): plc[h_in] = x; plc.scan(); y = plc[h_out]   (handles)
   by name   the same with names instead of handles (cached lookups)
 and prints the overhead per scan of each loop over `run`. The target (issue 14) is
-scan - run <= 2 us.
+scan - run <= 2 us; with --max-overhead-us the script exits 1 when a scan() loop costs more
+than that over `run` (CI passes 2).
 """
 
 import argparse
@@ -47,7 +48,9 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--scans", type=int, default=200_000)
     ap.add_argument("--rounds", type=int, default=5)
+    ap.add_argument("--max-overhead-us", type=float, default=None)
     args = ap.parse_args()
+    worst = 0.0
     n = args.scans
     print(f"{'program':<14} {'engine':<7} {'run':>9} {'scan':>9} {'closed':>9} {'by name':>9}"
           f" {'scan-run':>9} {'closed-run':>11}   (us per scan)")
@@ -81,6 +84,12 @@ def main() -> None:
             r = [best(args.rounds, f) / n * 1e6 for f in (run, scan, closed, by_name)]
             print(f"{name:<14} {engine:<7} {r[0]:9.3f} {r[1]:9.3f} {r[2]:9.3f} {r[3]:9.3f}"
                   f" {r[1] - r[0]:9.3f} {r[2] - r[0]:11.3f}")
+            worst = max(worst, r[1] - r[0])
+    if args.max_overhead_us is not None:
+        verdict = "ok" if worst <= args.max_overhead_us else "TOO SLOW"
+        print(f"worst scan() overhead {worst:.3f} us per scan (limit {args.max_overhead_us} us): {verdict}")
+        if worst > args.max_overhead_us:
+            raise SystemExit(1)
 
 
 if __name__ == "__main__":
