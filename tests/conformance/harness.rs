@@ -218,6 +218,8 @@ enum Want {
 struct Case {
     dialect: Dialect,
     profile: ProfileId,
+    /// The front-end options (`tc_mode`, `allow_backward_jumps`: Omron's).
+    options: stljit_front::Options,
     scan_ms: u64,
     program: String,
     scans: Vec<ScanSpec>,
@@ -453,7 +455,9 @@ fn compile(file: &str, case: &Case) -> Result<Program, String> {
         name: file.to_string(),
         bytes: case.program.as_bytes().to_vec(),
     };
-    let c = case.dialect.compile(&[source], None, case.profile);
+    let c = case
+        .dialect
+        .compile_with(&[source], None, case.profile, case.options);
     match c.program {
         Some(p) => Ok(p),
         None => {
@@ -558,6 +562,8 @@ const CASE_KEYS: &[&str] = &[
     "program",
     "scan",
     "known_failure",
+    "tc_mode",
+    "allow_backward_jumps",
 ];
 const SCAN_KEYS: &[&str] = &[
     "scan", "t_ms", "inputs", "expect", "status", "fatal", "last_err",
@@ -608,6 +614,19 @@ fn parse_case(text: &str) -> Result<Case, String> {
             .filter(|p| dialect.profiles().contains(p))
             .ok_or(format!("unknown cpu `{cpu}` for dialect `{dialect_name}`"))?,
     };
+    let mut options = stljit_front::Options::default();
+    if let Some(mode) = string(&t, "tc_mode")? {
+        options.omron.tc_mode = stljit_front::TcMode::from_name(mode)
+            .ok_or(format!("unknown tc_mode `{mode}` (bcd, binary)"))?;
+    }
+    match t.get("allow_backward_jumps") {
+        None => {}
+        Some(Value::Boolean(b)) => options.omron.allow_backward_jumps = *b,
+        Some(_) => return Err("`allow_backward_jumps` must be true or false".to_string()),
+    }
+    if options != stljit_front::Options::default() && dialect != Dialect::Omron {
+        return Err("`tc_mode` and `allow_backward_jumps` are options of the omron dialect".into());
+    }
     let scan_ms = uint(&t, "scan_ms", "case")?.unwrap_or(10);
     if scan_ms == 0 {
         return Err("`scan_ms` must be at least 1".to_string());
@@ -639,6 +658,7 @@ fn parse_case(text: &str) -> Result<Case, String> {
     Ok(Case {
         dialect,
         profile,
+        options,
         scan_ms,
         program: string(&t, "program")?.unwrap_or_default().to_string(),
         scans,

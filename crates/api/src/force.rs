@@ -128,4 +128,19 @@ impl Engine for Forced<'_> {
             .after(image, !was_stopped && status != ScanStatus::Fatal);
         status
     }
+
+    /// Without forces, the engine's own stretch (the JIT's native loop); with forces, scan by
+    /// scan, so that every scan is forced.
+    fn run_scans(&mut self, image: &mut Image, t0: u64, dt: u64, n: u64) -> (u64, ScanStatus) {
+        if self.forces.list.is_empty() {
+            return self.engine.run_scans(image, t0, dt, n);
+        }
+        for i in 0..n {
+            let status = self.scan(image, t0.wrapping_add(i.wrapping_mul(dt)));
+            if status != ScanStatus::Ok {
+                return (i + 1, status);
+            }
+        }
+        (n, ScanStatus::Ok)
+    }
 }

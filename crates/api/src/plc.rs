@@ -149,6 +149,11 @@ impl Observer for Both<'_, '_> {
         }
         Ok(())
     }
+
+    fn needs_every_scan(&self) -> bool {
+        self.hook.as_ref().is_some_and(|h| h.needs_every_scan())
+            || self.run.as_ref().is_some_and(|o| o.needs_every_scan())
+    }
 }
 
 /// A compiled PLC program on an engine, with its image, virtual clock and forces.

@@ -10,7 +10,7 @@ use crate::Error;
 use std::path::Path;
 use stljit_core::ProfileId;
 use stljit_core::ir::{Address, Program};
-use stljit_front::{Compilation, Dialect, SourceFile, Symbols, render_human};
+use stljit_front::{Compilation, Dialect, Options, SourceFile, Symbols, render_human};
 
 /// Reads one file as a [`SourceFile`] named by its path (as diagnostics show it).
 pub fn read_source(path: &Path) -> Result<SourceFile, Error> {
@@ -122,6 +122,7 @@ pub struct Project {
     symbols: Option<SourceFile>,
     dialect: Option<Dialect>,
     cpu: Option<String>,
+    options: Options,
 }
 
 impl Project {
@@ -169,6 +170,13 @@ impl Project {
         self
     }
 
+    /// Sets the front ends' options (Omron: `tc_mode`, backward jumps; the CLI's `--tc-mode`,
+    /// `--allow-backward-jumps`).
+    pub fn options(mut self, options: Options) -> Project {
+        self.options = options;
+        self
+    }
+
     /// The program files.
     pub fn files(&self) -> &[SourceFile] {
         &self.files
@@ -196,7 +204,8 @@ impl Project {
         }
         let dialect = self.resolved_dialect()?;
         let profile = resolve_cpu(dialect, self.cpu.as_deref())?;
-        let compilation = dialect.compile(&self.files, self.symbols.as_ref(), profile);
+        let compilation =
+            dialect.compile_with(&self.files, self.symbols.as_ref(), profile, self.options);
         Ok(Compiled {
             dialect,
             profile,

@@ -11,7 +11,7 @@ use anyhow::Context as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use stljit_api::{Compiled, DetectError, Project};
-use stljit_front::{Compilation, Dialect, SourceFile, render_human, render_json};
+use stljit_front::{Compilation, Dialect, Options, SourceFile, TcMode, render_human, render_json};
 
 /// Output format of the diagnostics.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -40,6 +40,14 @@ pub(crate) struct Input {
     /// (name<TAB>type<TAB>address[<TAB>comment], or CSV).
     #[arg(long)]
     pub(crate) symbols: Option<PathBuf>,
+    /// Omron: how TIM, TIMH, TMHH, TTIM, CNT and CNTR read set values and keep PVs: bcd (the
+    /// default) or binary (CX-Programmer's binary mode: as TIMX, CNTX …).
+    #[arg(long)]
+    pub(crate) tc_mode: Option<String>,
+    /// Omron: accept a JME before its jump (a backward jump; each one taken counts against the
+    /// scan's loop budget).
+    #[arg(long)]
+    pub(crate) allow_backward_jumps: bool,
     /// The dialect once chosen (detection runs and reports once).
     #[arg(skip)]
     pub(crate) chosen: std::cell::OnceCell<Dialect>,
@@ -125,7 +133,7 @@ impl Input {
         if let Some(path) = &self.symbols {
             project = project.symbols(read(path)?);
         }
-        Ok(project)
+        Ok(project.options(self.options(dialect)?))
     }
 
     /// Reads every file and compiles the project; `Err` is a usage error (exit 2).
@@ -136,6 +144,34 @@ impl Input {
     /// As [`Input::compile`], keeping the dialect with the compilation.
     pub(crate) fn compiled(&self) -> anyhow::Result<Compiled> {
         Ok(self.project()?.compile()?)
+    }
+
+    /// The front-end options of the command line; `Err` is a usage error: an unknown
+    /// `--tc-mode`, or an Omron option for another dialect.
+    fn options(&self, dialect: Dialect) -> anyhow::Result<Options> {
+        let omron_only = [
+            ("--tc-mode", self.tc_mode.is_some()),
+            ("--allow-backward-jumps", self.allow_backward_jumps),
+        ];
+        if let Some((flag, _)) = omron_only.iter().find(|(_, set)| *set)
+            && dialect != Dialect::Omron
+        {
+            anyhow::bail!(
+                "{flag} is an option of the omron dialect, not {}",
+                dialect.name()
+            );
+        }
+        let tc_mode = match &self.tc_mode {
+            None => TcMode::default(),
+            Some(name) => TcMode::from_name(name).with_context(|| {
+                let names: Vec<_> = TcMode::ALL.iter().map(|m| m.name()).collect();
+                format!("unknown --tc-mode `{name}` (known: {})", names.join(", "))
+            })?,
+        };
+        let mut options = Options::default();
+        options.omron.tc_mode = tc_mode;
+        options.omron.allow_backward_jumps = self.allow_backward_jumps;
+        Ok(options)
     }
 }
 

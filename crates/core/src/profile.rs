@@ -181,6 +181,12 @@ pub struct OmronAreas {
     pub max_jump: u16,
     /// Whether DM words are bit-addressable (`D10.03`; omron-cp.md §1.1, U9).
     pub dm_bits: bool,
+    /// Cyclic tasks `0` … `cyclic_tasks - 1` (omron-cp.md §2.1).
+    pub cyclic_tasks: u8,
+    /// User-memory capacity in steps, all tasks together (seed §1-1-11, E035).
+    pub program_steps: u32,
+    /// Block programs `0` … `block_programs - 1` (`BPRG(096) N`).
+    pub block_programs: u16,
 }
 
 impl OmronAreas {
@@ -196,6 +202,9 @@ impl OmronAreas {
         dm: 0,
         max_jump: 0,
         dm_bits: false,
+        cyclic_tasks: 0,
+        program_steps: 0,
+        block_programs: 0,
     };
 }
 

@@ -165,6 +165,7 @@ pub fn mnemonic(op: &Op) -> &'static str {
         // The Omron ops by their Omron mnemonic families (their own coverage: issue 12).
         Op::Interlock => "IL",
         Op::InterlockEnd => "ILC",
+        Op::TaskStart => "$TASK",
         Op::OmronTimer { .. } => "TIM",
         Op::OmronCounter { .. } => "CNT",
         Op::Omron(_) => "MOV/CMP/+",

@@ -336,6 +336,7 @@ pub fn print_op(program: &Program, pou: &Pou, op: &Op) -> String {
         // The verifier rejects these on S7 profiles, so no S7 program holds one.
         Op::Interlock
         | Op::InterlockEnd
+        | Op::TaskStart
         | Op::OmronTimer { .. }
         | Op::OmronCounter { .. }
         | Op::Omron(_) => format!("// not S7: {op:?}"),

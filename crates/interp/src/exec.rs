@@ -328,6 +328,7 @@ impl<'a> Machine<'a> {
             Op::ScrCondEnd { .. } => {}
             Op::ScrEnd | Op::InterlockEnd => self.set_gate(true),
             Op::Interlock => self.set_gate(pf),
+            Op::TaskStart => scan::task_start(self.img, self.layout),
             Op::OmronTimer { .. } | Op::OmronCounter { .. } | Op::Omron(_) => {
                 self.omron(op, frame, *st, pf);
             }

@@ -1,6 +1,6 @@
 //! The structural facts of every op, stated once: where control goes next ([`Op::successors`]),
-//! what it does to the logic stack ([`Op::stack_effect`]), and which FOR loop a jump would enter
-//! ([`loop_entered_by`]). The verifier, the JIT's analyses and the front ends' stack checks read
+//! what it does to the logic stack ([`Op::stack_effect`]) and to the gate ([`Op::gate_effect`]),
+//! and which FOR loop a jump would enter ([`loop_entered_by`]). The verifier, the JIT's analyses and the front ends' stack checks read
 //! these instead of matching on ops themselves, so a new op states its facts here and nowhere else.
 
 use super::{CounterKind, Op, Pou};
@@ -102,6 +102,20 @@ impl StackEffect {
     }
 }
 
+/// What an op does to the gate (the SCR enable / Omron interlock byte that power flow is ANDed
+/// with).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GateEffect {
+    /// Leaves it as it is.
+    Keeps,
+    /// Sets it to 1 (`SCRE`, `ILC`, a task start).
+    Opens,
+    /// Sets it to a value known only at run time (`LSCR`, `IL`).
+    Sets,
+    /// Whatever the callee leaves it at (`CALL`; the JIT's analysis follows the callee).
+    Callee,
+}
+
 impl Op {
     /// Where control may go after this op of `pou`. A target outside the POU (only in a program
     /// the verifier rejects) is clamped to its end.
@@ -128,6 +142,16 @@ impl Op {
     /// Whether the op may leave its POU (`RET`, `CRET`, `END`, `MEND`).
     pub fn may_exit(&self) -> bool {
         matches!(self, Op::Return { .. } | Op::End { .. })
+    }
+
+    /// The op's effect on the gate.
+    pub fn gate_effect(&self) -> GateEffect {
+        match self {
+            Op::ScrBegin { .. } | Op::Interlock => GateEffect::Sets,
+            Op::ScrEnd | Op::InterlockEnd | Op::TaskStart => GateEffect::Opens,
+            Op::Call(_) => GateEffect::Callee,
+            _ => GateEffect::Keeps,
+        }
     }
 
     /// The op's effect on the logic stack.
@@ -191,7 +215,9 @@ impl Op {
                     StackEffect::NONE
                 }
             }
-            Op::Label(_) | Op::Nop | Op::ScrEnd | Op::InterlockEnd => StackEffect::NONE,
+            Op::Label(_) | Op::Nop | Op::ScrEnd | Op::InterlockEnd | Op::TaskStart => {
+                StackEffect::NONE
+            }
         }
     }
 }

@@ -164,6 +164,9 @@ pub enum Op {
     Interlock,
     /// `ILC(003)`: gate := 1.
     InterlockEnd,
+    /// The start of an Omron cyclic task after the first of the scan: the condition flags are
+    /// cleared and the gate opens (`runtime::scan::task_start`, omron-cp.md §2.3).
+    TaskStart,
     /// An Omron timer: TIM family `EC = S0`; TTIM timer input `S1`, reset `S0`. The gate's
     /// policy (interlock) is applied by the runtime.
     OmronTimer {

@@ -258,7 +258,8 @@ impl Op {
             | Op::ScrCondEnd { .. }
             | Op::ScrEnd
             | Op::Interlock
-            | Op::InterlockEnd => Uses::of(&[]),
+            | Op::InterlockEnd
+            | Op::TaskStart => Uses::of(&[]),
         }
     }
 

@@ -14,7 +14,7 @@
 
 use super::facts::loop_entered_by;
 use super::uses::Access;
-use super::{IndexOffset, OmronRef, Op, Operand, Pou, Program};
+use super::{BoxOp, IndexOffset, OmronRef, Op, Operand, Pou, Program};
 use crate::area::{Area, Width};
 use crate::layout::Layout;
 use crate::profile::Family;
@@ -337,8 +337,11 @@ fn locations(program: &Program, layout: &Layout, op: &Op) -> Result<(), OpRule> 
     }
     let family = layout.profile.profile().family;
     let op_family = match op {
+        // The immediate I/O copies are the S7 `BIR`/`BIW` and Omron's `!` word refresh.
+        Op::Box(BoxOp::ImmediateRead { .. } | BoxOp::ImmediateWrite { .. }) => None,
         Op::Interlock
         | Op::InterlockEnd
+        | Op::TaskStart
         | Op::OmronTimer { .. }
         | Op::OmronCounter { .. }
         | Op::Omron(_) => Some(Family::Omron),

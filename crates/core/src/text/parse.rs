@@ -354,6 +354,7 @@ fn op(line: &mut Line<'_>) -> Result<Op> {
         "scr_end" => Op::ScrEnd,
         "interlock" => Op::Interlock,
         "interlock_end" => Op::InterlockEnd,
+        "task_start" => Op::TaskStart,
         "omron_timer" => Op::OmronTimer {
             kind: line
                 .field("kind")?

@@ -171,6 +171,7 @@ fn write_op(out: &mut String, op: &Op) -> fmt::Result {
         Op::ScrEnd => out.write_str("scr_end"),
         Op::Interlock => out.write_str("interlock"),
         Op::InterlockEnd => out.write_str("interlock_end"),
+        Op::TaskStart => out.write_str("task_start"),
         Op::OmronTimer {
             kind,
             timer,

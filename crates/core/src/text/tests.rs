@@ -119,6 +119,9 @@ fn every_op() -> Vec<Op> {
         },
         Op::ScrCondEnd { end: OpIdx(12) },
         Op::ScrEnd,
+        Op::Interlock,
+        Op::InterlockEnd,
+        Op::TaskStart,
     ]);
     for &kind in TimerKind::ALL {
         ops.push(Op::Timer {

@@ -7,6 +7,7 @@
 use super::Lower;
 use super::mem::OnFail;
 use super::value::B;
+use crate::helpers::Helper;
 use cranelift_codegen::ir::{
     Block, InstBuilder,
     condcodes::IntCC,
@@ -241,6 +242,13 @@ impl Lower<'_, '_> {
         let v01 = pf.to01(&mut self.b);
         self.set_byte(a, v01);
         self.block.gate = pf;
+    }
+
+    /// The start of an Omron cyclic task: the runtime's `scan::task_start` (flags cleared, gate
+    /// open), once per task and scan, so a call rather than an inlined copy of the rule.
+    pub(crate) fn task_start(&mut self) {
+        self.call_helper(Helper::TaskStart, &[]);
+        self.block.gate = B::K(true);
     }
 
     /// `CALL`: if PF, the callee runs one frame deeper with a fresh stack (its own function);
