@@ -4,12 +4,13 @@
 //! errors (unreadable file, unknown `--dialect` or `--cpu`).
 //!
 //! [`Input`] is the one seam between the command line and the front ends: every command that
-//! reads programs compiles them through [`Input::compile`], which picks the dialect.
+//! reads programs compiles them through [`Input::compile`], which picks the dialect and builds a
+//! `stljit_api::Project` (the rules for dialects and CPUs live there, once).
 
 use anyhow::Context as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use stljit_core::ProfileId;
+use stljit_api::{Compiled, DetectError, Project};
 use stljit_front::{Compilation, Dialect, Options, SourceFile, TcMode, render_human, render_json};
 
 /// Output format of the diagnostics.
@@ -53,11 +54,7 @@ pub(crate) struct Input {
 }
 
 fn read(path: &Path) -> anyhow::Result<SourceFile> {
-    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
-    Ok(SourceFile {
-        name: path.display().to_string(),
-        bytes,
-    })
+    Ok(stljit_api::read_source(path)?)
 }
 
 impl Input {
@@ -78,37 +75,34 @@ impl Input {
         Ok(*self.chosen.get_or_init(|| d))
     }
 
-    /// The dialect of the files by their content: every file must show the same one.
+    /// The dialect of the files by their content (`stljit_api::detect_dialect`): every file must
+    /// show the same one.
     fn detect(&self) -> anyhow::Result<Dialect> {
-        let mut found: Option<Dialect> = None;
-        for path in &self.files {
-            let bytes =
-                std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
-            let text = String::from_utf8_lossy(&bytes);
-            let Some(d) = Dialect::detect(&text) else {
-                anyhow::bail!(
-                    "cannot tell the dialect of {} from its content; pass --dialect {}",
-                    path.display(),
-                    Dialect::ALL
-                        .iter()
-                        .map(|d| d.name())
-                        .collect::<Vec<_>>()
-                        .join(" or --dialect ")
-                );
-            };
-            if let Some(f) = found
-                && f != d
-            {
-                anyhow::bail!(
-                    "{} reads as the {} dialect but an earlier file as {}; pass --dialect",
-                    path.display(),
-                    d.name(),
-                    f.name()
-                );
-            }
-            found = Some(d);
-        }
-        let d = found.context("no program files")?;
+        let files = self
+            .files
+            .iter()
+            .map(|p| read(p))
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        let d = stljit_api::detect_dialect(&files).map_err(|e| match e {
+            DetectError::NoFiles => anyhow::anyhow!("no program files"),
+            DetectError::Unknown { file } => anyhow::anyhow!(
+                "cannot tell the dialect of {file} from its content; pass --dialect {}",
+                Dialect::ALL
+                    .iter()
+                    .map(|d| d.name())
+                    .collect::<Vec<_>>()
+                    .join(" or --dialect ")
+            ),
+            DetectError::Mixed {
+                file,
+                this,
+                earlier,
+            } => anyhow::anyhow!(
+                "{file} reads as the {} dialect but an earlier file as {}; pass --dialect",
+                this.name(),
+                earlier.name()
+            ),
+        })?;
         eprintln!(
             "note: reading the program as the {} dialect (detected from its content; \
              --dialect {} says so explicitly)",
@@ -118,26 +112,38 @@ impl Input {
         Ok(d)
     }
 
+    /// The project the options name: files read, dialect chosen, `--cpu` checked; `Err` is a
+    /// usage error (exit 2).
+    pub(crate) fn project(&self) -> anyhow::Result<Project> {
+        let dialect = self.dialect()?;
+        let cpu = self.cpu.as_deref();
+        stljit_api::resolve_cpu(dialect, cpu).map_err(|e| match e {
+            stljit_api::Error::UnknownCpu { name, known } => {
+                anyhow::anyhow!("unknown --cpu `{name}` (known: {})", known.join(", "))
+            }
+            other => other.into(),
+        })?;
+        let mut project = Project::new().dialect(dialect);
+        if let Some(cpu) = cpu {
+            project = project.cpu(cpu);
+        }
+        for path in &self.files {
+            project = project.source(read(path)?);
+        }
+        if let Some(path) = &self.symbols {
+            project = project.symbols(read(path)?);
+        }
+        Ok(project.options(self.options(dialect)?))
+    }
+
     /// Reads every file and compiles the project; `Err` is a usage error (exit 2).
     pub(crate) fn compile(&self) -> anyhow::Result<Compilation> {
-        let dialect = self.dialect()?;
-        let profile = match &self.cpu {
-            None => dialect.default_profile(),
-            Some(cpu) => ProfileId::from_name(cpu)
-                .filter(|p| dialect.profiles().contains(p))
-                .with_context(|| {
-                    let names: Vec<_> = dialect.profiles().iter().map(|p| p.name()).collect();
-                    format!("unknown --cpu `{cpu}` (known: {})", names.join(", "))
-                })?,
-        };
-        let files = self
-            .files
-            .iter()
-            .map(|p| read(p))
-            .collect::<anyhow::Result<Vec<_>>>()?;
-        let symbols = self.symbols.as_deref().map(read).transpose()?;
-        let options = self.options(dialect)?;
-        Ok(dialect.compile_with(&files, symbols.as_ref(), profile, options))
+        Ok(self.compiled()?.into_compilation())
+    }
+
+    /// As [`Input::compile`], keeping the dialect with the compilation.
+    pub(crate) fn compiled(&self) -> anyhow::Result<Compiled> {
+        Ok(self.project()?.compile()?)
     }
 
     /// The front-end options of the command line; `Err` is a usage error: an unknown

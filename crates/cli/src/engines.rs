@@ -1,9 +1,6 @@
-//! Choosing and building an engine from command-line options.
+//! Choosing an engine from command-line options (`stljit_api` builds it).
 
-use stljit_core::ir::Program;
-use stljit_interp::Interpreter;
-use stljit_jit::{JitOptions, JitProgram, OptLevel};
-use stljit_runtime::Engine;
+use stljit_jit::OptLevel;
 
 /// `--engine`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -41,14 +38,11 @@ impl From<OptArg> for OptLevel {
     }
 }
 
-/// Builds the chosen engine for `program`.
-pub(crate) fn build_engine(
-    kind: EngineKind,
-    opt: OptArg,
-    program: &Program,
-) -> anyhow::Result<Box<dyn Engine>> {
-    Ok(match kind {
-        EngineKind::Interp => Box::new(Interpreter::new(program)?),
-        EngineKind::Jit => Box::new(JitProgram::compile(program, &JitOptions::at(opt.into()))?),
-    })
+impl From<EngineKind> for stljit_api::EngineKind {
+    fn from(k: EngineKind) -> stljit_api::EngineKind {
+        match k {
+            EngineKind::Jit => stljit_api::EngineKind::Jit,
+            EngineKind::Interp => stljit_api::EngineKind::Interp,
+        }
+    }
 }

@@ -8,6 +8,7 @@
 
 use crate::duration::parse_duration;
 use crate::engines::OptArg;
+use crate::shard::parse_shard;
 use anyhow::Context as _;
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -56,18 +57,6 @@ pub(crate) struct Args {
     /// Report the first failure as found, without shrinking it.
     #[arg(long)]
     no_shrink: bool,
-}
-
-fn parse_shard(s: &str) -> Result<(u64, u64), String> {
-    let (k, n) = s
-        .split_once('/')
-        .ok_or_else(|| format!("`{s}`: expected K/N, e.g. 0/4"))?;
-    let k: u64 = k.trim().parse().map_err(|_| format!("`{s}`: bad K"))?;
-    let n: u64 = n.trim().parse().map_err(|_| format!("`{s}`: bad N"))?;
-    if n == 0 || k >= n {
-        return Err(format!("`{s}`: need 0 <= K < N"));
-    }
-    Ok((k, n))
 }
 
 pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {

@@ -5,6 +5,7 @@
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
+mod batch;
 mod bench;
 mod check;
 mod diff;
@@ -12,10 +13,11 @@ mod dump_clif;
 mod dump_ir;
 mod duration;
 mod engines;
+mod fmu;
 mod fuzz;
 mod project;
 mod run;
-mod used;
+mod shard;
 
 /// Compile PLC statement-list programs to native code, run them on virtual time, and prove the
 /// JIT equal to the reference interpreter.
@@ -42,6 +44,8 @@ enum Command {
     Diff(diff::Args),
     /// Differential fuzzing: generated programs on the JIT and the interpreter, compared.
     Fuzz(fuzz::Args),
+    /// Export programs as an FMI 2.0 co-simulation FMU.
+    Fmu(fmu::Args),
 }
 
 fn main() -> ExitCode {
@@ -64,6 +68,7 @@ fn main() -> ExitCode {
         Command::Fuzz(args) => fuzz::main(args),
         Command::DumpClif(args) => dump_clif::main(args),
         Command::Bench(args) => bench::main(args),
+        Command::Fmu(args) => fmu::main(args),
     };
     match result {
         Ok(code) => code,

@@ -1,24 +1,28 @@
 //! `stljit run`: simulate a program on virtual time with either engine.
 //!
-//! Scan k starts at k × scan time. A stimulus file drives inputs and HMI writes, `--watch` prints
+//! The run goes through the embedding API (`stljit_api::Plc`), as every other tool that drives
+//! a PLC does. Scan k starts at k × scan time. Several stimulus files or a parameter sweep make
+//! a batch of runs on every core (`crate::batch`). A stimulus file drives inputs and HMI writes, `--watch` prints
 //! one CSV row per scan, `--trace` writes a CSV or VCD file. Exit codes: 0 ok, 1 program errors,
 //! 2 usage or stimulus errors, 3 the PLC stopped on a fatal runtime error.
 
 use crate::check::Input;
 use crate::duration::parse_duration;
-use crate::engines::{EngineKind, OptArg, build_engine};
+use crate::engines::{EngineKind, OptArg};
 use anyhow::{Context as _, bail};
 use std::io::{IsTerminal as _, Write as _};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
+use stljit_api::used::{self, Names};
+use stljit_api::{Compiled, Options, Plc, Run};
 use stljit_core::ir::{Address, Program};
-use stljit_front::{Compilation, Dialect};
 use stljit_runtime::Image;
 use stljit_sim::{
-    CsvTrace, Observer, Outcome, Progress, RunReport, ScanEvent, Simulation, Stimulus, TimeBase,
-    Until, VcdTrace, WatchSpec,
+    CsvTrace, Observer, Outcome, Progress, RunReport, ScanEvent, Stimulus, TimeBase, Until,
+    VcdTrace, WatchSpec,
 };
 
 /// Arguments of `stljit run`.
@@ -41,50 +45,78 @@ pub(crate) struct Args {
     /// Virtual time per scan.
     #[arg(long, value_name = "DURATION", default_value = "10ms", value_parser = parse_duration)]
     scan_time: u64,
-    /// Stimulus CSV: `scan,ADDR,...` or `t_ms,ADDR,...`.
-    #[arg(long, value_name = "STIMULUS.csv")]
-    inputs: Option<PathBuf>,
+    /// Stimulus CSV: `scan,ADDR,...` or `t_ms,ADDR,...`. Several files make a batch: one run
+    /// per file.
+    #[arg(long, value_name = "STIMULUS.csv", num_args = 1.., action = clap::ArgAction::Append)]
+    inputs: Vec<PathBuf>,
+    /// A parameter sweep, ADDR=V1,V2,...: one run per value, written like an HMI write before
+    /// the first scan (several --sweep: every combination). Makes a batch.
+    #[arg(long, value_name = "ADDR=V1,V2,...")]
+    pub(crate) sweep: Vec<String>,
+    /// Batch: the directory that gets one CSV trace per run (of --watch, or of every I/Q/M bit
+    /// the program uses), named by run.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out_dir: Option<PathBuf>,
+    /// Batch: worker threads (default: every core).
+    #[arg(long)]
+    pub(crate) jobs: Option<usize>,
+    /// Batch: run only shard K of N (run i belongs to shard i mod N), e.g. 0/4.
+    #[arg(long, value_parser = crate::shard::parse_shard)]
+    pub(crate) shard: Option<(u64, u64)>,
     /// Addresses to print after each scan, e.g. `Q0.0,VW10,VD50:real,T37`.
     #[arg(long, value_delimiter = ',', value_name = "ADDR,...")]
     watch: Vec<String>,
     /// Write the watched addresses (all I/Q/M bits the program uses when no --watch) to a
     /// `.vcd` or `.csv` file.
     #[arg(long, value_name = "OUT.vcd|OUT.csv")]
-    trace: Option<PathBuf>,
+    pub(crate) trace: Option<PathBuf>,
     /// Add scan-time figures (wall clock per scan) to the summary.
     #[arg(long)]
     stats: bool,
 }
 
 pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
-    let compilation = args.input.compile()?;
-    let Some(program) = crate::project::checked_program(&compilation) else {
+    let compiled = Arc::new(args.input.compiled()?);
+    let Some(program) = crate::project::checked_program(compiled.compilation()) else {
         return Ok(ExitCode::from(1));
     };
-    let dialect = args.input.dialect()?;
     let profile = program.profile.profile();
-    let resolve = |name: &str| -> Result<Address, String> {
-        dialect
-            .parse_address(name, program.profile, compilation.symbols.as_ref())
-            .map_err(|e| e.to_string())
-    };
-    let stimulus = match &args.inputs {
-        Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .with_context(|| format!("cannot read {}", path.display()))?;
-            Stimulus::parse(&text, profile, &resolve)
-                .map_err(|e| anyhow::anyhow!("{}:{e}", path.display()))?
-        }
-        None => Stimulus::empty(TimeBase::Scan, profile),
-    };
+    let resolve = |name: &str| compiled.resolve(name);
+    let mut stimuli = Vec::new();
+    for path in &args.inputs {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("cannot read {}", path.display()))?;
+        let stimulus = Stimulus::parse(&text, profile, &resolve)
+            .map_err(|e| anyhow::anyhow!("{}:{e}", path.display()))?;
+        let stem = path
+            .file_stem()
+            .map_or_else(|| "run".into(), |s| s.to_string_lossy().into_owned());
+        stimuli.push((stem, stimulus));
+    }
+    if stimuli.is_empty() {
+        stimuli.push(("run".to_string(), Stimulus::empty(TimeBase::Scan, profile)));
+    }
     let layout = stljit_core::Layout::new(profile);
-    let watch = watch_list(&args, program, (dialect, &compilation), &resolve, &layout)?;
-    let mut engine = build_engine(args.engine, args.opt, program)?;
+    let batch = args.is_batch();
+    let watch = watch_list(&args, program, &compiled, &resolve, &layout, batch)?;
+    let options = Options {
+        engine: args.engine.into(),
+        opt: args.opt.into(),
+        scan_ms: args.scan_time,
+    };
     let until = match (args.scans, args.duration) {
         (Some(n), _) => Until::Scans(n),
         (None, Some(ms)) => Until::Duration(ms),
         (None, None) => Until::Scans(100),
     };
+    if options.scan_ms == 0 {
+        anyhow::bail!("scan time must be at least 1 ms");
+    }
+    if batch {
+        return crate::batch::main(&args, compiled.clone(), stimuli, watch, options, until);
+    }
+    let stimulus = &stimuli[0].1;
+    let mut plc = Plc::new(compiled.clone(), &options)?;
 
     // Ctrl-C stops the run between two scans; the trace collected so far is still written.
     static CANCEL: AtomicBool = AtomicBool::new(false);
@@ -94,9 +126,6 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     let mut stats = ScanStats::default();
     let mut stdout = std::io::stdout().lock();
     let report = {
-        let mut sim = Simulation::new(engine.as_mut(), Image::cold_start(program), args.scan_time)?
-            .with_cancel(&CANCEL)
-            .with_progress(&mut progress);
         let mut observers: Vec<Box<dyn Observer + '_>> = Vec::new();
         if args.stats {
             observers.push(Box::new(&mut stats));
@@ -107,18 +136,16 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
             (None, true) => {}
         }
         let mut all = Fanout(observers);
-        let report = sim.run(until, &stimulus, &mut all)?;
+        let run = Run::new(until)
+            .stimulus(stimulus)
+            .observer(&mut all)
+            .cancel(&CANCEL)
+            .progress(&mut progress);
+        let report = plc.simulate(run).map_err(sim_error)?;
         all.finish()?;
-        summarise(
-            &args,
-            program,
-            (dialect, &compilation),
-            &report,
-            sim.image(),
-            &stats,
-        );
         report
     };
+    summarise(&args, program, &compiled, &report, plc.image(), &stats);
     bar.clear();
     Ok(match report.outcome {
         Outcome::Fatal { .. } => ExitCode::from(3),
@@ -126,18 +153,39 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     })
 }
 
-/// The watch list: `--watch` as given, or for a trace without one, every I/Q/M bit the program
-/// reads or writes.
+/// A simulation error as the CLI reported it before the API existed (the `SimError` itself, so
+/// its cause is printed once).
+fn sim_error(e: stljit_api::Error) -> anyhow::Error {
+    match e {
+        stljit_api::Error::Sim(e) => e.into(),
+        other => other.into(),
+    }
+}
+
+impl Args {
+    /// Whether the arguments ask for a batch (several stimulus files, a sweep, or a batch option).
+    fn is_batch(&self) -> bool {
+        self.inputs.len() > 1
+            || !self.sweep.is_empty()
+            || self.out_dir.is_some()
+            || self.jobs.is_some()
+            || self.shard.is_some()
+    }
+}
+
+/// The watch list: `--watch` as given, or for a trace (or a batch's traces) without one, every
+/// I/Q/M bit the program reads or writes.
 fn watch_list(
     args: &Args,
     program: &Program,
-    (dialect, compilation): (Dialect, &Compilation),
+    compiled: &Compiled,
     resolve: &dyn Fn(&str) -> Result<Address, String>,
     layout: &stljit_core::Layout,
+    batch: bool,
 ) -> anyhow::Result<Vec<WatchSpec>> {
-    let names: Vec<String> = if args.watch.is_empty() && args.trace.is_some() {
-        let names = crate::used::Names::new(program, dialect, compilation.symbols.as_ref());
-        crate::used::io_bits(program)
+    let names: Vec<String> = if args.watch.is_empty() && (args.trace.is_some() || batch) {
+        let names: Names = compiled.names();
+        used::io_bits(program)
             .into_iter()
             .map(|b| names.watch_name(&Address::Bit(b)))
             .collect()
@@ -243,7 +291,7 @@ impl ScanStats {
 fn summarise(
     args: &Args,
     program: &Program,
-    (dialect, compilation): (Dialect, &Compilation),
+    compiled: &Compiled,
     report: &RunReport,
     image: &Image,
     stats: &ScanStats,
@@ -281,11 +329,11 @@ fn summarise(
         );
     }
     if args.watch.is_empty() {
-        let outputs = crate::used::outputs(program);
+        let outputs = used::outputs(program);
         if !outputs.is_empty() {
             let _ = writeln!(err, "outputs after the last scan:");
-            let names = crate::used::Names::new(program, dialect, compilation.symbols.as_ref());
-            for (name, value) in crate::used::describe(&outputs, image, &names) {
+            let names = compiled.names();
+            for (name, value) in used::describe(&outputs, image, &names) {
                 let _ = writeln!(err, "  {name:<24} {value}");
             }
         }

@@ -8,6 +8,7 @@
 
 use crate::stimulus::Stimulus;
 use crate::value::write_address;
+use std::borrow::BorrowMut;
 use std::fmt;
 use std::io;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -204,27 +205,30 @@ impl std::error::Error for SimError {
 }
 
 /// A PLC under simulation: an engine, its image and the virtual clock.
-pub struct Simulation<'a> {
+///
+/// The image is owned (`Simulation<'a>`, the default) or borrowed (`Simulation<'a, &mut Image>`,
+/// for a caller such as `stljit-api`'s `Plc` that keeps the image between runs).
+pub struct Simulation<'a, I: BorrowMut<Image> = Image> {
     engine: &'a mut dyn Engine,
-    image: Image,
+    image: I,
     scan_ms: u64,
     next_scan: u64,
     cancel: Option<&'a AtomicBool>,
     progress: Option<&'a mut dyn FnMut(Progress)>,
 }
 
-impl<'a> Simulation<'a> {
-    /// A simulation continuing from `image` (normally `Image::cold_start`): the next scan is the
-    /// image's scan number.
+impl<'a, I: BorrowMut<Image>> Simulation<'a, I> {
+    /// A simulation continuing from `image` (normally `Image::cold_start`, or `&mut` an image the
+    /// caller keeps): the next scan is the image's scan number.
     pub fn new(
         engine: &'a mut dyn Engine,
-        image: Image,
+        image: I,
         scan_ms: u64,
-    ) -> Result<Simulation<'a>, SimError> {
+    ) -> Result<Simulation<'a, I>, SimError> {
         if scan_ms == 0 {
             return Err(SimError::ZeroScanTime);
         }
-        let next_scan = image.scan_no();
+        let next_scan = image.borrow().scan_no();
         Ok(Simulation {
             engine,
             image,
@@ -249,11 +253,11 @@ impl<'a> Simulation<'a> {
 
     /// The image as it stands.
     pub fn image(&self) -> &Image {
-        &self.image
+        self.image.borrow()
     }
 
-    /// Gives the image back.
-    pub fn into_image(self) -> Image {
+    /// Gives the image back (the borrow, for a borrowed one).
+    pub fn into_image(self) -> I {
         self.image
     }
 
@@ -287,7 +291,7 @@ impl<'a> Simulation<'a> {
             t_ms: self.time_of(first),
             outcome: Outcome::Completed,
         };
-        if self.image.is_stopped() {
+        if self.image.borrow().is_stopped() {
             report.outcome = Outcome::Stopped;
             return Ok(report);
         }
@@ -306,7 +310,7 @@ impl<'a> Simulation<'a> {
             {
                 for (cell, column) in row.cells.iter().zip(stimulus.columns()) {
                     if let Some(v) = *cell
-                        && !write_address(&mut self.image, &column.address, v)
+                        && !write_address(self.image.borrow_mut(), &column.address, v)
                     {
                         return Err(SimError::StimulusAddress {
                             column: column.name.clone(),
@@ -330,14 +334,14 @@ impl<'a> Simulation<'a> {
             };
             let t0 = self.time_of(k);
             let (ran, status) = if stretch == 1 {
-                (1, self.engine.scan(&mut self.image, t0))
+                (1, self.engine.scan(self.image.borrow_mut(), t0))
             } else {
                 self.engine
-                    .run_scans(&mut self.image, t0, self.scan_ms, stretch)
+                    .run_scans(self.image.borrow_mut(), t0, self.scan_ms, stretch)
             };
             if ran == 0 {
                 report.outcome = Outcome::Fatal {
-                    code: self.image.fatal(),
+                    code: self.image.borrow().fatal(),
                 };
                 break;
             }
@@ -351,7 +355,7 @@ impl<'a> Simulation<'a> {
             let event = ScanEvent {
                 scan: last,
                 t_ms,
-                image: &self.image,
+                image: self.image.borrow(),
                 status,
             };
             observer.observe(&event).map_err(SimError::Observer)?;
@@ -366,7 +370,7 @@ impl<'a> Simulation<'a> {
                 }
                 ScanStatus::Fatal => {
                     report.outcome = Outcome::Fatal {
-                        code: self.image.fatal(),
+                        code: self.image.borrow().fatal(),
                     };
                     break;
                 }

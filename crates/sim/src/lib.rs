@@ -32,7 +32,9 @@ pub use driver::{
 pub use stimulus::{Stimulus, StimulusError, StimulusErrorKind, TimeBase};
 pub use trace_csv::CsvTrace;
 pub use trace_vcd::VcdTrace;
-pub use value::{ValueError, ValueKind, parse_value, read_address, write_address};
+pub use value::{
+    ValueError, ValueKind, parse_value, read_address, writable, write_address, write_offset,
+};
 pub use watch::{Format, WatchError, WatchSpec};
 
 use stljit_core::ir::Address;

@@ -187,6 +187,15 @@ pub fn write_address(image: &mut Image, address: &Address, raw: u32) -> bool {
     true
 }
 
+/// The image offset [`write_address`] writes `address` at (the byte holding a bit; an input's
+/// byte in the physical input copy), or `None` when the address does not fit its area.
+pub fn write_offset(layout: &Layout, address: &Address) -> Option<u32> {
+    match *address {
+        Address::Bit(bit) => target_bit(layout, bit),
+        Address::Value { loc, width } => target_value(layout, loc, width),
+    }
+}
+
 fn target_bit(layout: &Layout, bit: BitLoc) -> Option<u32> {
     let at = bit_addr(layout, bit, 0)?;
     Some(rebase_input(layout, bit.area, at))
