@@ -53,6 +53,8 @@ code_enum! {
     /// Non-fatal run-time errors (spec §2.5): the instruction is skipped, ENO = 0, and the code
     /// is stored in `Sched::LAST_ERR`. The values are the S7-200's.
     ErrorCode: u16 {
+        /// ENI or DISI executed in an interrupt routine (s7-200-more §0.4, §3.4).
+        InInterrupt = 0x0004,
         /// Illegal indirect address (bad pointer, out of range, or a read-only target).
         IndirectAddress = 0x0006,
         /// Subroutine nesting exceeded.
@@ -68,6 +70,7 @@ code_enum! {
 impl fmt::Display for ErrorCode {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let what = match self {
+            ErrorCode::InInterrupt => "ENI or DISI in an interrupt routine",
             ErrorCode::IndirectAddress => "illegal indirect address",
             ErrorCode::CallNesting => "subroutine nesting exceeded",
             ErrorCode::OperandRange => "operand out of range",

@@ -3,8 +3,8 @@
 //!
 //! Offsets are computed from a [`CpuProfile`] in a fixed order, each block aligned to 16 bytes.
 //! Multi-byte values in PLC areas (I, Q, M, S, SM, V, L, AI, AQ, T/C values, HC, AC) are big-endian;
-//! the private blocks below ([`TimerState`], [`CounterState`], [`Sched`]) use native-endian fields
-//! because only the engines and the runtime read them. Both engines must leave identical bytes in
+//! the private blocks below ([`TimerState`], [`CounterState`], [`Sched`], [`IntState`],
+//! [`QueueEntry`]) use native-endian fields because only the engines and the runtime read them. Both engines must leave identical bytes in
 //! every block after every scan; the differential oracle compares the whole image.
 //!
 //! Each private record's field offsets, types and names are declared once (`record_fields!`), so
@@ -20,8 +20,18 @@ pub const TIMER_STATE_SIZE: u32 = 16;
 pub const COUNTER_STATE_SIZE: u32 = 4;
 /// Bytes of the scan bookkeeping block (see [`Sched`]).
 pub const SCHED_SIZE: u32 = 64;
-/// Number of `L` frames: the main program plus eight subroutine levels.
-pub const L_FRAMES: u32 = 9;
+/// Bytes of the interrupt machinery's state (see [`IntState`]; 0 on profiles without
+/// interrupts).
+pub const INT_STATE_SIZE: u32 = 144;
+/// Bytes of one interrupt queue entry (see [`QueueEntry`]).
+pub const QUEUE_ENTRY_SIZE: u32 = 16;
+/// Number of `L` frames: the main program and eight subroutine levels (frames 0–8), the
+/// running interrupt routine ([`ISR_FRAME`]) and four levels of its calls (frames 10–13),
+/// s7-200-more §1.6.
+pub const L_FRAMES: u32 = 14;
+/// The L frame of the running interrupt routine; frames below it are the main program's call
+/// chain, frames above it the routine's (only one routine runs at a time).
+pub const ISR_FRAME: u32 = 9;
 
 /// One named field of a private record ([`TimerState`], [`CounterState`], [`Sched`]): its name,
 /// its offset in the record and its size in bytes.
@@ -136,6 +146,50 @@ record_fields! {
     }
 }
 
+record_fields! {
+    /// Field offsets inside the interrupt machinery's state (s7-200-more §3, §11.1): one record
+    /// per image, read and written only by `stljit_runtime::interrupt`.
+    IntState {
+        /// Interrupts globally enabled (ENI); mirrored in SM4.4.
+        ENABLED: u8 = 0;
+        /// 1 while an interrupt routine runs.
+        IN_ISR: u8 = 1;
+        /// Bit `i`: the `CT = PT` condition of the `i`-th timer event source of the profile at
+        /// the last poll (T32, T96).
+        TIMER_PREV: u8 = 2;
+        /// Sequence number of the next queued entry (counts every entry ever queued).
+        SEQ: u32 = 4;
+        /// Virtual time in µs of the code running: the event time in a routine, `T_k` in the
+        /// main program (what ATCH of a timed interrupt starts its schedule from).
+        NOW: u64 = 8;
+        /// Entries queued, per group (communication, discrete, timed).
+        QUEUE_LEN: [u8; 3] = 16;
+        /// Timed interrupts 0 and 1: the interval in ms captured from SMB34/SMB35 at ATCH.
+        TIMED_INTERVAL: [u8; 2] = 20;
+        /// Timed interrupts 0 and 1: the time in µs of the next due event.
+        TIMED_NEXT: [u64; 2] = 24;
+        /// Per event number: 0 when detached, else the interrupt routine's number + 1.
+        ATTACH: [u8; 64] = 40;
+        /// The physical inputs at the last scan instant (input edges are found against them;
+        /// the interval phase runs with them in place of the new ones).
+        PREV_IN: [u8; 32] = 104;
+    }
+}
+
+record_fields! {
+    /// Field offsets inside one interrupt queue entry (s7-200-more §3.3). The entries of the
+    /// three queues follow each other (communication, discrete, timed, each its profile's
+    /// depth); a queue's entries are kept in the order they were queued.
+    QueueEntry {
+        /// Time in µs the event occurred.
+        TAU: u64 = 0;
+        /// Its sequence number ([`IntState::SEQ`] when it was queued).
+        SEQ: u32 = 8;
+        /// The event number.
+        EVENT: u8 = 12;
+    }
+}
+
 /// Default loop budget per scan (spec §2.5).
 pub const DEFAULT_LOOP_LIMIT: u32 = 65_536;
 
@@ -158,6 +212,10 @@ pub struct Layout {
     pub phys_in: u32,
     /// Physical output copy (written at scan end and by `=I`, `SI`, `RI`, `BIW`).
     pub phys_out: u32,
+    /// The interrupt machinery's state, see [`IntState`].
+    pub interrupts: u32,
+    /// The interrupt queues' entries, see [`QueueEntry`].
+    pub queue: u32,
     /// Total image size in bytes.
     pub size: u32,
     block_size: [u32; Block::ALL.len()],
@@ -201,6 +259,12 @@ impl Layout {
         let sched = take(Block::Sched, SCHED_SIZE);
         let phys_in = take(Block::PhysIn, profile.inputs);
         let phys_out = take(Block::PhysOut, profile.outputs);
+        let ints = profile.interrupts;
+        let interrupts = take(
+            Block::Interrupts,
+            if ints.any() { INT_STATE_SIZE } else { 0 },
+        );
+        let queue = take(Block::Queue, QUEUE_ENTRY_SIZE * ints.slots());
         Layout {
             profile: profile.id,
             area_base,
@@ -211,6 +275,8 @@ impl Layout {
             sched,
             phys_in,
             phys_out,
+            interrupts,
+            queue,
             size: next,
             block_size,
         }
@@ -262,6 +328,18 @@ impl Layout {
         self.sched + field
     }
 
+    /// Image offset of an interrupt-state field (an [`IntState`] constant).
+    #[inline]
+    pub fn int_state(&self, field: u32) -> u32 {
+        self.interrupts + field
+    }
+
+    /// Image offset of queue entry `slot` (see [`crate::interrupt::InterruptProfile::queue`]).
+    #[inline]
+    pub fn queue_entry(&self, slot: u32) -> u32 {
+        self.queue + QUEUE_ENTRY_SIZE * slot
+    }
+
     /// The area and in-area offset an image offset belongs to, for naming differing bytes.
     pub fn locate(&self, image_offset: u32) -> Option<(Area, u32)> {
         Area::ALL.into_iter().find_map(|area| {
@@ -285,6 +363,8 @@ impl Layout {
             Block::Sched => self.sched,
             Block::PhysIn => self.phys_in,
             Block::PhysOut => self.phys_out,
+            Block::Interrupts => self.interrupts,
+            Block::Queue => self.queue,
         }
     }
 
@@ -352,17 +432,24 @@ pub enum Block {
     PhysIn,
     /// The physical output copy.
     PhysOut,
+    /// The interrupt machinery's state, one [`IntState`] record (none on profiles without
+    /// interrupts).
+    Interrupts,
+    /// The interrupt queues, one [`QueueEntry`] record per slot.
+    Queue,
 }
 
 impl Block {
     /// Every block, in layout order.
-    pub const ALL: [Block; 6] = [
+    pub const ALL: [Block; 8] = [
         Block::Edges,
         Block::TimerState,
         Block::CounterState,
         Block::Sched,
         Block::PhysIn,
         Block::PhysOut,
+        Block::Interrupts,
+        Block::Queue,
     ];
 
     /// A short name for reports (`timer state`).
@@ -374,6 +461,8 @@ impl Block {
             Block::Sched => "scheduler",
             Block::PhysIn => "physical inputs",
             Block::PhysOut => "physical outputs",
+            Block::Interrupts => "interrupt state",
+            Block::Queue => "interrupt queue",
         }
     }
 
@@ -383,6 +472,8 @@ impl Block {
             Block::TimerState => Some((TIMER_STATE_SIZE, TimerState::FIELDS)),
             Block::CounterState => Some((COUNTER_STATE_SIZE, CounterState::FIELDS)),
             Block::Sched => Some((SCHED_SIZE, Sched::FIELDS)),
+            Block::Interrupts => Some((INT_STATE_SIZE, IntState::FIELDS)),
+            Block::Queue => Some((QUEUE_ENTRY_SIZE, QueueEntry::FIELDS)),
             Block::Edges | Block::PhysIn | Block::PhysOut => None,
         }
     }
@@ -416,7 +507,8 @@ impl Block {
 /// Where a byte of a record block falls (see [`Block::field_at`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FieldAt {
-    /// Record number: the timer or counter number (0 for [`Sched`]).
+    /// Record number: the timer or counter number, the queue slot (0 for [`Sched`] and
+    /// [`IntState`]).
     pub record: u32,
     /// The field's name, or `None` for spare bytes.
     pub name: Option<&'static str>,
@@ -471,6 +563,8 @@ mod tests {
             blocks.push((l.sched, SCHED_SIZE));
             blocks.push((l.phys_in, p.inputs));
             blocks.push((l.phys_out, p.outputs));
+            blocks.push((l.interrupts, l.block_size(Block::Interrupts)));
+            blocks.push((l.queue, l.block_size(Block::Queue)));
             blocks.sort();
             for w in blocks.windows(2) {
                 assert!(
@@ -506,6 +600,14 @@ mod tests {
             }
             assert!(end <= size, "{block:?} fields exceed {size} bytes");
         }
+        // The saved physical inputs hold every profile's input image.
+        let prev_in = IntState::FIELDS
+            .iter()
+            .find(|f| f.name == "PREV_IN")
+            .unwrap();
+        for id in ProfileId::ALL {
+            assert!(id.profile().inputs <= prev_in.size, "{id}");
+        }
         assert_eq!(Sched::FIELDS[6].name, "LOOP_COUNT");
         assert_eq!(Sched::FIELDS[6].offset, Sched::LOOP_COUNT);
         assert_eq!(TimerState::FIELDS[4].size, 2);
@@ -535,9 +637,24 @@ mod tests {
             (None, 60, 4, 1)
         );
         assert_eq!(Block::Edges.field_at(0), None);
+        // The A5's SM area (180 bytes) is padded to 192.
         assert_eq!(
-            l.region(l.phys_out + l.block_size(Block::PhysOut)),
+            l.region(l.base(Area::SM) + l.area_size(Area::SM)),
             Region::Padding
         );
+        assert_eq!(l.region(l.size), Region::Padding);
+        let Region::Block { block, offset } = l.region(l.queue_entry(9) + QueueEntry::EVENT) else {
+            panic!("not a block")
+        };
+        let at = block.field_at(offset).unwrap();
+        assert_eq!(
+            (block, at.record, at.name),
+            (Block::Queue, 9, Some("EVENT"))
+        );
+        let Region::Block { block, offset } = l.region(l.int_state(IntState::ATTACH) + 10) else {
+            panic!("not a block")
+        };
+        let at = block.field_at(offset).unwrap();
+        assert_eq!((at.name, at.byte), (Some("ATTACH"), 10));
     }
 }

@@ -1,6 +1,7 @@
 //! The hub of stljit: the dialect-neutral IR ([`ir::Program`]), the CPU profiles that fix area
-//! ranges and timer resolutions ([`profile::CpuProfile`]), the flat memory-image layout every engine
-//! addresses ([`layout::Layout`]) and the status and error codes engines report ([`codes`]).
+//! ranges, timer resolutions and interrupt events ([`profile::CpuProfile`], [`interrupt`]), the
+//! flat memory-image layout every engine addresses ([`layout::Layout`]) and the status and
+//! error codes engines report ([`codes`]).
 //!
 //! This crate has no dependencies and no behaviour beyond arithmetic on offsets, the structural
 //! rules of the IR ([`ir::verify`], [`ir::Op::successors`], [`ir::Op::stack_effect`]) and the IR's
@@ -11,6 +12,7 @@ pub mod area;
 pub mod codes;
 pub mod index;
 pub mod instr_set;
+pub mod interrupt;
 pub mod ir;
 pub mod layout;
 pub mod omron;

@@ -12,6 +12,7 @@
 
 use crate::area::Area;
 use crate::instr_set::InstrSet;
+use crate::interrupt::InterruptProfile;
 use crate::ir::{BitLoc, Loc};
 use crate::profile::{CpuProfile, Family, OmronAreas, ProfileId, TimerRange};
 
@@ -372,12 +373,13 @@ const CP1H_DATA: CpuProfile = CpuProfile {
     max_edges: 8192,
     max_label: 1023,
     max_subroutine: 255,
-    // SBS nesting: the image has `L_FRAMES - 1` call frames (CS/CJ allow 16 levels; the
-    // deeper ones are not modelled, a call beyond is skipped as on S7).
+    // SBS nesting: the image has `ISR_FRAME - 1` call frames below the main program (CS/CJ
+    // allow 16 levels; the deeper ones are not modelled, a call beyond is skipped as on S7).
     max_call_depth: 8,
     max_for_depth: 15,
     timer_table: OMRON_TIMERS,
     lacks: InstrSet::ALL,
+    interrupts: &InterruptProfile::NONE,
 };
 
 /// The CP1E (E type), with the smaller ranges of spec §1.1 (U9: the per-model table is

@@ -6,7 +6,9 @@
 
 use crate::area::Area;
 use crate::instr_set::InstrSet;
+use crate::interrupt::{self, InterruptProfile};
 use crate::ir::TimerKind;
+use crate::layout::ISR_FRAME;
 use std::fmt;
 
 /// Which built-in profile a program was compiled for.
@@ -268,6 +270,9 @@ pub struct CpuProfile {
     /// The optional instruction families the CPU does not have (s7-200-more Appendix A, its
     /// "rejected" entries; every family on Omron profiles, whose front end has its own table).
     pub lacks: &'static [InstrSet],
+    /// Interrupt events, queues and the CALL depth of interrupt routines
+    /// ([`InterruptProfile::NONE`] on Omron profiles).
+    pub interrupts: &'static InterruptProfile,
 }
 
 const ALL_TIMER_KINDS: &[TimerKind] = &[TimerKind::On, TimerKind::Retentive, TimerKind::Off];
@@ -325,6 +330,7 @@ pub static A5: CpuProfile = CpuProfile {
         InstrSet::GetPut,
         InstrSet::IpAddress,
     ],
+    interrupts: &interrupt::A5_INTERRUPTS,
 };
 
 /// The Siemens timer table (s7-200-more §3.5.3): the number fixes both the kind family and the
@@ -431,6 +437,7 @@ pub static S7_200: CpuProfile = CpuProfile {
     max_for_depth: 8,
     timer_table: SIEMENS_TIMERS,
     lacks: &[InstrSet::GetPut, InstrSet::IpAddress],
+    interrupts: &interrupt::S7_200_INTERRUPTS,
 };
 
 /// A Siemens S7-200 SMART, sized as its largest standard CPU, the ST60 (s7-200-more §0.2; the
@@ -464,6 +471,7 @@ pub static SMART: CpuProfile = CpuProfile {
     timer_table: SIEMENS_TIMERS,
     // Micro/WIN SMART rejects NETR/NETW (the corpus's instruction probe confirms it).
     lacks: &[InstrSet::NetReadWrite],
+    interrupts: &interrupt::SMART_INTERRUPTS,
 };
 
 impl CpuProfile {
@@ -522,6 +530,18 @@ impl CpuProfile {
     /// Whether the CPU has the instruction family `set`.
     pub fn has(&self, set: InstrSet) -> bool {
         !self.lacks.contains(&set)
+    }
+
+    /// The deepest L frame a CALL made from frame `depth` may enter (the callee runs in frame
+    /// `depth + 1`, allowed iff that is at most this): the main program's chain (frames 0 to
+    /// [`ISR_FRAME`] − 1) nests `max_call_depth` levels, an interrupt routine runs in
+    /// [`ISR_FRAME`] and its chain nests `interrupts.isr_call_depth` levels (s7-200-more §1.6).
+    pub fn deepest_frame(&self, depth: u32) -> u32 {
+        if depth >= ISR_FRAME {
+            ISR_FRAME + u32::from(self.interrupts.isr_call_depth)
+        } else {
+            u32::from(self.max_call_depth)
+        }
     }
 
     /// Timer kinds allowed on number `n` (empty when the number does not exist).

@@ -2,7 +2,7 @@
 //! campaign shows what it exercised (and what it never reached).
 
 use std::collections::BTreeMap;
-use stljit_core::ir::{BoxOp, CmpType, Contact, Conversion, Op, Operand, Program};
+use stljit_core::ir::{BoxOp, CmpType, Contact, Conversion, IntOp, Op, Operand, Program};
 use stljit_core::{Area, Width};
 use stljit_front_s7::spelling::{area_prefix, counter_mnemonic, timer_mnemonic};
 
@@ -61,7 +61,7 @@ pub const ALL_MNEMONICS: &[&str] = &[
     "SLB", "SLW", "SLD", "SRB", "SRW", "SRD", "RLB", "RLW", "RLD", "RRB", "RRW", "RRD", "SHRB",
     "BTI", "ITB", "ITD", "DTI", "DTR", "ROUND", "TRUNC", "BCDI", "IBCD", "DECO", "ENCO", "SEG",
     "BIR", "BIW", "JMP", "LBL", "CALL", "CRET", "RET", "END", "MEND", "STOP", "WDR", "NOP", "FOR",
-    "NEXT", "LSCR", "SCRT", "CSCRE", "SCRE",
+    "NEXT", "LSCR", "SCRT", "CSCRE", "SCRE", "ATCH", "DTCH", "ENI", "DISI", "CEVNT",
 ];
 
 fn contact_mnemonic(prefix: usize, c: &Contact) -> &'static str {
@@ -156,6 +156,13 @@ pub fn mnemonic(op: &Op) -> &'static str {
         }
         Op::Stop => "STOP",
         Op::Wdr => "WDR",
+        Op::Interrupt(i) => match i {
+            IntOp::Attach { .. } => "ATCH",
+            IntOp::Detach { .. } => "DTCH",
+            IntOp::Enable => "ENI",
+            IntOp::Disable => "DISI",
+            IntOp::ClearEvent { .. } => "CEVNT",
+        },
         Op::Nop => "NOP",
         Op::For { .. } => "FOR",
         Op::Next { .. } => "NEXT",

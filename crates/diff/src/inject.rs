@@ -107,13 +107,20 @@ mod tests {
         fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
             let plan = scan::ScanPlan::every_timer(image.layout());
             let (b, l) = image.split_mut();
-            scan::run(b, l, &plan, t_ms, |b, l| {
-                let i = mem::get_u8(b, l.base(Area::I));
-                mem::set_u8(b, l.base(Area::Q), i);
-                let v = mem::get_u8(b, l.base(Area::V));
-                mem::set_u8(b, l.base(Area::V), v.wrapping_add(1));
-                ScanStatus::Ok
-            })
+            scan::run(
+                b,
+                l,
+                &plan,
+                t_ms,
+                &mut stljit_runtime::interrupt::NoIsr,
+                |b, l| {
+                    let i = mem::get_u8(b, l.base(Area::I));
+                    mem::set_u8(b, l.base(Area::Q), i);
+                    let v = mem::get_u8(b, l.base(Area::V));
+                    mem::set_u8(b, l.base(Area::V), v.wrapping_add(1));
+                    ScanStatus::Ok
+                },
+            )
         }
     }
 

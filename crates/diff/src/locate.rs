@@ -1,5 +1,6 @@
 //! Names for image offsets: the PLC areas, and the private blocks (edge memories, timer and
-//! counter state, the scan bookkeeping, the physical I/O copies) by field, so that a divergence
+//! counter state, the scan bookkeeping, the physical I/O copies, the interrupt state and
+//! queues) by field, so that a divergence
 //! report says `Sched.LOOP_COUNT` or `T37.RUN` instead of a bare number. Which block and field a
 //! byte belongs to comes from core's layout ([`Layout::region`]); this module only spells it.
 
@@ -45,6 +46,22 @@ pub enum Place {
         /// Byte inside the field.
         byte: u32,
     },
+    /// A field of the interrupt machinery's state, and the byte inside it.
+    Interrupts {
+        /// Field name.
+        field: &'static str,
+        /// Byte inside the field.
+        byte: u32,
+    },
+    /// A field of an interrupt queue entry.
+    Queue {
+        /// The queue slot.
+        slot: u32,
+        /// Field name.
+        field: &'static str,
+        /// Byte inside the field.
+        byte: u32,
+    },
     /// The physical input copy.
     PhysIn(u32),
     /// The physical output copy.
@@ -83,10 +100,26 @@ impl Place {
                 at: at.start,
                 byte: at.byte,
             },
+            (Block::Interrupts, Some(at)) => Place::Interrupts {
+                field: at.name.unwrap_or("(unused)"),
+                byte: at.byte,
+            },
+            (Block::Queue, Some(at)) => Place::Queue {
+                slot: at.record,
+                field: at.name.unwrap_or("(pad)"),
+                byte: at.byte,
+            },
             (Block::PhysIn, _) => Place::PhysIn(offset),
             (Block::PhysOut, _) => Place::PhysOut(offset),
             // Record blocks always name their bytes; a block without fields is matched above.
-            (Block::TimerState | Block::CounterState | Block::Sched, None) => Place::Padding(off),
+            (
+                Block::TimerState
+                | Block::CounterState
+                | Block::Sched
+                | Block::Interrupts
+                | Block::Queue,
+                None,
+            ) => Place::Padding(off),
         }
     }
 
@@ -134,6 +167,10 @@ impl fmt::Display for Place {
             Place::Timer { n, field } => write!(f, "T{n}.{field} (private)"),
             Place::Counter { n, field } => write!(f, "C{n}.{field} (private)"),
             Place::Sched { field, byte, .. } => write!(f, "Sched.{field} byte {byte}"),
+            Place::Interrupts { field, byte } => write!(f, "Interrupts.{field} byte {byte}"),
+            Place::Queue { slot, field, byte } => {
+                write!(f, "interrupt queue slot {slot}.{field} byte {byte}")
+            }
             Place::PhysIn(n) => write!(f, "physical input byte {n}"),
             Place::PhysOut(n) => write!(f, "physical output byte {n}"),
             Place::Padding(o) => write!(f, "padding at {o:#x}"),

@@ -150,7 +150,8 @@ impl Shrinker<'_> {
     }
 }
 
-/// The program without POU `id` and without every call to it; `None` for the main program.
+/// The program without POU `id` and without every op naming it (calls, ATCH); `None` for the
+/// main program.
 pub fn remove_pou(p: &Program, id: PouId) -> Option<Program> {
     if id.index() == 0 || id.index() >= p.pous.len() {
         return None;
@@ -162,19 +163,16 @@ pub fn remove_pou(p: &Program, id: PouId) -> Option<Program> {
             .ops
             .iter()
             .enumerate()
-            .filter(|(_, op)| op.callee() == Some(id))
+            .filter(|(_, op)| op.pou_ref() == Some(id))
             .map(|(i, _)| i)
             .collect();
         for &i in calls.iter().rev() {
             q = remove_ops(&q, pi, i, i + 1)?;
         }
         for op in &mut q.pous[pi].ops {
-            let c = match op {
-                Op::Call(c) => c,
-                Op::CallArgs(a) => &mut a.callee,
-                _ => continue,
-            };
-            if c.index() > id.index() {
+            if let Some(c) = op.pou_ref_mut()
+                && c.index() > id.index()
+            {
                 *c = PouId::new(c.index() - 1);
             }
         }

@@ -7,7 +7,7 @@ use crate::spelling::{area_prefix, counter_mnemonic, timer_mnemonic, width_lette
 use std::fmt::Write as _;
 use stljit_core::PouId;
 use stljit_core::ir::{
-    Address, ArgDir, ArgValue, ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, Conversion,
+    Address, ArgDir, ArgValue, ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, Conversion, IntOp,
     LogicOp, Op, Operand, Pou, PouKind, Program, RealFn,
 };
 use stljit_core::{Area, Width};
@@ -331,6 +331,24 @@ pub fn print_op(program: &Program, pou: &Pou, op: &Op) -> String {
         Op::End { conditional } => if *conditional { "END" } else { "MEND" }.into(),
         Op::Stop => "STOP".into(),
         Op::Wdr => "WDR".into(),
+        Op::Interrupt(i) => match *i {
+            IntOp::Attach { routine, event } => {
+                match program.pous.get(routine.index()).map(|p| p.kind) {
+                    Some(PouKind::Interrupt(n)) => format!("ATCH INT{n}, {event}"),
+                    _ => format!(
+                        "ATCH {}, {event}",
+                        program
+                            .pous
+                            .get(routine.index())
+                            .map_or("?", |p| p.name.as_str())
+                    ),
+                }
+            }
+            IntOp::Detach { event } => format!("DTCH {event}"),
+            IntOp::Enable => "ENI".into(),
+            IntOp::Disable => "DISI".into(),
+            IntOp::ClearEvent { event } => format!("CEVNT {event}"),
+        },
         Op::Nop => "NOP".into(),
         Op::For {
             index, init, limit, ..

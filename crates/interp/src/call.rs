@@ -17,22 +17,23 @@ enum Place {
 }
 
 impl Machine<'_> {
-    /// Runs `CALL callee, args…` at call depth `depth` with power flow `pf`; `Err` when the
-    /// callee aborted the scan with a fatal error.
+    /// Runs `CALL callee, args…` at call depth `depth` with power flow `pf`; `Fatal` when the
+    /// callee aborted the scan with a fatal error, `Stopped` when a STOP ended an interrupt
+    /// routine's chain in it (nothing is copied back then).
     pub(crate) fn call_args(
         &mut self,
         call: &CallArgs,
         pf: bool,
         depth: u32,
         (pou, pc): (usize, usize),
-    ) -> Result<(), ()> {
+    ) -> Exit {
         if !pf {
             self.set_eno(false);
-            return Ok(());
+            return Exit::Normal;
         }
-        if depth + 1 > self.max_depth() {
+        if self.call_too_deep(depth) {
             self.error(ErrorCode::CallNesting, pou, pc);
-            return Ok(());
+            return Exit::Normal;
         }
         let places: Result<Vec<Place>, ErrorCode> = call
             .args
@@ -43,7 +44,7 @@ impl Machine<'_> {
             Ok(p) => p,
             Err(e) => {
                 self.error(e, pou, pc);
-                return Ok(());
+                return Exit::Normal;
             }
         };
         let callee_frame = depth + 1;
@@ -52,8 +53,9 @@ impl Machine<'_> {
                 self.copy(a.value, place, (depth, callee_frame), true);
             }
         }
-        if self.run_pou(call.callee.index(), callee_frame, 1) == Exit::Fatal {
-            return Err(());
+        match self.run_pou(call.callee.index(), callee_frame, 1) {
+            e @ (Exit::Fatal | Exit::Stopped) => return e,
+            Exit::Normal | Exit::EndScan => {}
         }
         for (a, &place) in call.args.iter().zip(&places) {
             if a.dir.copies_out() {
@@ -61,7 +63,7 @@ impl Machine<'_> {
             }
         }
         self.set_eno(true);
-        Ok(())
+        Exit::Normal
     }
 
     /// Copies one parameter between the actual's `place` (in the caller's frame) and the formal

@@ -3,8 +3,9 @@
 
 use crate::Interpreter;
 use stljit_core::ir::{Contact, Op, Operand, Program};
-use stljit_core::layout::{Layout, Sched};
-use stljit_core::{ErrorCode, FatalCode, ScanStatus, Width};
+use stljit_core::layout::{ISR_FRAME, Layout, Sched};
+use stljit_core::{ErrorCode, FatalCode, PouId, ScanStatus, Width};
+use stljit_runtime::interrupt::{self, Action, Isr};
 use stljit_runtime::rules::{Gate, Rules};
 use stljit_runtime::{block, compare, counter, edge, mem, scan, timer};
 
@@ -16,6 +17,8 @@ enum Step {
     Goto(usize),
     /// Leave the POU (RET, CRET, or the end of main for END/MEND).
     Return,
+    /// A STOP in an interrupt routine's chain: end the routine at once (s7-200-more §3.4).
+    Stop,
     /// Abort the scan: a fatal error has been recorded.
     Fatal,
 }
@@ -25,14 +28,29 @@ enum Step {
 pub(crate) enum Exit {
     Normal,
     EndScan,
+    /// A STOP ended an interrupt routine's chain.
+    Stopped,
     Fatal,
+}
+
+/// The interpreter as the interrupt machinery's [`Isr`]: runs a routine's POU.
+pub(crate) struct Routines<'a>(pub(crate) &'a Interpreter);
+
+impl Isr for Routines<'_> {
+    fn run(&mut self, img: &mut [u8], layout: &Layout, pou: PouId) -> ScanStatus {
+        let mut m = Machine::new(self.0, img, layout);
+        match m.run_pou(pou.index(), ISR_FRAME, 0) {
+            Exit::Normal | Exit::EndScan => ScanStatus::Ok,
+            Exit::Stopped => ScanStatus::Stopped,
+            Exit::Fatal => ScanStatus::Fatal,
+        }
+    }
 }
 
 /// The interpreter bound to one image for one scan.
 pub(crate) struct Machine<'a> {
     prog: &'a Program,
     mask: u16,
-    max_depth: u32,
     rules: Rules,
     pub(crate) img: &'a mut [u8],
     pub(crate) layout: &'a Layout,
@@ -47,7 +65,6 @@ impl<'a> Machine<'a> {
         Machine {
             prog: &interp.program,
             mask: interp.stack_mask,
-            max_depth: interp.max_call_depth,
             rules: interp.rules,
             img,
             layout,
@@ -58,7 +75,7 @@ impl<'a> Machine<'a> {
     pub(crate) fn run_main(&mut self) -> ScanStatus {
         match self.run_pou(0, 0, 0) {
             Exit::Fatal => ScanStatus::Fatal,
-            Exit::Normal | Exit::EndScan => ScanStatus::Ok,
+            Exit::Normal | Exit::EndScan | Exit::Stopped => ScanStatus::Ok,
         }
     }
 
@@ -83,9 +100,10 @@ impl<'a> Machine<'a> {
         mem::set_sched_u8(self.img, self.layout, Sched::ENO, u8::from(v));
     }
 
-    /// Deepest CALL nesting allowed below the main program.
-    pub(crate) fn max_depth(&self) -> u32 {
-        self.max_depth
+    /// Whether a CALL made at call depth `depth` would nest deeper than the profile allows
+    /// (`CpuProfile::deepest_frame`: the main program's chain, or an interrupt routine's).
+    pub(crate) fn call_too_deep(&self, depth: u32) -> bool {
+        depth + 1 > self.layout.profile.profile().deepest_frame(depth)
     }
 
     /// A non-fatal error: recorded, ENO = 0 (spec §2.5, §3.5).
@@ -103,7 +121,8 @@ impl<'a> Machine<'a> {
         ((st << 1) | u16::from(v)) & self.mask
     }
 
-    /// Runs POU `pou` at call depth `depth` (its L frame) with initial stack `st`.
+    /// Runs POU `pou` at call depth `depth` (its L frame: 0 for the main program, `ISR_FRAME`
+    /// for an interrupt routine) with initial stack `st`.
     pub(crate) fn run_pou(&mut self, pou: usize, depth: u32, mut st: u16) -> Exit {
         let prog = self.prog;
         let Some(ops) = prog.pous.get(pou).map(|p| &p.ops) else {
@@ -122,6 +141,7 @@ impl<'a> Machine<'a> {
                         Exit::Normal
                     };
                 }
+                Step::Stop => return Exit::Stopped,
                 Step::Fatal => return Exit::Fatal,
             }
         }
@@ -293,28 +313,45 @@ impl<'a> Machine<'a> {
             }
             Op::Jump(_) | Op::Label(_) | Op::Nop => {}
             Op::Call(callee) if pf => {
-                if depth + 1 > self.max_depth {
+                if self.call_too_deep(depth) {
                     self.error(ErrorCode::CallNesting, pou, pc);
-                } else if self.run_pou(callee.index(), depth + 1, 1) == Exit::Fatal {
-                    return Step::Fatal;
+                } else {
+                    match self.run_pou(callee.index(), depth + 1, 1) {
+                        Exit::Fatal => return Step::Fatal,
+                        Exit::Stopped => return Step::Stop,
+                        Exit::Normal | Exit::EndScan => {}
+                    }
                 }
                 // The caller's stack is `*st`, untouched by the callee (spec §3.2 CALL).
             }
             Op::Call(_) => {}
             // The caller's stack is untouched here too; ENO follows s7-200-more §1.5.
-            Op::CallArgs(call) => {
-                if self.call_args(call, pf, depth, (pou, pc)).is_err() {
-                    return Step::Fatal;
-                }
-            }
+            Op::CallArgs(call) => match self.call_args(call, pf, depth, (pou, pc)) {
+                Exit::Fatal => return Step::Fatal,
+                Exit::Stopped => return Step::Stop,
+                Exit::Normal | Exit::EndScan => {}
+            },
             Op::Return { conditional } | Op::End { conditional } => {
                 if !*conditional || pf {
                     return Step::Return;
                 }
             }
-            Op::Stop if pf => mem::set_sched_u8(self.img, self.layout, Sched::STOP_REQ, 1),
+            Op::Stop if pf => {
+                mem::set_sched_u8(self.img, self.layout, Sched::STOP_REQ, 1);
+                // In an interrupt routine's chain STOP ends the routine at once (§3.4).
+                if depth >= ISR_FRAME {
+                    return Step::Stop;
+                }
+            }
             Op::Wdr if pf => scan::watchdog_reset(self.img, self.layout),
-            Op::Stop | Op::Wdr => {}
+            Op::Interrupt(i) if pf => {
+                if let Some(a) = Action::of(*i, self.prog)
+                    && let Err(e) = interrupt::execute(self.img, self.layout, a)
+                {
+                    self.error(e, pou, pc);
+                }
+            }
+            Op::Stop | Op::Wdr | Op::Interrupt(_) => {}
             Op::For {
                 index,
                 init,

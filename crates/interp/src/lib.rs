@@ -1,6 +1,7 @@
 //! The reference interpreter: walks the IR one op at a time, keeping the logic stack as the
 //! bit vector of spec §3.1, and calls the shared runtime ([`stljit_runtime`]) for everything
-//! stateful or intricate (timers, counters, edges, pointers, flag rules, block instructions).
+//! stateful or intricate (timers, counters, edges, pointers, flag rules, block instructions,
+//! the interrupt machinery, which calls back into the interpreter to run a routine's body).
 //!
 //! It is written to be obviously correct rather than fast: every operand access is bounds-checked,
 //! every scheduler field lives in the image (so the image after a scan is complete and comparable
@@ -27,8 +28,6 @@ pub struct Interpreter {
     program: Program,
     /// `(1 << logic_stack_depth) - 1`.
     stack_mask: u16,
-    /// Deepest CALL nesting allowed below the main program.
-    max_call_depth: u32,
     /// The semantic switches (`Rules::IN_FORCE` unless a test chose others).
     rules: Rules,
     /// What the scan prologue touches for this program.
@@ -43,7 +42,6 @@ impl Interpreter {
         Ok(Interpreter {
             program: program.clone(),
             stack_mask: ((1u32 << program.logic_stack_depth) - 1) as u16,
-            max_call_depth: u32::from(program.profile.profile().max_call_depth),
             rules: Rules::in_force(program.profile.profile().family),
             plan: scan::ScanPlan::of(program),
         })
@@ -69,9 +67,18 @@ impl Engine for Interpreter {
 
     fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
         let (img, layout) = image.split_mut();
-        scan::run(img, layout, &self.plan, t_ms, |img, layout| {
-            let mut m = exec::Machine::new(self, img, layout);
-            m.run_main()
-        })
+        let this = &*self;
+        let mut routines = exec::Routines(this);
+        scan::run(
+            img,
+            layout,
+            &this.plan,
+            t_ms,
+            &mut routines,
+            |img, layout| {
+                let mut m = exec::Machine::new(this, img, layout);
+                m.run_main()
+            },
+        )
     }
 }

@@ -21,8 +21,8 @@ use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::{JITBuilder, JITModule};
 use cranelift_module::{FuncId, Linkage, Module, default_libcall_names};
 use std::collections::HashMap;
-use stljit_core::ir::Program;
-use stljit_core::layout::Layout;
+use stljit_core::ir::{PouKind, Program};
+use stljit_core::layout::{ISR_FRAME, Layout};
 use stljit_runtime::rules::Rules;
 
 fn cg(e: impl std::fmt::Display) -> JitError {
@@ -102,6 +102,8 @@ pub(crate) fn validate(prog: &Program) -> Result<(), JitError> {
 pub(crate) struct Built {
     pub(crate) module: JITModule,
     pub(crate) run_id: FuncId,
+    /// The function of each POU (index = POU), for the interrupt routines' table.
+    pub(crate) pou_ids: Vec<FuncId>,
 }
 
 /// Which function of a POU [`build`] hands to its `dump` callback.
@@ -230,7 +232,11 @@ pub(crate) fn build(
     );
     dump(&ctx.func, 0, Part::ScanLoop);
     define_fn(&mut module, &mut ctx, run_id)?;
-    Ok(Built { module, run_id })
+    Ok(Built {
+        module,
+        run_id,
+        pou_ids: pou_funcs,
+    })
 }
 
 /// Lowers POU `pou` (or its chunk `chunk`) into `ctx.func`.
@@ -292,7 +298,8 @@ fn lower_fn(
     }
 }
 
-/// The first byte of the POU's L frame: main's is fixed, a subroutine's follows from `depth`.
+/// The first byte of the POU's L frame: main's (frame 0) and an interrupt routine's
+/// ([`ISR_FRAME`]) are fixed, a subroutine's follows from `depth`.
 fn frame_base(
     env: &Env<'_>,
     b: &mut FunctionBuilder<'_>,
@@ -302,26 +309,29 @@ fn frame_base(
 ) -> Value {
     let lsize = i64::from(env.layout.area_size(stljit_core::Area::L));
     let lbase = i64::from(env.layout.base(stljit_core::Area::L));
-    if pou == 0 {
-        b.ins().iadd_imm_s(image, lbase)
-    } else {
-        let d64 = b.ins().uextend(I64, depth);
-        let off = b.ins().imul_imm_s(d64, lsize);
-        let off = b.ins().iadd_imm_s(off, lbase);
-        b.ins().iadd(image, off)
+    match env.prog.pous[pou].kind {
+        PouKind::Main => b.ins().iadd_imm_s(image, lbase),
+        PouKind::Interrupt(_) => b
+            .ins()
+            .iadd_imm_s(image, lbase + i64::from(ISR_FRAME) * lsize),
+        PouKind::Subroutine(_) => {
+            let d64 = b.ins().uextend(I64, depth);
+            let off = b.ins().imul_imm_s(d64, lsize);
+            let off = b.ins().iadd_imm_s(off, lbase);
+            b.ins().iadd(image, off)
+        }
     }
 }
 
-/// The logic stack a POU starts with: all zero for the main program, `S0 = 1` for a
-/// subroutine (spec §3.2 CALL).
+/// The logic stack a POU starts with: all zero for the main program and an interrupt routine
+/// (spec §3.1, s7-200-more §3.6.4), `S0 = 1` for a subroutine (spec §3.2 CALL).
 fn initial_stack(env: &Env<'_>, pou: usize) -> Stack {
     let depth_n = env.prog.logic_stack_depth;
-    if pou == 0 {
-        Stack {
+    match env.prog.pous[pou].kind {
+        PouKind::Main | PouKind::Interrupt(_) => Stack {
             lv: vec![crate::lower::value::B::K(false); usize::from(depth_n)],
-        }
-    } else {
-        Stack::fresh(depth_n)
+        },
+        PouKind::Subroutine(_) => Stack::fresh(depth_n),
     }
 }
 

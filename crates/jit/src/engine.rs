@@ -12,6 +12,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use stljit_core::ScanStatus;
 use stljit_core::ir::Program;
 use stljit_core::layout::Layout;
+use stljit_runtime::ffi::{NativeRoutines, PouFn};
 use stljit_runtime::rules::Rules;
 use stljit_runtime::scan::ScanPlan;
 use stljit_runtime::{Engine, Image};
@@ -27,6 +28,9 @@ pub struct JitProgram {
     /// What the scan prologue touches; boxed for the same reason, and only ever read by the
     /// runtime's `scan::begin` through the address baked into the code.
     _plan: Box<ScanPlan>,
+    /// The compiled interrupt routines the scan prologue runs (`None` without interrupt
+    /// routines); boxed for the same reason, and only read through the baked address.
+    _routines: Option<Box<NativeRoutines>>,
     op_count: usize,
     /// The executed-op counter of an instrumented build ([`JitProgram::compile_counting`]).
     counter: Option<Box<AtomicU64>>,
@@ -80,12 +84,23 @@ impl JitProgram {
         // An atomic so that the code's plain stores through its address are legal interior
         // mutation; it is only read between scans.
         let counter = count.then(|| Box::new(AtomicU64::new(0)));
+        // Filled after finalizing, through a shared reference (`NativeRoutines::install`).
+        let routines = program
+            .has_interrupts()
+            .then(|| Box::new(NativeRoutines::new()));
         let baked = Baked {
             layout: &*layout as *const Layout as i64,
             scan_plan: &*plan as *const ScanPlan as i64,
+            routines: routines
+                .as_deref()
+                .map_or(0, |r| r as *const NativeRoutines as i64),
             op_counter: counter.as_deref().map(|c| c.as_ptr() as i64),
         };
-        let Built { mut module, run_id } = build::build(
+        let Built {
+            mut module,
+            run_id,
+            pou_ids,
+        } = build::build(
             program,
             opts,
             rules,
@@ -102,11 +117,32 @@ impl JitProgram {
         // `build::run_signature` in the host's default calling convention, which is the C ABI
         // this type names. `module` (and with it the code) lives as long as `self`.
         let run = unsafe { std::mem::transmute::<*const u8, RunFn>(run_ptr) };
+        if let Some(table) = routines.as_deref() {
+            let fns = program
+                .pous
+                .iter()
+                .zip(&pou_ids)
+                .map(|(pou, &id)| {
+                    pou.kind.interrupt().map(|_| {
+                        let ptr = module.get_finalized_function(id);
+                        // SAFETY: a finalized function of `module` compiled with
+                        // `build::pou_signature` in the host's default calling convention,
+                        // the C ABI `PouFn` names; it lives as long as `self`, which owns
+                        // the table too.
+                        unsafe { std::mem::transmute::<*const u8, PouFn>(ptr) }
+                    })
+                })
+                .collect();
+            // SAFETY: as above, each function is the program's compiled POU for this layout
+            // and lives as long as the table.
+            unsafe { table.install(fns) };
+        }
         Ok(JitProgram {
             module: Some(module),
             run,
             layout,
             _plan: plan,
+            _routines: routines,
             op_count: program.op_count(),
             counter,
         })

@@ -87,9 +87,12 @@ helpers! {
     CtudFast => "stljit_rt_ctud_fast", ffi::stljit_rt_ctud_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
     CounterReset => "stljit_rt_counter_reset", ffi::stljit_rt_counter_reset, ImageLayout, [I32, I32] -> I32;
     Pointer => "stljit_rt_pointer", ffi::stljit_rt_pointer, ImageLayout, [I32, I32, I32] -> I64;
-    ScanBegin => "stljit_rt_scan_begin", ffi::stljit_rt_scan_begin, ImageLayout, [I64, I64] -> I32;
+    /// `stljit_rt_scan_begin(plan, routines, t_ms) -> scan::Begin`.
+    ScanBegin => "stljit_rt_scan_begin", ffi::stljit_rt_scan_begin, ImageLayout, [I64, I64, I64] -> I32;
     ScanEnd => "stljit_rt_scan_end", ffi::stljit_rt_scan_end, ImageLayout, [I32] -> I32;
     TaskStart => "stljit_rt_task_start", ffi::stljit_rt_task_start, ImageLayout, [] -> I32;
+    /// `stljit_rt_interrupt(kind, event, routine)`: ATCH, DTCH, ENI, DISI, CEVNT.
+    Interrupt => "stljit_rt_interrupt", ffi::stljit_rt_interrupt, ImageLayout, [I32, I32, I32] -> I32;
     /// `stljit_rt_value(op, sub, out, in1) -> u64` packed outcome (`ffi::ValueOp`).
     Value => "stljit_rt_value", ffi::stljit_rt_value, Nothing, [I32, I32, I32, I32] -> I64;
     /// `stljit_rt_omron_<kind>_fast(value, flag, state, now, ctl, sv)`: pointers; one shim

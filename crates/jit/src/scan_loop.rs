@@ -2,9 +2,11 @@
 //! `t0 + i · dt`, stopping at the first scan whose status is not Ok.
 //!
 //! A scan that stays on the common path runs its prologue and epilogue inline: an S7 program
-//! whose plan has no clock-refreshed timer, outside the first scan, not in STOP, whose main
-//! program returns Ok without a STOP request. Every other scan calls the runtime's
-//! `scan::begin`/`scan::end` shims, which remain the definition. The inline path reads every
+//! whose plan has no clock-refreshed timer and no interrupt routine, outside the first scan,
+//! not in STOP, whose main program returns Ok without a STOP request. Every other scan calls
+//! the runtime's `scan::begin`/`scan::end` shims, which remain the definition; in particular
+//! every scan of a program with interrupt routines, whose event phases run inside
+//! `scan::begin` (it calls back into the compiled routines through `NativeRoutines`). The inline path reads every
 //! fact it applies from `runtime::scan` (`DELTAS`, `RESETS`, the `SMB0_*` bits) and the image
 //! layout, so it restates no rule; the differential tests and every fuzz campaign compare its
 //! bytes with the interpreter's, which always calls `scan::begin`/`end`.
@@ -26,11 +28,12 @@ use cranelift_jit::JITModule;
 use cranelift_module::{FuncId, Module};
 use stljit_core::layout::{Layout, Sched};
 use stljit_core::{Area, Family, ScanStatus};
-use stljit_runtime::scan::{self, ScanPlan};
+use stljit_runtime::scan::{self, Begin, ScanPlan};
 
-/// Whether scans of `plan`'s program may take the inline path at all.
+/// Whether scans of `plan`'s program may take the inline path at all (the interrupt
+/// machinery could act in a program with interrupt routines).
 fn inline_path(plan: &ScanPlan) -> bool {
-    plan.family() == Family::S7 && plan.clock_timers().is_empty()
+    plan.family() == Family::S7 && plan.clock_timers().is_empty() && !plan.has_interrupts()
 }
 
 /// The loop, with the signature `build::run_signature`:
@@ -54,6 +57,7 @@ pub(crate) fn build_run(
     let mainf = module.declare_func_in_func(main, b.func);
     let layout = b.ins().iconst(I64, env.baked.layout);
     let scan_plan = b.ins().iconst(I64, env.baked.scan_plan);
+    let routines = b.ins().iconst(I64, env.baked.routines);
     let img = Img {
         base: image,
         layout: env.layout,
@@ -72,6 +76,7 @@ pub(crate) fn build_run(
     let fast_begin = b.create_block();
     let run = b.create_block();
     let slow_end = b.create_block();
+    let end_status = b.append_block_param(slow_end, I32);
     let fast_end = b.create_block();
     let next = b.create_block();
     let fin = b.create_block();
@@ -106,11 +111,20 @@ pub(crate) fn build_run(
     }
 
     b.switch_to_block(slow_begin);
-    let c = b.ins().call(begin, &[image, layout, scan_plan, t]);
-    let runs = b.inst_results(c)[0];
+    let c = b
+        .ins()
+        .call(begin, &[image, layout, scan_plan, routines, t]);
+    let begun = b.inst_results(c)[0];
     let stopped = b.ins().iconst(I32, ScanStatus::Stopped as i64);
+    let started = b.create_block();
     b.ins()
-        .brif(runs, run, &[], fin, &[i1.into(), stopped.into()]);
+        .brif(begun, started, &[], fin, &[i1.into(), stopped.into()]);
+    // Not in STOP: run the main program, or (a fatal error in an interrupt routine) end the
+    // scan as aborted.
+    b.switch_to_block(started);
+    let runs = b.ins().icmp_imm_s(IntCC::Equal, begun, Begin::Run as i64);
+    let fatal = b.ins().iconst(I32, ScanStatus::Fatal as i64);
+    b.ins().brif(runs, run, &[], slow_end, &[fatal.into()]);
 
     b.switch_to_block(fast_begin);
     inline_begin(&mut b, &img, t, &q, &prev_q);
@@ -125,13 +139,13 @@ pub(crate) fn build_run(
         let stop = img.load(&mut b, I8, Sched::STOP_REQ);
         let stop = b.ins().uextend(I32, stop);
         let slow = b.ins().bor(s, stop);
-        b.ins().brif(slow, slow_end, &[], fast_end, &[]);
+        b.ins().brif(slow, slow_end, &[s.into()], fast_end, &[]);
     } else {
-        b.ins().jump(slow_end, &[]);
+        b.ins().jump(slow_end, &[s.into()]);
     }
 
     b.switch_to_block(slow_end);
-    let c = b.ins().call(end, &[image, layout, s]);
+    let c = b.ins().call(end, &[image, layout, end_status]);
     let st = b.inst_results(c)[0];
     b.ins().brif(st, fin, &[i1.into(), st.into()], next, &[]);
 

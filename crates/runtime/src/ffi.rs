@@ -15,9 +15,10 @@
 //!
 //! | Shim | Rust counterpart | Returns |
 //! |---|---|---|
-//! | `stljit_rt_scan_begin(img, l, plan, t_ms: u64)` | [`scan::begin`] | 1 run the program, 0 in STOP |
+//! | `stljit_rt_scan_begin(img, l, plan, routines, t_ms: u64)` | [`scan::begin`] | [`scan::Begin`] as u32: 1 run the program, 0 in STOP, 2 fatal in an interrupt routine |
 //! | `stljit_rt_scan_end(img, l, status: u32)` | [`scan::end`] | final `ScanStatus` as u32 |
 //! | `stljit_rt_task_start(img, l)` | [`scan::task_start`] | status |
+//! | `stljit_rt_interrupt(img, l, kind, event, routine)` | [`crate::interrupt::execute`] | status |
 //! | `stljit_rt_timer(img, l, n, kind, input, gate, preset: i32)` | [`timer::execute`] | status |
 //! | `stljit_rt_timer_reset(img, l, first, count)` | [`timer::reset_range`] | status |
 //! | `stljit_rt_counter(img, l, n, kind, stack, gate, preset: i32)` | [`counter::execute`] | status |
@@ -66,10 +67,12 @@
 #![allow(unsafe_code)]
 
 mod fast;
+mod interrupts;
 mod omron;
 mod ops;
 mod value;
 pub use fast::*;
+pub use interrupts::*;
 pub use omron::*;
 pub use ops::*;
 pub use value::*;
@@ -243,28 +246,38 @@ fn kind_of<K: Copy>(all: &[K], code_of: fn(K) -> u8, code: u32) -> Option<K> {
     all.iter().copied().find(|&k| u32::from(code_of(k)) == code)
 }
 
-/// [`scan::begin`] with the program's [`scan::ScanPlan`]: 1 when the program must run, 0 when
-/// the PLC is in STOP (or `plan` is null).
+/// [`scan::begin`] with the program's [`scan::ScanPlan`] and its compiled interrupt routines:
+/// the [`scan::Begin`] as u32 (0 STOP, 1 run the program, 2 fatal error in an event phase); 0
+/// when `image`, `layout` or `plan` is null or the runtime panicked.
 ///
 /// # Safety
 /// See the module conventions: `image` points to `layout.size` exclusively borrowed bytes;
-/// `plan` is null or points to a live plan.
+/// `plan` is null or points to a live plan; `routines` is null (no interrupt routines) or
+/// points to a live [`NativeRoutines`] of this program.
 pub unsafe extern "C" fn stljit_rt_scan_begin(
     image: *mut u8,
     layout: *const Layout,
     plan: *const scan::ScanPlan,
+    routines: *const NativeRoutines,
     t_ms: u64,
 ) -> u32 {
     // SAFETY: the caller's contract: `plan` is null or live, and only read.
     let Some(plan) = (unsafe { plan.as_ref() }) else {
-        return 0;
+        return scan::Begin::Stopped as u32;
+    };
+    // SAFETY: the caller's contract: `routines` is null or live, and only read.
+    let mut native = unsafe { routines.as_ref() };
+    let mut none = crate::interrupt::NoIsr;
+    let isr: &mut dyn crate::interrupt::Isr = match &mut native {
+        Some(r) => r,
+        None => &mut none,
     };
     // SAFETY: forwarded caller contract.
     unsafe {
         with_image(image, layout, |b, l| {
-            u32::from(scan::begin(b, l, plan, t_ms))
+            scan::begin(b, l, plan, t_ms, isr) as u32
         })
-        .unwrap_or(0)
+        .unwrap_or(scan::Begin::Stopped as u32)
     }
 }
 

@@ -16,7 +16,7 @@ fn scan_and_timer_through_the_shims() {
     let (p, lp) = (b.as_mut_ptr(), l as *const Layout);
     // SAFETY: p/lp come from a live image borrowed for the whole block.
     unsafe {
-        assert_eq!(stljit_rt_scan_begin(p, lp, &plan, 0), 1);
+        assert_eq!(stljit_rt_scan_begin(p, lp, &plan, std::ptr::null(), 0), 1);
         assert_eq!(stljit_rt_timer(p, lp, 37, 1, 1, 1, -5), RT_OK);
         assert_eq!(stljit_rt_timer(p, lp, 64, 1, 1, 1, 5), 0x0091);
         assert_eq!(stljit_rt_timer(p, lp, 1, 9, 1, 1, 5), RT_BAD_ARGUMENT);
@@ -47,9 +47,18 @@ fn null_pointers_are_rejected() {
             RT_BAD_ARGUMENT
         );
         let plan = scan::ScanPlan::every_timer(&l);
-        assert_eq!(stljit_rt_scan_begin(std::ptr::null_mut(), &l, &plan, 0), 0);
         assert_eq!(
-            stljit_rt_scan_begin(std::ptr::null_mut(), &l, std::ptr::null(), 0),
+            stljit_rt_scan_begin(std::ptr::null_mut(), &l, &plan, std::ptr::null(), 0),
+            0
+        );
+        assert_eq!(
+            stljit_rt_scan_begin(
+                std::ptr::null_mut(),
+                &l,
+                std::ptr::null(),
+                std::ptr::null(),
+                0
+            ),
             0
         );
         assert_eq!(

@@ -1,6 +1,6 @@
 //! The runtime every stljit engine shares: the memory [`Image`], the scan cycle around the
-//! program body ([`scan`]), timers, counters and edge detectors ([`timer`], [`counter`],
-//! [`edge`]), pointer resolution ([`pointer`]), the intricate instructions ([`arith`], [`bitops`],
+//! program body ([`scan`]) with its interrupt event phases ([`interrupt`]), timers, counters
+//! and edge detectors ([`timer`], [`counter`], [`edge`]), pointer resolution ([`pointer`]), the intricate instructions ([`arith`], [`bitops`],
 //! [`block`], [`compare`], [`convert`], with the SMB1 rules in [`flags`]), the semantic switches
 //! and the gate policy ([`rules`]) and the [`Engine`] trait. The Omron CP rules (BCD,
 //! condition flags, moves, comparisons, arithmetic, timers and counters) are pure functions
@@ -24,6 +24,7 @@ pub mod engine;
 pub mod ffi;
 pub mod flags;
 pub mod image;
+pub mod interrupt;
 pub mod mem;
 pub mod omron;
 pub mod omron_image;

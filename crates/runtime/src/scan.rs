@@ -2,6 +2,11 @@
 //! resets of step 5, [`end`] does steps 6–8. Both engines call exactly these two functions, so
 //! time, SMB0, the clock-driven timer refresh and the output copy exist once.
 //!
+//! A program with interrupt routines runs the event phases of s7-200-more §3.6.2 inside
+//! [`begin`] ([`crate::interrupt`]): E1 after the time step and the resets (before the inputs
+//! are read), E2 after the clock refresh. The engine passes an [`Isr`] that runs a routine's
+//! body; a fatal error in a routine aborts the scan ([`Begin::Fatal`]).
+//!
 //! Rules fixed here (spec leaves them open):
 //! * **STOP.** A scan on an image already in STOP (`Sched::MODE = 1`) runs nothing: [`begin`]
 //!   forces the physical outputs to 0 (spec §2.5 "outputs forced to 0") and returns `false`; the
@@ -21,13 +26,15 @@
 //! visits every timer as the rule is written; both plans give the same bytes for any image a
 //! program's cold start produced, because only declared timers have a kind (`Image::cold_start`).
 
+use crate::interrupt::{self, Isr};
 use crate::mem;
 use crate::timer;
+use stljit_core::interrupt::MAX_ROUTINE;
 use stljit_core::ir::{Loc, Program};
 use stljit_core::layout::{Layout, SCHED_SIZE, Sched, TimerState};
 use stljit_core::omron::{self, SystemBit};
 use stljit_core::profile::Resolution;
-use stljit_core::{Area, ErrorCode, Family, FatalCode, ScanStatus};
+use stljit_core::{Area, ErrorCode, Family, FatalCode, PouId, ScanStatus};
 
 /// The time-step fields besides `T_PREV`/`T_NOW` (spec §2.1 step 1): `(field, div)`, each
 /// `t / div − t_prev / div` saturated to `u32`, 0 in the first scan.
@@ -71,6 +78,9 @@ pub struct ScanPlan {
     family: Family,
     /// The timers step 4 refreshes from the clock, in ascending number.
     clock_timers: Box<[u16]>,
+    /// The interrupt routines by number (empty: the program has none, and the scan runs no
+    /// event phase).
+    routines: Box<[Option<PouId>]>,
 }
 
 impl ScanPlan {
@@ -91,10 +101,35 @@ impl ScanPlan {
         };
         clock_timers.sort_unstable();
         clock_timers.dedup();
+        let mut routines = Vec::new();
+        if program.has_interrupts() {
+            routines.resize(usize::from(MAX_ROUTINE) + 1, None);
+            for (i, pou) in program.pous.iter().enumerate() {
+                if let Some(slot) = pou
+                    .kind
+                    .interrupt()
+                    .and_then(|n| routines.get_mut(usize::from(n)))
+                {
+                    *slot = Some(PouId::new(i));
+                }
+            }
+        }
         ScanPlan {
             family: profile.family,
             clock_timers: clock_timers.into(),
+            routines: routines.into(),
         }
+    }
+
+    /// Whether the program has interrupt routines: then [`begin`] runs the event phases, and
+    /// an engine's inline scan path (which has none) must not be taken.
+    pub fn has_interrupts(&self) -> bool {
+        !self.routines.is_empty()
+    }
+
+    /// The interrupt routines by number.
+    pub fn routines(&self) -> &[Option<PouId>] {
+        &self.routines
     }
 
     /// The timers step 4 refreshes from the clock.
@@ -119,8 +154,22 @@ impl ScanPlan {
         ScanPlan {
             family,
             clock_timers: (0..n).collect(),
+            routines: Box::new([]),
         }
     }
+}
+
+/// What [`begin`] leaves the engine to do.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
+pub enum Begin {
+    /// The PLC is in STOP: run nothing, do not call [`end`]; the scan is `Stopped`.
+    Stopped = 0,
+    /// Run the main program, then call [`end`] with its status.
+    Run = 1,
+    /// An interrupt routine (or the event phase) ended in a fatal error, recorded in the
+    /// image: skip the main program and call [`end`] with `Fatal` (spec §3.6.4).
+    Fatal = 2,
 }
 
 /// The scheduler block of an image (`Sched`), bounds-checked once: every field is at a
@@ -166,12 +215,19 @@ fn copy_block(img: &mut [u8], src: u32, dst: u32, len: u32) {
     }
 }
 
-/// Steps 1–4 of a scan plus the resets of step 5, for the program whose plan is `plan`.
-/// Returns `false` (and does only the STOP rule of the module doc) when the image is in STOP;
-/// the program must then not run.
-pub fn begin(img: &mut [u8], layout: &Layout, plan: &ScanPlan, t_ms: u64) -> bool {
+/// Steps 1–4 of a scan plus the resets of step 5, for the program whose plan is `plan`; with
+/// interrupt routines, also the event phases E1 and E2 (module doc), whose routines `isr` runs.
+/// Returns [`Begin::Stopped`] (having done only the STOP rule of the module doc) when the image
+/// is in STOP.
+pub fn begin(
+    img: &mut [u8],
+    layout: &Layout,
+    plan: &ScanPlan,
+    t_ms: u64,
+    isr: &mut dyn Isr,
+) -> Begin {
     let Some(mut sched) = SchedBlock::of(img, layout) else {
-        return false;
+        return Begin::Stopped;
     };
     if sched.u8(Sched::MODE) != 0 {
         let out = layout.phys_out as usize;
@@ -179,7 +235,7 @@ pub fn begin(img: &mut [u8], layout: &Layout, plan: &ScanPlan, t_ms: u64) -> boo
         if let Some(q) = img.get_mut(out..out.saturating_add(len)) {
             q.fill(0);
         }
-        return false;
+        return Begin::Stopped;
     }
     let first = sched.u8(Sched::FIRST_SCAN) != 0;
 
@@ -195,13 +251,24 @@ pub fn begin(img: &mut [u8], layout: &Layout, plan: &ScanPlan, t_ms: u64) -> boo
     }
     sched.set_u64(Sched::T_PREV, t_prev);
     sched.set_u64(Sched::T_NOW, t_ms);
-    // Step 5 resets (nothing below reads them).
+    // Step 5 resets (nothing below reads them but the interrupt routines, which count against
+    // the scan's loop budget and may request STOP).
     for (field, v) in RESETS {
         sched.set_u8(field, v);
     }
     sched.set_u32(Sched::LOOP_COUNT, 0);
     let scan_no = sched.u64(Sched::SCAN_NO);
     let lost = sched.u8(Sched::RETENTIVE_LOST) != 0;
+
+    // E1 (s7-200-more §3.6.2 step 2): the interval since the previous scan; none in scan 0.
+    let routines = plan.routines();
+    if plan.has_interrupts()
+        && !first
+        && interrupt::interval_phase(img, layout, routines, isr, micros(t_prev), micros(t_ms))
+            .is_err()
+    {
+        return Begin::Fatal;
+    }
 
     // Step 2: the I image is overwritten from the physical inputs (AI is latched by the harness
     // writing the AI area directly).
@@ -230,7 +297,18 @@ pub fn begin(img: &mut [u8], layout: &Layout, plan: &ScanPlan, t_ms: u64) -> boo
             timer::refresh(img, layout, n);
         }
     }
-    true
+    // E2 (§3.6.2 step 5): the events of the scan instant.
+    if plan.has_interrupts()
+        && interrupt::instant_phase(img, layout, routines, isr, micros(t_ms)).is_err()
+    {
+        return Begin::Fatal;
+    }
+    Begin::Run
+}
+
+/// A virtual time in ms as the µs of the event machinery (s7-200-more §0.3).
+fn micros(t_ms: u64) -> u64 {
+    t_ms.saturating_mul(1000)
 }
 
 /// What is reset at the start of every task (omron-cp.md §2.3): the instruction conditions
@@ -324,18 +402,21 @@ pub fn end(img: &mut [u8], layout: &Layout, status: ScanStatus) -> ScanStatus {
     status
 }
 
-/// One whole scan around `body` (which executes the program and returns `Ok` or `Fatal`).
+/// One whole scan around `body` (which executes the main program and returns `Ok` or
+/// `Fatal`), with `isr` running the interrupt routines.
 pub fn run(
     img: &mut [u8],
     layout: &Layout,
     plan: &ScanPlan,
     t_ms: u64,
+    isr: &mut dyn Isr,
     body: impl FnOnce(&mut [u8], &Layout) -> ScanStatus,
 ) -> ScanStatus {
-    if !begin(img, layout, plan, t_ms) {
-        return ScanStatus::Stopped;
-    }
-    let status = body(img, layout);
+    let status = match begin(img, layout, plan, t_ms, isr) {
+        Begin::Stopped => return ScanStatus::Stopped,
+        Begin::Fatal => ScanStatus::Fatal,
+        Begin::Run => body(img, layout),
+    };
     end(img, layout, status)
 }
 
@@ -373,6 +454,7 @@ pub fn watchdog_reset(img: &mut [u8], layout: &Layout) {
 mod tests {
     use super::*;
     use crate::image::Image;
+    use crate::interrupt::NoIsr;
     use stljit_core::ProfileId;
 
     fn smb0(img: &Image) -> u8 {
@@ -382,7 +464,7 @@ mod tests {
     fn scan(img: &mut Image, t: u64) -> ScanStatus {
         let plan = ScanPlan::every_timer(img.layout());
         let (b, l) = img.split_mut();
-        run(b, l, &plan, t, |_, _| ScanStatus::Ok)
+        run(b, l, &plan, t, &mut NoIsr, |_, _| ScanStatus::Ok)
     }
 
     #[test]
@@ -393,7 +475,7 @@ mod tests {
         for (k, w) in want.into_iter().enumerate() {
             let plan = ScanPlan::every_timer(img.layout());
             let (b, l) = img.split_mut();
-            assert!(begin(b, l, &plan, 250 * k as u64));
+            assert_eq!(begin(b, l, &plan, 250 * k as u64, &mut NoIsr), Begin::Run);
             let s = smb0(&img);
             assert_eq!((s >> 5 & 1, s >> 6 & 1, s >> 1 & 1), w, "scan {k}");
             assert_eq!(s & 0x81, 0x81, "SM0.0 and SM0.7 always on");
@@ -408,7 +490,7 @@ mod tests {
         img.set_retentive_lost(true);
         let plan = ScanPlan::every_timer(img.layout());
         let (b, l) = img.split_mut();
-        assert!(begin(b, l, &plan, 0));
+        assert_eq!(begin(b, l, &plan, 0, &mut NoIsr), Begin::Run);
         assert_eq!(smb0(&img) >> 2 & 1, 1);
         let (b, l) = img.split_mut();
         end(b, l, ScanStatus::Ok);
@@ -449,7 +531,7 @@ mod tests {
         let plan = ScanPlan::every_timer(img.layout());
         let st = {
             let (b, l) = img.split_mut();
-            run(b, l, &plan, 0, |b, l| {
+            run(b, l, &plan, 0, &mut NoIsr, |b, l| {
                 assert_eq!(b[l.base(Area::I) as usize], 0xA5);
                 b[q] = 0x3C;
                 mem::set_sched_u8(b, l, Sched::STOP_REQ, 1);
@@ -475,7 +557,7 @@ mod tests {
         let plan = ScanPlan::every_timer(img.layout());
         let st = {
             let (b, l) = img.split_mut();
-            run(b, l, &plan, 0, |b, l| {
+            run(b, l, &plan, 0, &mut NoIsr, |b, l| {
                 b[q] = 1;
                 record_fatal(b, l, FatalCode::Watchdog, 0, 7);
                 ScanStatus::Fatal

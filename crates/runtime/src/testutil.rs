@@ -41,7 +41,7 @@ impl Rig {
         self.k += 1;
         let plan = scan::ScanPlan::every_timer(self.img.layout());
         let (b, l) = self.img.split_mut();
-        scan::run(b, l, &plan, t, |b, l| {
+        scan::run(b, l, &plan, t, &mut crate::interrupt::NoIsr, |b, l| {
             body(b, l);
             ScanStatus::Ok
         });

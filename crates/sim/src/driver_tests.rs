@@ -20,23 +20,30 @@ impl Engine for Toy {
     fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
         let plan = scan::ScanPlan::every_timer(image.layout());
         let (b, l) = image.split_mut();
-        scan::run(b, l, &plan, t_ms, |b, l| {
-            let ib0 = mem::get_u8(b, l.base(Area::I));
-            if ib0 & 0x40 != 0 {
-                scan::record_fatal(b, l, FatalCode::Watchdog, 0, 0);
-                return ScanStatus::Fatal;
-            }
-            mem::set_u8(b, l.base(Area::Q), ib0);
-            let vw0 = l.base(Area::V);
-            let n = mem::get_be(b, vw0, stljit_core::Width::Word);
-            mem::set_be(b, vw0, stljit_core::Width::Word, n + 1);
-            let ai = mem::get_u8(b, l.base(Area::AI) + 1);
-            mem::set_u8(b, vw0 + 2, ai);
-            if ib0 & 0x80 != 0 {
-                mem::set_sched_u8(b, l, Sched::STOP_REQ, 1);
-            }
-            ScanStatus::Ok
-        })
+        scan::run(
+            b,
+            l,
+            &plan,
+            t_ms,
+            &mut stljit_runtime::interrupt::NoIsr,
+            |b, l| {
+                let ib0 = mem::get_u8(b, l.base(Area::I));
+                if ib0 & 0x40 != 0 {
+                    scan::record_fatal(b, l, FatalCode::Watchdog, 0, 0);
+                    return ScanStatus::Fatal;
+                }
+                mem::set_u8(b, l.base(Area::Q), ib0);
+                let vw0 = l.base(Area::V);
+                let n = mem::get_be(b, vw0, stljit_core::Width::Word);
+                mem::set_be(b, vw0, stljit_core::Width::Word, n + 1);
+                let ai = mem::get_u8(b, l.base(Area::AI) + 1);
+                mem::set_u8(b, vw0 + 2, ai);
+                if ib0 & 0x80 != 0 {
+                    mem::set_sched_u8(b, l, Sched::STOP_REQ, 1);
+                }
+                ScanStatus::Ok
+            },
+        )
     }
 }
 

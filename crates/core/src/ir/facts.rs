@@ -4,7 +4,7 @@
 //! ([`Op::callee`]). The verifier, the JIT's analyses and the front ends' stack checks read
 //! these instead of matching on ops themselves, so a new op states its facts here and nowhere else.
 
-use super::{CounterKind, Op, Pou};
+use super::{CounterKind, IntOp, Op, Pou};
 use crate::index::PouId;
 
 /// Where control can go after an op: the next op, and one branch target (an op index, where
@@ -141,6 +141,23 @@ impl Op {
         }
     }
 
+    /// The POU the op names: a CALL's callee ([`Op::callee`]), an ATCH's interrupt routine.
+    pub fn pou_ref(&self) -> Option<PouId> {
+        match self {
+            Op::Interrupt(IntOp::Attach { routine, .. }) => Some(*routine),
+            _ => self.callee(),
+        }
+    }
+
+    /// [`Op::pou_ref`], for tools that renumber POUs.
+    pub fn pou_ref_mut(&mut self) -> Option<&mut PouId> {
+        match self {
+            Op::Call(p) | Op::Interrupt(IntOp::Attach { routine: p, .. }) => Some(p),
+            Op::CallArgs(c) => Some(&mut c.callee),
+            _ => None,
+        }
+    }
+
     /// Whether the op may leave its POU (`RET`, `CRET`, `END`, `MEND`).
     pub fn may_exit(&self) -> bool {
         matches!(self, Op::Return { .. } | Op::End { .. })
@@ -215,6 +232,7 @@ impl Op {
             | Op::CallArgs(_)
             | Op::Stop
             | Op::Wdr
+            | Op::Interrupt(_)
             | Op::For { .. }
             | Op::ScrTransition { .. }
             | Op::ScrCondEnd { .. }

@@ -32,7 +32,7 @@ pub use omron::{
     BoxOperands, IndexOffset, IndexStep, OmronArith, OmronBox, OmronCounterKind, OmronRef,
     OmronTimerKind,
 };
-pub use op::{ArithOp, BoxOp, Conversion, LogicOp, Op, RealFn};
+pub use op::{ArithOp, BoxOp, Conversion, IntOp, LogicOp, Op, RealFn};
 pub use operand::{Address, BitLoc, CmpOp, CmpType, Contact, Loc, Operand};
 pub use uses::{Access, OperandUse, Uses};
 pub use verify::{MAX_STACK_DEPTH, OpRule, PouRule, VerifyError, verify};
@@ -68,6 +68,11 @@ impl Program {
         &self.pous[id.index()]
     }
 
+    /// Whether the program has interrupt routines (then the scan runs the event phases).
+    pub fn has_interrupts(&self) -> bool {
+        self.pous.iter().any(|p| p.kind.interrupt().is_some())
+    }
+
     /// Total number of IR ops over all POUs.
     pub fn op_count(&self) -> usize {
         self.pous.iter().map(|p| p.ops.len()).sum()
@@ -81,11 +86,22 @@ pub enum PouKind {
     Main,
     /// A subroutine with its number (`SBR0`).
     Subroutine(u16),
-    /// An interrupt routine with its number; parsed and checked, never executed (spec P8).
+    /// An interrupt routine with its number; runs when an event attached to it is serviced
+    /// (s7-200-more §3.6), never by CALL.
     Interrupt(u16),
 }
 
-/// A program organisation unit: the main program or a subroutine.
+impl PouKind {
+    /// The interrupt routine's number, for an interrupt routine.
+    pub fn interrupt(self) -> Option<u16> {
+        match self {
+            PouKind::Interrupt(n) => Some(n),
+            PouKind::Main | PouKind::Subroutine(_) => None,
+        }
+    }
+}
+
+/// A program organisation unit: the main program, a subroutine or an interrupt routine.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pou {
     /// Symbolic name (`MAIN`, `Motor_Logic`, `SBR0`).

@@ -124,6 +124,8 @@ pub enum Op {
     Stop,
     /// If PF: reset the loop budget.
     Wdr,
+    /// An interrupt instruction (s7-200-more §3.4): runs when PF, has no ENO.
+    Interrupt(IntOp),
     /// Nothing (`NOP`, kept so that op indices match source lines).
     Nop,
     /// `FOR INDX, INIT, FINAL` (spec §4.14).
@@ -193,6 +195,45 @@ pub enum Op {
     },
     /// An Omron data, compare or arithmetic box: runs when PF.
     Omron(OmronBox),
+}
+
+/// An interrupt instruction (s7-200-more §3.4). `RETI`/`CRETI` are [`Op::Return`] in an
+/// interrupt routine.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum IntOp {
+    /// `ATCH INT, EVNT`: attach interrupt routine `routine` (an interrupt POU) to `event`.
+    Attach {
+        /// The routine.
+        routine: PouId,
+        /// The event number.
+        event: u8,
+    },
+    /// `DTCH EVNT`: detach the event and drop its queued entries.
+    Detach {
+        /// The event number.
+        event: u8,
+    },
+    /// `ENI`: enable interrupts.
+    Enable,
+    /// `DISI`: disable interrupts (events keep being queued).
+    Disable,
+    /// `CEVNT EVNT`: drop the queued entries of the event.
+    ClearEvent {
+        /// The event number.
+        event: u8,
+    },
+}
+
+impl IntOp {
+    /// The event number the op names, if any.
+    pub fn event(self) -> Option<u8> {
+        match self {
+            IntOp::Attach { event, .. } | IntOp::Detach { event } | IntOp::ClearEvent { event } => {
+                Some(event)
+            }
+            IntOp::Enable | IntOp::Disable => None,
+        }
+    }
 }
 
 /// Integer arithmetic operation.

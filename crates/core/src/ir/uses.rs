@@ -254,6 +254,7 @@ impl Op {
             | Op::End { .. }
             | Op::Stop
             | Op::Wdr
+            | Op::Interrupt(_)
             | Op::Nop
             | Op::Next { .. }
             | Op::ScrBegin { .. }

@@ -6,7 +6,10 @@
 //! The rules: there is a main POU; the logic stack has 1 to [`MAX_STACK_DEPTH`] levels; every
 //! POU has one source location per op and fewer than 2^31 ops; every label position holds its
 //! `LBL`; jumps name known labels and never enter a FOR body from outside; calls name a
-//! subroutine (never the main program) and a call's formal parameters lie in L memory; FOR and NEXT name each other and nest properly; CSCRE
+//! subroutine (never the main program or an interrupt routine) and a call's formal parameters
+//! lie in L memory; interrupt routines have distinct numbers up to [`MAX_ROUTINE`] on a profile
+//! with interrupts, ATCH names one of them, and every event an interrupt op names is one of the
+//! profile's; FOR and NEXT name each other and nest properly; CSCRE
 //! names a SCRE; edge slots exist, and the program has no more of them than its profile allows;
 //! every direct location an op names ([`Op::operand_uses`], [`Op::bit_uses`]) lies inside its
 //! area of the profile's layout, no op writes a constant, and every timer and counter an op runs
@@ -14,8 +17,9 @@
 
 use super::facts::loop_entered_by;
 use super::uses::Access;
-use super::{BoxOp, IndexOffset, OmronRef, Op, Operand, Pou, Program};
+use super::{BoxOp, IndexOffset, IntOp, OmronRef, Op, Operand, Pou, PouKind, Program};
 use crate::area::{Area, Width};
+use crate::interrupt::MAX_ROUTINE;
 use crate::layout::Layout;
 use crate::profile::Family;
 use std::fmt;
@@ -65,6 +69,9 @@ pub enum PouRule {
     LocsLength,
     /// 2^31 ops or more.
     TooLong,
+    /// An interrupt routine whose number is above [`MAX_ROUTINE`] or used twice, or on a
+    /// profile without interrupts.
+    InterruptNumber,
 }
 
 /// A rule of one op.
@@ -79,10 +86,14 @@ pub enum OpRule {
         /// The loop's FOR.
         head: usize,
     },
-    /// A call names no POU, or the main program.
+    /// A call names no POU, the main program or an interrupt routine.
     BadCall,
     /// A call's formal parameter is not a location of area `L`.
     FormalNotLocal,
+    /// ATCH names a POU that is not an interrupt routine.
+    BadRoutine,
+    /// An interrupt op names an event the profile does not have.
+    UnknownEvent(u8),
     /// FOR does not name a NEXT that names it back, after it.
     ForWithoutNext,
     /// NEXT does not name a FOR that names it back, before it.
@@ -134,6 +145,9 @@ impl fmt::Display for VerifyError {
                 let what = match rule {
                     PouRule::LocsLength => "one source location per op",
                     PouRule::TooLong => "fewer than 2^31 ops",
+                    PouRule::InterruptNumber => {
+                        "a distinct interrupt number on a profile with interrupts"
+                    }
                 };
                 write!(f, "pou{pou} must have {what}")
             }
@@ -145,10 +159,16 @@ impl fmt::Display for VerifyError {
                     OpRule::JumpIntoLoop { head } => {
                         write!(f, "jump into the body of the FOR loop at op{head}")
                     }
-                    OpRule::BadCall => f.write_str("call of an unknown POU or of main"),
+                    OpRule::BadCall => {
+                        f.write_str("call of an unknown POU, of main or of an interrupt routine")
+                    }
                     OpRule::FormalNotLocal => {
                         f.write_str("a call's formal parameter is not in L memory")
                     }
+                    OpRule::BadRoutine => {
+                        f.write_str("ATCH of a POU that is not an interrupt routine")
+                    }
+                    OpRule::UnknownEvent(e) => write!(f, "event {e} is not one of the profile's"),
                     OpRule::ForWithoutNext => f.write_str("FOR without its NEXT"),
                     OpRule::NextWithoutFor => f.write_str("NEXT without its FOR"),
                     OpRule::LoopsOverlap => f.write_str("FOR loops overlap without nesting"),
@@ -189,7 +209,17 @@ pub fn verify(program: &Program) -> Result<(), VerifyError> {
     }
     let layout = Layout::of(program.profile);
     declarations(program, &layout)?;
+    let interrupts = program.profile.profile().interrupts;
+    let mut numbers = std::collections::HashSet::new();
     for (p, pou) in program.pous.iter().enumerate() {
+        if let Some(n) = pou.kind.interrupt()
+            && (n > MAX_ROUTINE || !numbers.insert(n) || !interrupts.any())
+        {
+            return Err(VerifyError::Pou {
+                pou: p,
+                rule: PouRule::InterruptNumber,
+            });
+        }
         verify_pou(program, &layout, pou).map_err(|e| match e {
             Err(rule) => VerifyError::Pou { pou: p, rule },
             Ok((op, rule)) => VerifyError::Op { pou: p, op, rule },
@@ -222,14 +252,25 @@ fn verify_pou(
         let bad = |rule| Err(Ok((i, rule)));
         match op {
             Op::Jump(l) if l.index() >= pou.labels.len() => return bad(OpRule::UnknownLabel),
-            _ if op
-                .callee()
-                .is_some_and(|c| c.index() >= program.pous.len() || c.index() == 0) =>
+            _ if op.callee().is_some_and(|c| {
+                !matches!(
+                    program.pous.get(c.index()).map(|p| p.kind),
+                    Some(PouKind::Subroutine(_))
+                )
+            }) =>
             {
                 return bad(OpRule::BadCall);
             }
             Op::CallArgs(c) if !c.args.iter().all(super::Arg::formal_is_local) => {
                 return bad(OpRule::FormalNotLocal);
+            }
+            Op::Interrupt(IntOp::Attach { routine, .. })
+                if !matches!(
+                    program.pous.get(routine.index()).map(|p| p.kind),
+                    Some(PouKind::Interrupt(_))
+                ) =>
+            {
+                return bad(OpRule::BadRoutine);
             }
             Op::For { next, .. } => {
                 let paired = matches!(pou.ops.get(next.index()), Some(Op::Next { head }) if head.index() == i);
@@ -369,11 +410,18 @@ fn locations(program: &Program, layout: &Layout, op: &Op) -> Result<(), OpRule> 
         | Op::ScrEnd
         | Op::Timer { .. }
         | Op::Counter { .. }
+        | Op::Interrupt(_)
         | Op::Box(_) => Some(Family::S7),
         _ => None,
     };
     if op_family.is_some_and(|f| f != family) {
         return Err(OpRule::WrongFamily);
+    }
+    if let Op::Interrupt(i) = op
+        && let Some(e) = i.event()
+        && !layout.profile.profile().interrupts.has(e)
+    {
+        return Err(OpRule::UnknownEvent(e));
     }
     let declared = match op {
         Op::OmronTimer { timer, .. } => {
@@ -531,6 +579,29 @@ mod tests {
         assert_eq!(op_rule(&p), Some((0, OpRule::BadCall)));
         let p = program(vec![Op::Nop], vec![0]);
         assert_eq!(op_rule(&p), Some((0, OpRule::LabelPosition)));
+        let attach = |routine, event| Op::Interrupt(IntOp::Attach { routine, event });
+        let mut p = program(vec![attach(crate::PouId(1), 10)], vec![]);
+        let mut int = p.pous[0].clone();
+        int.kind = PouKind::Interrupt(3);
+        int.ops = vec![Op::Nop];
+        int.locs.truncate(1);
+        p.pous.push(int);
+        assert_eq!(op_rule(&p), None);
+        p.pous[0].ops[0] = attach(crate::PouId(1), 21); // A5: no T32 event
+        assert_eq!(op_rule(&p), Some((0, OpRule::UnknownEvent(21))));
+        p.pous[0].ops[0] = Op::Call(crate::PouId(1));
+        assert_eq!(op_rule(&p), Some((0, OpRule::BadCall)));
+        p.pous[0].ops[0] = attach(crate::PouId(0), 10);
+        assert_eq!(op_rule(&p), Some((0, OpRule::BadRoutine)));
+        p.pous[0].ops[0] = Op::Nop;
+        p.pous.push(p.pous[1].clone());
+        assert_eq!(
+            verify(&p),
+            Err(VerifyError::Pou {
+                pou: 2,
+                rule: PouRule::InterruptNumber
+            })
+        );
         let mut p = program(vec![], vec![]);
         p.logic_stack_depth = 17;
         assert_eq!(verify(&p), Err(VerifyError::StackDepth(17)));

@@ -9,7 +9,7 @@ use crate::area::Width;
 use crate::index::{CounterId, EdgeSlot, FileId, LabelId, OpIdx, PouId, TimerId};
 use crate::ir::{
     Arg, ArgDir, ArgValue, ArithOp, BoxOp, CallArgs, CmpOp, CmpType, Contact, Conversion,
-    CounterDecl, CounterKind, EdgeDecl, LogicOp, OmronArith, OmronBox, OmronCounterKind,
+    CounterDecl, CounterKind, EdgeDecl, IntOp, LogicOp, OmronArith, OmronBox, OmronCounterKind,
     OmronTimerKind, Op, Operand, Pou, PouKind, Program, RealFn, TimerDecl, TimerKind,
 };
 use crate::profile::{ProfileId, Resolution};
@@ -332,6 +332,7 @@ fn op(line: &mut Line<'_>) -> Result<Op> {
         },
         "stop" => Op::Stop,
         "wdr" => Op::Wdr,
+        "interrupt" => Op::Interrupt(int_op(line)?),
         "nop" => Op::Nop,
         "for" => Op::For {
             index: line.field("index")?.operand()?,
@@ -430,6 +431,26 @@ fn call_args(line: &mut Line<'_>) -> Result<Op> {
         args.push(Arg { dir, value });
     }
     Ok(Op::CallArgs(Box::new(CallArgs { callee, args })))
+}
+
+fn int_op(line: &mut Line<'_>) -> Result<IntOp> {
+    let key = line.word("an interrupt op")?;
+    let event = |line: &mut Line<'_>| line.field("event")?.number("event number");
+    Ok(match key.text {
+        "attach" => IntOp::Attach {
+            routine: PouId(line.field("routine")?.index(PouId(0), "POU index")?),
+            event: event(line)?,
+        },
+        "detach" => IntOp::Detach {
+            event: event(line)?,
+        },
+        "enable" => IntOp::Enable,
+        "disable" => IntOp::Disable,
+        "clear" => IntOp::ClearEvent {
+            event: event(line)?,
+        },
+        _ => return Err(key.unknown("interrupt op")),
+    })
 }
 
 fn op_index(w: Word<'_>) -> Result<OpIdx> {

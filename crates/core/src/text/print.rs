@@ -4,8 +4,8 @@
 use super::{MAGIC, VERSION};
 use crate::index::{EdgeSlot, FileId, LabelId, OpIdx, PouId};
 use crate::ir::{
-    ArgValue, BitLoc, BoxOp, Contact, IndexOffset, Loc, OmronBox, OmronRef, Op, Operand, Pou,
-    PouKind, Program, SrcLoc,
+    ArgValue, BitLoc, BoxOp, Contact, IndexOffset, IntOp, Loc, OmronBox, OmronRef, Op, Operand,
+    Pou, PouKind, Program, SrcLoc,
 };
 use std::fmt::{self, Write as _};
 
@@ -166,6 +166,15 @@ fn write_op(out: &mut String, op: &Op) -> fmt::Result {
         Op::End { conditional } => write!(out, "end conditional={}", Flag(*conditional)),
         Op::Stop => out.write_str("stop"),
         Op::Wdr => out.write_str("wdr"),
+        Op::Interrupt(i) => match i {
+            IntOp::Attach { routine, event } => {
+                write!(out, "interrupt attach routine={routine} event={event}")
+            }
+            IntOp::Detach { event } => write!(out, "interrupt detach event={event}"),
+            IntOp::Enable => out.write_str("interrupt enable"),
+            IntOp::Disable => out.write_str("interrupt disable"),
+            IntOp::ClearEvent { event } => write!(out, "interrupt clear event={event}"),
+        },
         Op::Nop => out.write_str("nop"),
         Op::For {
             index,

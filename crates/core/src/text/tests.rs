@@ -7,8 +7,8 @@ use crate::area::{Area, Width};
 use crate::index::{CounterId, EdgeSlot, FileId, LabelId, OpIdx, PouId, TimerId};
 use crate::ir::{
     Arg, ArgDir, ArgValue, ArithOp, BitLoc, BoxOp, CallArgs, CmpOp, CmpType, Contact, Conversion,
-    CounterDecl, CounterKind, EdgeDecl, Loc, LogicOp, Op, Operand, Pou, PouKind, Program, RealFn,
-    SrcLoc, TimerDecl, TimerKind,
+    CounterDecl, CounterKind, EdgeDecl, IntOp, Loc, LogicOp, Op, Operand, Pou, PouKind, Program,
+    RealFn, SrcLoc, TimerDecl, TimerKind,
 };
 use crate::profile::{ProfileId, Resolution};
 
@@ -158,6 +158,14 @@ fn every_op() -> Vec<Op> {
         Op::End { conditional: false },
         Op::Stop,
         Op::Wdr,
+        Op::Interrupt(IntOp::Attach {
+            routine: PouId(2),
+            event: 10,
+        }),
+        Op::Interrupt(IntOp::Detach { event: 0 }),
+        Op::Interrupt(IntOp::Enable),
+        Op::Interrupt(IntOp::Disable),
+        Op::Interrupt(IntOp::ClearEvent { event: 255 }),
         Op::Nop,
         Op::For {
             index: mem(Area::V, 0),

@@ -11,7 +11,7 @@
 use super::Lower;
 use super::mem::{OnFail, Place};
 use super::value::B;
-use cranelift_codegen::ir::{InstBuilder, Value, condcodes::IntCC, types::I32};
+use cranelift_codegen::ir::{InstBuilder, Value, types::I32};
 use stljit_core::ir::{ArgValue, BitLoc, CallArgs, Operand};
 use stljit_core::{Area, ErrorCode};
 
@@ -36,10 +36,7 @@ impl Lower<'_, '_> {
         }
         let gate_before = self.block.gate;
         self.run_failing(pf, true, |s, fail| {
-            let max = i64::from(s.env.layout.profile.profile().max_call_depth);
-            let too_deep =
-                s.b.ins()
-                    .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, s.func.call_depth, max);
+            let too_deep = s.call_too_deep();
             s.fail_if(too_deep, fail, ErrorCode::CallNesting as u16);
             let actuals: Vec<Actual> = call
                 .args

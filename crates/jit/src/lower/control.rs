@@ -1,4 +1,5 @@
-//! Program control: JMP/LBL, CALL/RET/CRET, END/MEND, STOP, WDR, FOR/NEXT and SCR segments.
+//! Program control: JMP/LBL, CALL/RET/CRET, END/MEND, STOP, WDR, FOR/NEXT, SCR segments and
+//! the interrupt instructions.
 //!
 //! The loop budget is counted exactly at the interpreter's events (a taken backward JMP, a NEXT
 //! that loops back) with the runtime's rule (`scan::loop_tick`, inlined: saturating increment,
@@ -9,14 +10,15 @@ use super::mem::OnFail;
 use super::value::B;
 use crate::helpers::Helper;
 use cranelift_codegen::ir::{
-    Block, InstBuilder,
+    Block, InstBuilder, Value,
     condcodes::IntCC,
     types::{I16, I32},
 };
 use cranelift_module::Module;
-use stljit_core::ir::{BitLoc, Op, Operand};
-use stljit_core::layout::Sched;
-use stljit_core::{ErrorCode, FatalCode, LabelId, PouId, Width};
+use stljit_core::ir::{BitLoc, IntOp, Op, Operand, PouKind};
+use stljit_core::layout::{ISR_FRAME, Sched};
+use stljit_core::{ErrorCode, FatalCode, LabelId, PouId, ScanStatus, Width};
+use stljit_runtime::interrupt::Action;
 
 impl Lower<'_, '_> {
     /// One loop-budget event; takes the Watchdog fatal exit when the budget is exhausted.
@@ -155,16 +157,69 @@ impl Lower<'_, '_> {
         self.return_if(pf);
     }
 
-    /// `STOP`: requests STOP if PF.
+    /// `STOP`: requests STOP if PF. In an interrupt routine's chain (frame `ISR_FRAME` and
+    /// after: the routine itself, or a subroutine of a program with interrupt routines at such
+    /// a depth) it also ends the routine at once, returning `Stopped` through every caller
+    /// (s7-200-more §3.4; the interpreter's `Step::Stop`).
     pub(crate) fn stop(&mut self) {
         let pf = self.pf();
-        if pf != B::K(false) {
-            let a = self.sched(Sched::STOP_REQ);
-            let old = self.byte(a);
-            let p = pf.to01(&mut self.b);
-            let new = self.b.ins().bor(old, p);
-            self.set_byte(a, new);
+        if pf == B::K(false) {
+            return;
         }
+        let a = self.sched(Sched::STOP_REQ);
+        let old = self.byte(a);
+        let p = pf.to01(&mut self.b);
+        let new = self.b.ins().bor(old, p);
+        self.set_byte(a, new);
+        let kind = self.env.prog.pou(self.func.pou).kind;
+        let in_chain = match kind {
+            PouKind::Main => return,
+            PouKind::Interrupt(_) => pf,
+            PouKind::Subroutine(_) if self.env.prog.has_interrupts() => {
+                let deep = self.b.ins().icmp_imm_s(
+                    IntCC::SignedGreaterThanOrEqual,
+                    self.func.call_depth,
+                    i64::from(ISR_FRAME),
+                );
+                let deep = self.b.ins().uextend(I32, deep);
+                pf.and(&mut self.b, B::Bit { v: deep, pos: 0 })
+            }
+            PouKind::Subroutine(_) => return,
+        };
+        let stopped = |s: &mut Self| {
+            let st = s.iconst(I32, ScanStatus::Stopped as i64);
+            s.return_status(st);
+        };
+        match in_chain {
+            B::K(true) => {
+                stopped(self);
+                self.block.open = false;
+            }
+            _ => {
+                let c = in_chain.cond(&mut self.b);
+                self.side_exit(c, false, stopped);
+            }
+        }
+    }
+
+    /// An interrupt instruction (ATCH, DTCH, ENI, DISI, CEVNT): the runtime's
+    /// `interrupt::execute` through its shim when PF; an error (ENI/DISI in a routine) is
+    /// recorded like any other.
+    pub(crate) fn interrupt(&mut self, op: IntOp) {
+        let pf = self.pf();
+        let Some(action) = Action::of(op, self.env.prog) else {
+            return;
+        };
+        let (kind, event, routine) = action.encode();
+        self.guarded(pf, |s| {
+            let args = [
+                s.iconst(I32, i64::from(kind)),
+                s.iconst(I32, i64::from(event)),
+                s.iconst(I32, i64::from(routine)),
+            ];
+            let st = s.call_helper(Helper::Interrupt, &args);
+            s.error_if_status(st);
+        });
     }
 
     /// `WDR`: restarts the loop budget if PF.
@@ -258,12 +313,9 @@ impl Lower<'_, '_> {
         if pf == B::K(false) {
             return;
         }
-        let max = i64::from(self.env.layout.profile.profile().max_call_depth);
         let gate_before = self.block.gate;
         self.guarded(pf, |s| {
-            let too_deep =
-                s.b.ins()
-                    .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, s.func.call_depth, max);
+            let too_deep = s.call_too_deep();
             s.diamond(
                 too_deep,
                 |s| s.record_error_k(ErrorCode::CallNesting),
@@ -273,8 +325,34 @@ impl Lower<'_, '_> {
         self.block.gate = self.gate_after_call(callee, gate_before);
     }
 
+    /// Whether a CALL here would nest deeper than the profile allows (`depth + 1 >
+    /// CpuProfile::deepest_frame(depth)`): one limit for the main program's chain, another
+    /// from `ISR_FRAME` on, which only a program with interrupt routines reaches.
+    pub(crate) fn call_too_deep(&mut self) -> Value {
+        let profile = self.env.layout.profile.profile();
+        let max = i64::from(profile.deepest_frame(0));
+        let depth = self.func.call_depth;
+        if !self.env.prog.has_interrupts() {
+            return self
+                .b
+                .ins()
+                .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, depth, max);
+        }
+        let isr_max = i64::from(profile.deepest_frame(ISR_FRAME));
+        let in_isr =
+            self.b
+                .ins()
+                .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, depth, i64::from(ISR_FRAME));
+        let (a, b) = (self.iconst(I32, isr_max), self.iconst(I32, max));
+        let limit = self.b.ins().select(in_isr, a, b);
+        self.b
+            .ins()
+            .icmp(IntCC::SignedGreaterThanOrEqual, depth, limit)
+    }
+
     /// Calls `callee` one frame deeper with a fresh stack, after forgetting the cache (the callee
-    /// may write anything); a fatal status ends this POU too.
+    /// may write anything); a fatal status (or `Stopped`, from an interrupt routine's chain)
+    /// ends this POU too.
     pub(crate) fn run_callee(&mut self, callee: PouId) {
         let fref = match self.func.pou_refs.get(&callee) {
             Some(f) => *f,

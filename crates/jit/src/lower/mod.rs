@@ -52,6 +52,9 @@ pub(crate) struct Baked {
     pub(crate) layout: i64,
     /// The program's boxed `runtime::scan::ScanPlan`, passed to the scan prologue shim.
     pub(crate) scan_plan: i64,
+    /// The program's boxed `runtime::ffi::NativeRoutines` (its compiled interrupt routines),
+    /// passed to the scan prologue shim; 0 for a program without interrupt routines.
+    pub(crate) routines: i64,
     /// A `u64` that counts executed ops (the instrumented build for `bench`).
     pub(crate) op_counter: Option<i64>,
 }
@@ -606,6 +609,7 @@ impl<'e, 'f> Lower<'e, 'f> {
             Op::Return { conditional } | Op::End { conditional } => self.ret(conditional),
             Op::Stop => self.stop(),
             Op::Wdr => self.wdr(),
+            Op::Interrupt(i) => self.interrupt(i),
             Op::For {
                 ref index,
                 ref init,

@@ -14,7 +14,7 @@ use stljit_runtime::ffi::{CTL_GATE, FfiCode, fast_shims_apply, gate_word_fixed};
 
 impl Lower<'_, '_> {
     /// Records a non-zero runtime status as a non-fatal error (a diamond, rarely taken).
-    fn error_if_status(&mut self, status: Value) {
+    pub(crate) fn error_if_status(&mut self, status: Value) {
         let bad = self.b.ins().icmp_imm_s(IntCC::NotEqual, status, 0);
         self.diamond(bad, |s| s.record_error(status), |_| {});
     }

@@ -1,0 +1,348 @@
+//! Interrupt events as data (s7-200-more.md §3.1–§3.5): every event number with its queue
+//! group, its priority inside the group and its source, and what a CPU profile offers
+//! ([`InterruptProfile`]: its events, queue depths, the CALL depth below an interrupt routine).
+//!
+//! Nothing here runs: the event machinery (queues, attachments, schedules, the service loop)
+//! is `stljit_runtime::interrupt`, which reads these tables, and the S7 front end checks event
+//! numbers against [`InterruptProfile::has`].
+
+/// The three interrupt queues, highest priority first (§3.3: communication > discrete >
+/// timed). The discriminant is the group's index in [`EventGroup::ALL`] and the bit of its
+/// overflow flag in SMB4 (SM4.0–SM4.2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum EventGroup {
+    /// Serial communication: receive character, transmit complete, message complete.
+    Communication = 0,
+    /// Discrete I/O: input edges, pulse outputs, high-speed counters.
+    Discrete = 1,
+    /// Time based: timed interrupts 0/1 and the T32/T96 timer interrupts.
+    Timed = 2,
+}
+
+impl EventGroup {
+    /// Every group, in priority order.
+    pub const ALL: [EventGroup; 3] = [
+        EventGroup::Communication,
+        EventGroup::Discrete,
+        EventGroup::Timed,
+    ];
+
+    /// The group's index (its position in [`EventGroup::ALL`] and its SMB4 overflow bit).
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    /// A name for messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            EventGroup::Communication => "communication",
+            EventGroup::Discrete => "discrete",
+            EventGroup::Timed => "timed",
+        }
+    }
+}
+
+/// Where an event comes from; says which part of the simulation raises it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum EventSource {
+    /// An edge of a physical input bit, seen at a scan instant (§3.5.2).
+    InputEdge {
+        /// The input byte (`I0.3` is byte 0).
+        byte: u32,
+        /// The bit in it.
+        bit: u8,
+        /// A 0→1 edge (else 1→0).
+        rising: bool,
+    },
+    /// Timed interrupt `channel` (0 or 1), its interval in ms captured from SMB
+    /// [`TIMED_INTERVAL_SMB`]`[channel]` when the event is attached (§3.5.1).
+    Timed {
+        /// 0 or 1.
+        channel: u8,
+    },
+    /// A 1-ms timer reaching its preset, `CT = PT` (§3.5.3).
+    TimerReached {
+        /// The timer number (T32, T96).
+        timer: u16,
+    },
+    /// A high-speed counter (§8.5).
+    HighSpeedCounter,
+    /// A pulse output completing (§9).
+    PulseOutput,
+    /// A serial port (§10).
+    Communication,
+}
+
+impl EventSource {
+    /// Whether the simulator raises events of this source. High-speed counters, pulse outputs
+    /// and communication are not simulated yet (their instructions are rejected as not
+    /// supported), so their events can be attached but never occur.
+    pub fn simulated(self) -> bool {
+        matches!(
+            self,
+            EventSource::InputEdge { .. }
+                | EventSource::Timed { .. }
+                | EventSource::TimerReached { .. }
+        )
+    }
+}
+
+/// One interrupt event.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct EventInfo {
+    /// The event number (the `EVNT` operand of ATCH/DTCH/CEVNT).
+    pub number: u8,
+    /// Its queue.
+    pub group: EventGroup,
+    /// Its priority inside the group (0 = highest).
+    pub pri: u8,
+    /// Where it comes from.
+    pub source: EventSource,
+    /// What it is, for messages.
+    pub what: &'static str,
+}
+
+/// The SMB bytes holding the intervals of timed interrupts 0 and 1 (SMB34, SMB35).
+pub const TIMED_INTERVAL_SMB: [u32; 2] = [34, 35];
+
+/// The highest interrupt routine number (INT0–INT127 on every S7 CPU, §0.2).
+pub const MAX_ROUTINE: u16 = 127;
+
+/// Attachment slots: events 0 … `EVENT_SLOTS - 1` (the image's attach table, one byte each).
+pub const EVENT_SLOTS: usize = 64;
+
+const fn ev(
+    number: u8,
+    group: EventGroup,
+    pri: u8,
+    source: EventSource,
+    what: &'static str,
+) -> EventInfo {
+    EventInfo {
+        number,
+        group,
+        pri,
+        source,
+        what,
+    }
+}
+
+const fn edge(number: u8, pri: u8, bit: u8, rising: bool, what: &'static str) -> EventInfo {
+    ev(
+        number,
+        EventGroup::Discrete,
+        pri,
+        EventSource::InputEdge {
+            byte: if bit < 8 { 0 } else { 7 },
+            bit: bit % 8,
+            rising,
+        },
+        what,
+    )
+}
+
+use EventGroup::{Communication as COMM, Discrete as IO, Timed as TIME};
+use EventSource::{Communication as PORT, HighSpeedCounter as HSC, PulseOutput as PLS};
+
+/// Every event of every S7 profile: the S7-200 table 6-50 (§3.1) and the S7-200 SMART
+/// additions 34–38 (§3.2, in the discrete group after the S7-200's entries, ascending). Which
+/// of them a CPU has is its [`InterruptProfile::events`]. The SMART's signal-board inputs
+/// I7.0/I7.1 are bits 8 and 9 of [`edge`]'s numbering (byte 7).
+pub static EVENTS: &[EventInfo] = &[
+    edge(0, 2, 0, true, "I0.0 rising edge"),
+    edge(1, 6, 0, false, "I0.0 falling edge"),
+    edge(2, 3, 1, true, "I0.1 rising edge"),
+    edge(3, 7, 1, false, "I0.1 falling edge"),
+    edge(4, 4, 2, true, "I0.2 rising edge"),
+    edge(5, 8, 2, false, "I0.2 falling edge"),
+    edge(6, 5, 3, true, "I0.3 rising edge"),
+    edge(7, 9, 3, false, "I0.3 falling edge"),
+    ev(8, COMM, 0, PORT, "port 0 receive character"),
+    ev(9, COMM, 0, PORT, "port 0 transmit complete"),
+    ev(
+        10,
+        TIME,
+        0,
+        EventSource::Timed { channel: 0 },
+        "timed interrupt 0 (SMB34)",
+    ),
+    ev(
+        11,
+        TIME,
+        1,
+        EventSource::Timed { channel: 1 },
+        "timed interrupt 1 (SMB35)",
+    ),
+    ev(12, IO, 10, HSC, "HSC0 CV = PV"),
+    ev(13, IO, 13, HSC, "HSC1 CV = PV"),
+    ev(14, IO, 14, HSC, "HSC1 direction changed"),
+    ev(15, IO, 15, HSC, "HSC1 external reset"),
+    ev(16, IO, 16, HSC, "HSC2 CV = PV"),
+    ev(17, IO, 17, HSC, "HSC2 direction changed"),
+    ev(18, IO, 18, HSC, "HSC2 external reset"),
+    ev(19, IO, 0, PLS, "PLS0 (Q0.0) pulse count complete"),
+    ev(20, IO, 1, PLS, "PLS1 (Q0.1) pulse count complete"),
+    ev(
+        21,
+        TIME,
+        2,
+        EventSource::TimerReached { timer: 32 },
+        "timer T32 CT = PT",
+    ),
+    ev(
+        22,
+        TIME,
+        3,
+        EventSource::TimerReached { timer: 96 },
+        "timer T96 CT = PT",
+    ),
+    ev(23, COMM, 0, PORT, "port 0 receive message complete"),
+    ev(24, COMM, 1, PORT, "port 1 receive message complete"),
+    ev(25, COMM, 1, PORT, "port 1 receive character"),
+    ev(26, COMM, 1, PORT, "port 1 transmit complete"),
+    ev(27, IO, 11, HSC, "HSC0 direction changed"),
+    ev(28, IO, 12, HSC, "HSC0 external reset"),
+    ev(29, IO, 20, HSC, "HSC4 CV = PV"),
+    ev(30, IO, 21, HSC, "HSC4 direction changed"),
+    ev(31, IO, 22, HSC, "HSC4 external reset"),
+    ev(32, IO, 19, HSC, "HSC3 CV = PV"),
+    ev(33, IO, 23, HSC, "HSC5 CV = PV"),
+    ev(34, IO, 24, PLS, "PLS2 (Q0.3) pulse count complete"),
+    edge(35, 25, 8, true, "I7.0 rising edge"),
+    edge(36, 26, 8, false, "I7.0 falling edge"),
+    edge(37, 27, 9, true, "I7.1 rising edge"),
+    edge(38, 28, 9, false, "I7.1 falling edge"),
+];
+
+/// The event with number `n`, whatever the profile.
+pub fn event(n: u8) -> Option<&'static EventInfo> {
+    EVENTS.iter().find(|e| e.number == n)
+}
+
+/// What a CPU offers for interrupts.
+#[derive(Debug)]
+pub struct InterruptProfile {
+    /// The event numbers the CPU has, ascending (empty: no interrupts at all).
+    pub events: &'static [u8],
+    /// Entries each queue holds, by [`EventGroup::index`] (§3.3).
+    pub queue_depth: [u8; 3],
+    /// CALL nesting levels an interrupt routine may use (§1.6).
+    pub isr_call_depth: u8,
+}
+
+impl InterruptProfile {
+    /// No interrupts (the Omron profiles).
+    pub const NONE: InterruptProfile = InterruptProfile {
+        events: &[],
+        queue_depth: [0; 3],
+        isr_call_depth: 0,
+    };
+
+    /// Whether the CPU has event `n`.
+    pub fn has(&self, n: u8) -> bool {
+        self.events.contains(&n)
+    }
+
+    /// Whether the CPU has interrupts at all.
+    pub fn any(&self) -> bool {
+        !self.events.is_empty()
+    }
+
+    /// The CPU's events with their data, ascending.
+    pub fn infos(&self) -> impl Iterator<Item = &'static EventInfo> + '_ {
+        self.events.iter().filter_map(|&n| event(n))
+    }
+
+    /// Queue slots in all: the image holds one entry per slot.
+    pub fn slots(&self) -> u32 {
+        self.queue_depth.iter().map(|&d| u32::from(d)).sum()
+    }
+
+    /// The first slot of `group`'s queue and its depth.
+    pub fn queue(&self, group: EventGroup) -> (u32, u32) {
+        let g = group.index();
+        let first = self.queue_depth[..g].iter().map(|&d| u32::from(d)).sum();
+        (first, u32::from(self.queue_depth[g]))
+    }
+}
+
+/// The A5 (Appendix A, `a5` profile default [design]): events 0–15, 23, 25–28; no T32/T96
+/// events (its timer table differs). Queue depths as the S7-200 CPU 221–224 [design: the seed
+/// is silent]; one CALL level from a routine, as the classic S7-200.
+pub static A5_INTERRUPTS: InterruptProfile = InterruptProfile {
+    events: &[
+        0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 23, 25, 26, 27, 28,
+    ],
+    queue_depth: [4, 16, 8],
+    isr_call_depth: 1,
+};
+
+/// The S7-200 CPU 226: events 0–33, a communication queue of 8 (§3.3 [S7-200 help]), one CALL
+/// level from a routine [S7-200 manual].
+pub static S7_200_INTERRUPTS: InterruptProfile = InterruptProfile {
+    events: &[
+        0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24,
+        25, 26, 27, 28, 29, 30, 31, 32, 33,
+    ],
+    queue_depth: [8, 16, 8],
+    isr_call_depth: 1,
+};
+
+/// The S7-200 SMART (§3.2 [SMART manual, recalled; uncertain I1]): events 0–13 and 16–38
+/// (14, 15 reserved; 29–33 for HSC3–HSC5, which the profile has; 34 PLS2; 35–38 the signal
+/// board's I7.0/I7.1 edges), the queue depths of all SMART CPUs, four CALL levels from a
+/// routine [SMART manual 7.10.3].
+pub static SMART_INTERRUPTS: InterruptProfile = InterruptProfile {
+    events: &[
+        0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26,
+        27, 28, 29, 30, 31, 32, 33, 34, 35, 36, 37, 38,
+    ],
+    queue_depth: [4, 16, 8],
+    isr_call_depth: 4,
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_unique_and_priorities_distinct_within_a_group() {
+        for (i, e) in EVENTS.iter().enumerate() {
+            assert!(usize::from(e.number) < EVENT_SLOTS);
+            for o in &EVENTS[..i] {
+                assert_ne!(o.number, e.number, "event {} twice", e.number);
+                // Port 0's events share priority 0, port 1's priority 1 (§3.1).
+                if o.group == e.group && o.group != EventGroup::Communication {
+                    assert_ne!(o.pri, e.pri, "events {} and {}", o.number, e.number);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn profiles_list_known_events_ascending() {
+        for p in [&A5_INTERRUPTS, &S7_200_INTERRUPTS, &SMART_INTERRUPTS] {
+            assert!(p.events.windows(2).all(|w| w[0] < w[1]));
+            assert_eq!(p.infos().count(), p.events.len());
+        }
+        assert!(!A5_INTERRUPTS.has(21) && !A5_INTERRUPTS.has(22));
+        assert!(S7_200_INTERRUPTS.has(21));
+        assert_eq!(S7_200_INTERRUPTS.queue(EventGroup::Timed), (24, 8));
+        assert_eq!(S7_200_INTERRUPTS.slots(), 32);
+        assert!(!SMART_INTERRUPTS.has(14) && SMART_INTERRUPTS.has(38));
+    }
+
+    #[test]
+    fn the_manual_order_of_the_discrete_group() {
+        // §3.1: PLS0, PLS1, then the rising edges I0.0 … I0.3, then the falling ones.
+        let order: Vec<u8> = {
+            let mut d: Vec<_> = EVENTS
+                .iter()
+                .filter(|e| e.group == EventGroup::Discrete)
+                .collect();
+            d.sort_by_key(|e| e.pri);
+            d.iter().take(10).map(|e| e.number).collect()
+        };
+        assert_eq!(order, [19, 20, 0, 2, 4, 6, 1, 3, 5, 7]);
+    }
+}

@@ -1,0 +1,182 @@
+//! The event phases and the service loop (s7-200-more §3.6.3, §3.6.4), and [`Isr`], the one
+//! thing an engine supplies: running a routine's body.
+
+use super::sources::{self, HAPPENINGS};
+use super::{EVENT_PHASE, attached, queue, set, set_now};
+use crate::{mem, scan};
+use stljit_core::layout::{IntState, Layout, Sched};
+use stljit_core::{Area, FatalCode, PouId, ScanStatus};
+
+/// Runs interrupt routine bodies: the engine-specific part of the machinery. The interpreter
+/// interprets the routine's POU; the JIT calls its compiled function.
+pub trait Isr {
+    /// Runs interrupt routine `pou` to its end on the image: in L frame
+    /// [`ISR_FRAME`](stljit_core::layout::ISR_FRAME) (its
+    /// calls in the frames after it, with the profile's depth), with a zero logic stack and its
+    /// own FOR stack. Returns `Ok` when the routine ended (RETI, CRETI, its last op),
+    /// `Stopped` when a STOP ended it (and the routine chain) at once, `Fatal` when a fatal
+    /// error aborted it (recorded in the image). The entry and exit context (gate, ENO, saved
+    /// registers) is the machinery's.
+    fn run(&mut self, img: &mut [u8], layout: &Layout, pou: PouId) -> ScanStatus;
+}
+
+/// An engine without interrupt routines: every run returns at once.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoIsr;
+
+impl Isr for NoIsr {
+    fn run(&mut self, _: &mut [u8], _: &Layout, _: PouId) -> ScanStatus {
+        ScanStatus::Ok
+    }
+}
+
+/// An event phase ended in a fatal error (recorded in the image): the scan is aborted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PhaseFatal;
+
+/// The routines of a program by interrupt number, and the engine that runs them.
+struct Service<'a> {
+    routines: &'a [Option<PouId>],
+    isr: &'a mut dyn Isr,
+}
+
+/// One loop-budget event of the machinery itself (a happening, a routine run).
+fn budget(img: &mut [u8], layout: &Layout) -> Result<(), PhaseFatal> {
+    if scan::loop_tick(img, layout) {
+        Ok(())
+    } else {
+        scan::record_fatal(img, layout, FatalCode::Watchdog, EVENT_PHASE, 0);
+        Err(PhaseFatal)
+    }
+}
+
+/// Exchanges the physical inputs with those of the last scan instant (`PREV_IN`).
+fn swap_inputs(img: &mut [u8], layout: &Layout) {
+    let n = layout.area_size(Area::I) as usize;
+    let (a, b) = (
+        layout.phys_in as usize,
+        layout.int_state(IntState::PREV_IN) as usize,
+    );
+    if a + n <= img.len() && b + n <= img.len() && (a + n <= b || b + n <= a) {
+        for i in 0..n {
+            img.swap(a + i, b + i);
+        }
+    }
+}
+
+/// Phase E1 (§3.6.3 `run_interval(Ta, Tb)`) for the interval `(ta, tb]` in µs: the entries
+/// left queued are serviced at `ta` (after the T32/T96 poll of what the previous scan's main
+/// program did), then every happening due in the interval is applied in time order, each
+/// followed by a service run at its time. Routines see the physical inputs of the previous
+/// scan instant, as the harness already wrote this scan's.
+pub fn interval_phase(
+    img: &mut [u8],
+    layout: &Layout,
+    routines: &[Option<PouId>],
+    isr: &mut dyn Isr,
+    ta: u64,
+    tb: u64,
+) -> Result<(), PhaseFatal> {
+    let mut s = Service { routines, isr };
+    swap_inputs(img, layout);
+    let r = (|| {
+        sources::poll_timers(img, layout, ta);
+        s.service(img, layout, ta)?;
+        while let Some((tau, rank)) = sources::next_due(img, layout, tb) {
+            budget(img, layout)?;
+            HAPPENINGS[rank].apply(img, layout, tau);
+            s.service(img, layout, tau)?;
+        }
+        Ok(())
+    })();
+    swap_inputs(img, layout);
+    r
+}
+
+/// Phase E2 (§3.6.2 step 5) at the scan instant `tk` in µs, after the inputs are read and the
+/// timers refreshed: the instant sources raise their events, the queues are serviced at `tk`,
+/// and the main program runs "at" `tk`.
+pub fn instant_phase(
+    img: &mut [u8],
+    layout: &Layout,
+    routines: &[Option<PouId>],
+    isr: &mut dyn Isr,
+    tk: u64,
+) -> Result<(), PhaseFatal> {
+    let mut s = Service { routines, isr };
+    set_now(img, layout, tk);
+    sources::instant(img, layout, tk);
+    s.service(img, layout, tk)?;
+    set_now(img, layout, tk);
+    Ok(())
+}
+
+impl Service<'_> {
+    /// A service run at `tau` (§3.6.3 `service`): nothing while interrupts are disabled, a
+    /// routine runs or a STOP is pending; else the queued entry with the smallest key runs its
+    /// routine, until the queues are empty; then SM4.0–SM4.2 are cleared.
+    fn service(&mut self, img: &mut [u8], layout: &Layout, tau: u64) -> Result<(), PhaseFatal> {
+        let blocked = |img: &[u8]| {
+            super::get(img, layout, IntState::ENABLED) == 0
+                || super::get(img, layout, IntState::IN_ISR) != 0
+                || mem::sched_u8(img, layout, Sched::STOP_REQ) != 0
+        };
+        if blocked(img) {
+            return Ok(());
+        }
+        while let Some(e) = queue::pop_next(img, layout) {
+            let routine = attached(img, layout, e.event);
+            if let Some(n) = routine.checked_sub(1) {
+                self.run_isr(img, layout, usize::from(n), tau)?;
+            }
+            if blocked(img) {
+                return Ok(());
+            }
+        }
+        queue::clear_overflow(img, layout);
+        Ok(())
+    }
+
+    /// Runs interrupt routine `number` at `tau` (§3.6.4): the logic stack (the engine's),
+    /// AC0–AC3, ENO and SMB1 are saved and restored around it, the gate is open at entry and
+    /// after it; a STOP in it discards every queued entry; T32/T96 are polled after it.
+    fn run_isr(
+        &mut self,
+        img: &mut [u8],
+        layout: &Layout,
+        number: usize,
+        tau: u64,
+    ) -> Result<(), PhaseFatal> {
+        budget(img, layout)?;
+        let Some(pou) = self.routines.get(number).copied().flatten() else {
+            return Ok(());
+        };
+        // AC0–AC3: 16 bytes on every S7 profile.
+        let ac = layout.base(Area::AC);
+        let saved_ac: [u8; 16] = mem::get_array(img, ac);
+        let smb1 = layout.base(Area::SM) + 1;
+        let saved_smb1 = mem::get_u8(img, smb1);
+        let saved_eno = mem::sched_u8(img, layout, Sched::ENO);
+        set(img, layout, IntState::IN_ISR, 1);
+        set_now(img, layout, tau);
+        mem::set_sched_u8(img, layout, Sched::ENO, 0);
+        let (gate, open) = scan::GATE_OPEN;
+        mem::set_sched_u8(img, layout, gate, open);
+        let status = self.isr.run(img, layout, pou);
+        set(img, layout, IntState::IN_ISR, 0);
+        if status == ScanStatus::Fatal {
+            return Err(PhaseFatal);
+        }
+        if layout.area_size(Area::AC) == 16 {
+            mem::set_array(img, ac, saved_ac);
+        }
+        mem::set_u8(img, smb1, saved_smb1);
+        mem::set_sched_u8(img, layout, Sched::ENO, saved_eno);
+        mem::set_sched_u8(img, layout, gate, open);
+        if status == ScanStatus::Stopped {
+            queue::clear(img, layout);
+        }
+        sources::poll_timers(img, layout, tau);
+        Ok(())
+    }
+}

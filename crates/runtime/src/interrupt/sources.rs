@@ -1,0 +1,168 @@
+//! Event sources (s7-200-more §3.5, §3.6.3). Two kinds:
+//!
+//! * A **happening source** ([`Happening`]) is hardware that acts inside a scan interval: it
+//!   knows the time of its next happening and applies it (updating its state in the image and
+//!   raising events at that time). The interval phase applies the pending happening with the
+//!   smallest `(τ, rank)` (rank = position in [`HAPPENINGS`], the spec's `source_rank`), then
+//!   services the queues at `τ`, and repeats while a happening is due at or before `T_k`; a
+//!   happening a routine schedules takes part if it is due in time.
+//! * An **instant source** raises the events of the scan instant `T_k` itself, in the order of
+//!   §3.6.2 step 5 ([`instant`]): input edges, then the timers reaching their preset.
+//!
+//! **Adding a source.** A high-speed counter, a pulse output or a serial port is a
+//! [`Happening`]: put its state in the image (a new `record_fields!` record in
+//! `stljit_core::layout`), implement `next` (from that state) and `apply` (step it, then
+//! `super::queue::raise` the events it causes, at `τ`), and insert it into [`HAPPENINGS`] at its
+//! `source_rank` (§3.6.3: ports, pulse outputs, HSC0–HSC5, then the timed interrupts). A
+//! source whose level changes at the scan instant (HSC reset/start inputs) adds its check to
+//! [`instant`] between the edges and the timers. Then mark its `EventSource` simulated in core.
+
+use super::{attached, queue};
+use crate::mem;
+use crate::timer::TofPhase;
+use stljit_core::interrupt::{self, EventSource};
+use stljit_core::ir::TimerKind;
+use stljit_core::layout::{IntState, Layout, TimerState};
+use stljit_core::{Area, TimerId};
+
+/// Hardware that acts inside a scan interval (module doc).
+pub trait Happening: Sync {
+    /// The time in µs of the source's next happening, `None` while it is idle.
+    fn next(&self, img: &[u8], layout: &Layout) -> Option<u64>;
+    /// Applies the happening due at `tau` (== what `next` returned).
+    fn apply(&self, img: &mut [u8], layout: &Layout, tau: u64);
+}
+
+/// Timed interrupt 0 or 1 (§3.5.1): while its event is attached with an interval of 1 ms or
+/// more, one event every interval from the ATCH on.
+struct TimedInterrupt {
+    channel: u8,
+}
+
+impl TimedInterrupt {
+    /// The event this channel raises (10, 11), from the event table.
+    fn event(&self) -> Option<u8> {
+        interrupt::EVENTS
+            .iter()
+            .find(|e| {
+                e.source
+                    == EventSource::Timed {
+                        channel: self.channel,
+                    }
+            })
+            .map(|e| e.number)
+    }
+
+    fn next_at(&self, layout: &Layout) -> u32 {
+        layout.int_state(IntState::TIMED_NEXT) + 8 * u32::from(self.channel)
+    }
+
+    fn interval(&self, img: &[u8], layout: &Layout) -> u8 {
+        super::get(
+            img,
+            layout,
+            IntState::TIMED_INTERVAL + u32::from(self.channel),
+        )
+    }
+}
+
+impl Happening for TimedInterrupt {
+    fn next(&self, img: &[u8], layout: &Layout) -> Option<u64> {
+        let event = self.event()?;
+        let live = attached(img, layout, event) != 0 && self.interval(img, layout) != 0;
+        live.then(|| mem::get_u64_ne(img, self.next_at(layout)))
+    }
+
+    fn apply(&self, img: &mut [u8], layout: &Layout, tau: u64) {
+        if let Some(event) = self.event() {
+            queue::raise(img, layout, event, tau);
+        }
+        let step = 1000 * u64::from(self.interval(img, layout));
+        mem::set_u64_ne(img, self.next_at(layout), tau.saturating_add(step));
+    }
+}
+
+/// The happening sources in `source_rank` order (§3.6.3). The HSCs, pulse outputs and ports
+/// come before the timed interrupts when they are simulated.
+pub static HAPPENINGS: &[&dyn Happening] = &[
+    &TimedInterrupt { channel: 0 },
+    &TimedInterrupt { channel: 1 },
+];
+
+/// The pending happening with the smallest `(τ, rank)` due at or before `until`: its time and
+/// its index in [`HAPPENINGS`].
+pub(crate) fn next_due(img: &[u8], layout: &Layout, until: u64) -> Option<(u64, usize)> {
+    HAPPENINGS
+        .iter()
+        .enumerate()
+        .filter_map(|(rank, s)| s.next(img, layout).map(|t| (t, rank)))
+        .filter(|&(t, _)| t <= until)
+        .min()
+}
+
+/// The instant sources at `T_k` (§3.6.2 step 5): input edges, then T32/T96.
+pub(crate) fn instant(img: &mut [u8], layout: &Layout, tau: u64) {
+    input_edges(img, layout, tau);
+    poll_timers(img, layout, tau);
+}
+
+/// Input edges (§3.5.2): each edge event of the profile whose input bit differs between the
+/// physical inputs and those of the last scan instant (`PREV_IN`) in its direction; then
+/// `PREV_IN` takes the new inputs.
+fn input_edges(img: &mut [u8], layout: &Layout, tau: u64) {
+    let prev = layout.int_state(IntState::PREV_IN);
+    let ints = layout.profile.profile().interrupts;
+    for info in ints.infos() {
+        if let EventSource::InputEdge { byte, bit, rising } = info.source {
+            let old = mem::get_bit(img, prev + byte, bit);
+            let new = mem::get_bit(img, layout.phys_in + byte, bit);
+            if old != new && new == rising {
+                queue::raise(img, layout, info.number, tau);
+            }
+        }
+    }
+    let n = layout.area_size(Area::I) as usize;
+    let (from, to) = (layout.phys_in as usize, prev as usize);
+    if from + n <= img.len() && to + n <= img.len() {
+        img.copy_within(from..from + n, to);
+    }
+}
+
+/// Whether timer `n` is at its preset in the sense of its `CT = PT` event (§3.5.3): a TON's
+/// bit (its CT reached PT), a TOF's phase Done.
+fn reached(img: &[u8], layout: &Layout, n: TimerId) -> bool {
+    if u32::from(n.0) >= layout.area_size(Area::TimerBit) {
+        return false;
+    }
+    let state = layout.timer_state(n.0);
+    let kind = mem::get_u8(img, state + TimerState::KIND);
+    if kind == TimerKind::Off.code() {
+        mem::get_u8(img, state + TimerState::TOF) == TofPhase::Done as u8
+    } else if kind == 0 {
+        false
+    } else {
+        mem::get_u8(img, layout.base(Area::TimerBit) + u32::from(n.0)) != 0
+    }
+}
+
+/// The timer sources (T32, T96): an event when the `CT = PT` condition turned on since the
+/// last poll (bit `i` of `TIMER_PREV` for the profile's `i`-th timer event). Polled after the
+/// clock refresh (E2), after every routine and at the start of the interval phase (what the
+/// previous scan's main program did), each time at the time of that point [design].
+pub(crate) fn poll_timers(img: &mut [u8], layout: &Layout, tau: u64) {
+    let ints = layout.profile.profile().interrupts;
+    let mut prev = super::get(img, layout, IntState::TIMER_PREV);
+    let timers = ints.infos().filter_map(|info| match info.source {
+        EventSource::TimerReached { timer } => Some((info.number, timer)),
+        _ => None,
+    });
+    for (i, (event, timer)) in timers.enumerate().take(8) {
+        let now = reached(img, layout, TimerId(timer));
+        let mask = 1u8 << i;
+        if now && prev & mask == 0 {
+            queue::raise(img, layout, event, tau);
+        }
+        prev = if now { prev | mask } else { prev & !mask };
+    }
+    super::set(img, layout, IntState::TIMER_PREV, prev);
+}
