@@ -7,13 +7,14 @@
 //! same IR; [`parse_address`] reads the addresses the CLI's stimulus and watch options name.
 //!
 //! Pipeline: `decode` → `structure` (lines into POUs, using `lexer`; `VAR_…` declarations with
-//! `locals`) → `program` (lowering with `lower`/`control`, operands through
+//! `locals`) → `program` (lowering with `lower`/`control`/`interrupts`, operands through
 //! `operand`/`names`/`classes` against the project symbols, the CPU's `system_symbols` and the
 //! block's `locals`, the `stack` analysis) → IR.
 
 mod address;
 mod classes;
 mod control;
+mod interrupts;
 mod lexer;
 pub mod locals;
 mod lower;

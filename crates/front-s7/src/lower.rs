@@ -485,6 +485,7 @@ impl<'s> Lowerer<'s> {
                 }
             }
             Group::Control(flow) => return self.control(ps, flow, m, line),
+            Group::Interrupt => return self.interrupt(ps, m, line),
         };
         self.emit(ps, op);
         Ok(())

@@ -61,6 +61,9 @@ pub(crate) enum Group {
     Nop,
     /// Program control (spec §4.13), lowered by `Lowerer::control`.
     Control(Flow),
+    /// `ATCH`, `DTCH`, `ENI`, `DISI`, `CEVNT` (s7-200-more §3.4), lowered by
+    /// `Lowerer::interrupt`.
+    Interrupt,
 }
 
 /// The program-control routines (spec §4.13).
@@ -299,6 +302,11 @@ pub(crate) const TABLE: &[(&str, Group)] = &[
     ("SCRT", Group::Control(Flow::ScrTransition)),
     ("CSCRE", Group::Control(Flow::ScrCondEnd)),
     ("SCRE", Group::Control(Flow::ScrEnd)),
+    ("ATCH", Group::Interrupt),
+    ("DTCH", Group::Interrupt),
+    ("ENI", Group::Interrupt),
+    ("DISI", Group::Interrupt),
+    ("CEVNT", Group::Interrupt),
 ];
 
 /// The optional instruction families (s7-200-more Appendix A) and their mnemonics: whether the
@@ -354,7 +362,7 @@ pub(crate) fn family(m: &str) -> Option<InstrSet> {
 pub(crate) fn not_yet(set: InstrSet) -> &'static str {
     match set {
         InstrSet::Interrupts => {
-            "interrupt events are not simulated yet: interrupt routines are checked but never run"
+            "interrupts are simulated (s7-200-more §3), but not this instruction yet"
         }
         InstrSet::Tables => "table instructions are not implemented yet (s7-200-more §4)",
         InstrSet::Ascii => "ASCII conversions are not implemented yet (s7-200-more §5)",
@@ -499,6 +507,8 @@ mod tests {
         "VB1, QB0",
         "VW100, 1, 2",
         "SBR0",
+        "INT0, 10",
+        "10",
     ];
 
     /// Mnemonics that lower to the same IR as another one, which the printer uses.

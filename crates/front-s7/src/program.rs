@@ -77,6 +77,8 @@ pub(crate) struct Lowerer<'s> {
     pub(crate) cx: Cx<'s>,
     /// Subroutines by number.
     pub(crate) subs: HashMap<u16, PouId>,
+    /// Interrupt routines by number.
+    pub(crate) ints: HashMap<u16, PouId>,
     /// Blocks by name.
     pub(crate) names: HashMap<String, (PouId, PouKind)>,
     /// Timers used by a timer instruction: kind and first use.
@@ -296,11 +298,18 @@ pub(crate) fn lower<'s>(
     files: Vec<String>,
 ) -> (Program, Vec<Diagnostic>) {
     let mut subs = HashMap::new();
+    let mut ints = HashMap::new();
     let mut names = HashMap::new();
     for (i, p) in srcs.iter().enumerate() {
         let id = PouId::new(i);
-        if let PouKind::Subroutine(n) = p.kind {
-            subs.entry(n).or_insert(id);
+        match p.kind {
+            PouKind::Subroutine(n) => {
+                subs.entry(n).or_insert(id);
+            }
+            PouKind::Interrupt(n) => {
+                ints.entry(n).or_insert(id);
+            }
+            PouKind::Main => {}
         }
         names.entry(p.name.clone()).or_insert((id, p.kind));
     }
@@ -312,6 +321,7 @@ pub(crate) fn lower<'s>(
     let mut lw = Lowerer {
         cx,
         subs,
+        ints,
         names,
         timers: HashMap::new(),
         counters: HashMap::new(),

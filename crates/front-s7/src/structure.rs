@@ -7,6 +7,7 @@
 
 use crate::lexer::{Line, Tok, lex_line};
 use crate::locals::{Decl, Section, parse_decl};
+use stljit_core::interrupt::MAX_ROUTINE;
 use stljit_core::ir::PouKind;
 use stljit_core::{CpuProfile, FileId};
 use stljit_source::Code;
@@ -155,14 +156,14 @@ impl<'a> Builder<'a, '_> {
             (BlockKind::Sub, Some(n)) if n <= self.profile.max_subroutine => {
                 Some(PouKind::Subroutine(n))
             }
-            (BlockKind::Int, Some(n)) if n <= 127 => Some(PouKind::Interrupt(n)),
+            (BlockKind::Int, Some(n)) if n <= MAX_ROUTINE => Some(PouKind::Interrupt(n)),
             _ => None,
         };
         let pou_kind = pou_kind.unwrap_or_else(|| {
             let expected = match kind {
                 BlockKind::Org => "NAME:OB1".to_owned(),
                 BlockKind::Sub => format!("NAME:SBRn with n 0 .. {}", self.profile.max_subroutine),
-                BlockKind::Int => "NAME:INTn with n 0 .. 127".to_owned(),
+                BlockKind::Int => format!("NAME:INTn with n 0 .. {MAX_ROUTINE}"),
             };
             self.error(
                 s,
@@ -200,7 +201,7 @@ impl<'a> Builder<'a, '_> {
         let max = if sub {
             self.profile.max_subroutine
         } else {
-            127
+            MAX_ROUTINE
         };
         let n = t
             .text

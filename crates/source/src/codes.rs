@@ -128,6 +128,10 @@ codes! {
     LocalLimit = "E036", Error, "the local variables exceed 64 bytes of L memory or 16 parameters";
     /// `Symbol:Address` whose symbol names another address.
     SymbolMismatch = "E037", Error, "in a `symbol:address` operand the symbol names a different address";
+    /// ATCH names no interrupt routine.
+    UnknownInterrupt = "E050", Error, "ATCH names an interrupt routine that is not defined, or a block that is not an interrupt routine";
+    /// Event number not on the CPU.
+    EventNumber = "E051", Error, "the interrupt event does not exist on the selected CPU";
     /// Contact or stack operation consuming an unloaded level.
     StackUnderflow = "W001", Warning, "a contact or ALD/OLD/LPP/LRD consumes a stack level that nothing loaded";
     /// Too many live stack levels.
@@ -138,6 +142,10 @@ codes! {
     UnprefixedLocal = "W004", Warning, "a name without `#` is taken as the block's local variable";
     /// `Symbol:Address` with a symbol no table defines.
     UncheckedSymbol = "W005", Warning, "in a `symbol:address` operand the symbol is not defined; the address is used";
+    /// An attached event the simulation never raises.
+    EventNotSimulated = "W050", Warning, "the attached event never occurs in the simulation: its source (high-speed counter, pulse output, port) is not simulated yet";
+    /// ENI/DISI in an interrupt routine.
+    EnableInInterrupt = "W051", Warning, "ENI or DISI in an interrupt routine has no effect (run-time error 16#0004)";
 
     // ---- Omron CP dialect (omron-cp.md §5; the spec's numbers with the `OMR-` prefix) --------
     /// A task program without END.
