@@ -19,10 +19,11 @@
 //! interrupts are disabled, while a routine runs, or after a STOP. The only engine-specific
 //! part is running a routine's body: the engine passes an [`Isr`].
 //!
-//! Times are µs (`T_k = 1000 · t_k`), as the spec's §0.3. Every happening applied and every
-//! routine run counts one loop-budget event [design], so a scan interval that would run more
-//! of them than the watchdog allows ends in the fatal `Watchdog` (recorded with the POU
-//! [`EVENT_PHASE`]) instead of hanging.
+//! Times are µs (`T_k = 1000 · t_k`), as the spec's §0.3. The work of a scan is bounded
+//! without a budget of its own: every happening advances its source's time by at least 1 ms,
+//! edges occur only at scan instants, and the timer sources are polled only at the two phase
+//! starts (not after each routine), so no routine can raise events for its own instant without
+//! end. Back-edges inside routines count toward the scan's loop budget (§3.6.4).
 //!
 //! **Adding a source** (HSC, pulse outputs, communication): see [`sources`].
 
@@ -40,10 +41,6 @@ use stljit_core::interrupt::{self, EVENT_SLOTS, EventSource, TIMED_INTERVAL_SMB}
 use stljit_core::ir::{IntOp, Program};
 use stljit_core::layout::{IntState, Layout};
 use stljit_core::{Area, ErrorCode};
-
-/// The `ERR_POU` a fatal error of an event phase itself records (a watchdog that ran out while
-/// applying happenings or starting routines; a routine's own errors name the routine).
-pub const EVENT_PHASE: u32 = 0xFFFF;
 
 /// SMB4: the overflow bits SM4.0–SM4.2 (bit = the group's index) and SM4.4.
 pub const SMB4: u32 = 4;

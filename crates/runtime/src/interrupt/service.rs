@@ -2,10 +2,10 @@
 //! thing an engine supplies: running a routine's body.
 
 use super::sources::{self, HAPPENINGS};
-use super::{EVENT_PHASE, attached, queue, set, set_now};
+use super::{attached, queue, set, set_now};
 use crate::{mem, scan};
 use stljit_core::layout::{IntState, Layout, Sched};
-use stljit_core::{Area, FatalCode, PouId, ScanStatus};
+use stljit_core::{Area, PouId, ScanStatus};
 
 /// Runs interrupt routine bodies: the engine-specific part of the machinery. The interpreter
 /// interprets the routine's POU; the JIT calls its compiled function.
@@ -38,16 +38,6 @@ pub struct PhaseFatal;
 struct Service<'a> {
     routines: &'a [Option<PouId>],
     isr: &'a mut dyn Isr,
-}
-
-/// One loop-budget event of the machinery itself (a happening, a routine run).
-fn budget(img: &mut [u8], layout: &Layout) -> Result<(), PhaseFatal> {
-    if scan::loop_tick(img, layout) {
-        Ok(())
-    } else {
-        scan::record_fatal(img, layout, FatalCode::Watchdog, EVENT_PHASE, 0);
-        Err(PhaseFatal)
-    }
 }
 
 /// Exchanges the physical inputs with those of the last scan instant (`PREV_IN`).
@@ -83,7 +73,6 @@ pub fn interval_phase(
         sources::poll_timers(img, layout, ta);
         s.service(img, layout, ta)?;
         while let Some((tau, rank)) = sources::next_due(img, layout, tb) {
-            budget(img, layout)?;
             HAPPENINGS[rank].apply(img, layout, tau);
             s.service(img, layout, tau)?;
         }
@@ -139,7 +128,7 @@ impl Service<'_> {
 
     /// Runs interrupt routine `number` at `tau` (§3.6.4): the logic stack (the engine's),
     /// AC0–AC3, ENO and SMB1 are saved and restored around it, the gate is open at entry and
-    /// after it; a STOP in it discards every queued entry; T32/T96 are polled after it.
+    /// after it; a STOP in it discards every queued entry.
     fn run_isr(
         &mut self,
         img: &mut [u8],
@@ -147,7 +136,6 @@ impl Service<'_> {
         number: usize,
         tau: u64,
     ) -> Result<(), PhaseFatal> {
-        budget(img, layout)?;
         let Some(pou) = self.routines.get(number).copied().flatten() else {
             return Ok(());
         };
@@ -176,7 +164,6 @@ impl Service<'_> {
         if status == ScanStatus::Stopped {
             queue::clear(img, layout);
         }
-        sources::poll_timers(img, layout, tau);
         Ok(())
     }
 }

@@ -146,9 +146,11 @@ fn reached(img: &[u8], layout: &Layout, n: TimerId) -> bool {
 }
 
 /// The timer sources (T32, T96): an event when the `CT = PT` condition turned on since the
-/// last poll (bit `i` of `TIMER_PREV` for the profile's `i`-th timer event). Polled after the
-/// clock refresh (E2), after every routine and at the start of the interval phase (what the
-/// previous scan's main program did), each time at the time of that point [design].
+/// last poll (bit `i` of `TIMER_PREV` for the profile's `i`-th timer event). Polled at the
+/// start of the interval phase, at `T_{k−1}` (what the previous scan's main program and E2
+/// routines did, at the time they did it), and after the clock refresh (E2, at `T_k`: the
+/// refresh, and what E1's routines did) [design: a routine's own execution is seen at the next
+/// poll, so a routine cannot re-raise its event at its own instant].
 pub(crate) fn poll_timers(img: &mut [u8], layout: &Layout, tau: u64) {
     let ints = layout.profile.profile().interrupts;
     let mut prev = super::get(img, layout, IntState::TIMER_PREV);

@@ -8,7 +8,7 @@ use crate::scan::{self, ScanPlan};
 use stljit_core::interrupt::EventGroup;
 use stljit_core::ir::{Pou, PouKind, SrcLoc};
 use stljit_core::layout::{QueueEntry, Sched};
-use stljit_core::{FatalCode, PouId, ProfileId, ScanStatus, Width};
+use stljit_core::{PouId, ProfileId, ScanStatus, Width};
 
 /// A program with an empty main and the interrupt routines `ints` (POU `i + 1` is INT
 /// `ints[i]`): enough for a plan.
@@ -329,7 +329,7 @@ fn stop_in_a_routine_discards_the_queue_and_the_scan_completes() {
 }
 
 #[test]
-fn a_fatal_routine_aborts_the_scan_and_too_many_runs_are_a_watchdog() {
+fn a_fatal_routine_aborts_the_scan() {
     let mut plc = Plc::new(ProfileId::A5, &[0], 10);
     let mut isr = Fake(|_: &mut [u8], _: &Layout, _, _| ScanStatus::Fatal);
     plc.scan(0, &mut isr, |b, l| {
@@ -339,18 +339,64 @@ fn a_fatal_routine_aborts_the_scan_and_too_many_runs_are_a_watchdog() {
     let mut main_ran = false;
     let st = plc.scan(1, &mut isr, |_, _| main_ran = true);
     assert_eq!((st, main_ran), (ScanStatus::Fatal, false));
+}
 
-    // A 1-ms timed interrupt over a 70-s interval: 140 000 budget events > 65 536.
+#[test]
+fn a_long_interval_runs_every_due_time_within_the_budget() {
+    // A 1-ms timed interrupt over a 70-s interval: 70 000 routine runs in one E1; the loop
+    // budget counts only back-edges (none here), so the scan completes.
     let mut plc = Plc::new(ProfileId::A5, &[0], 70_000);
-    let mut isr = Fake(|_: &mut [u8], _: &Layout, _, _| ScanStatus::Ok);
+    let mut isr = Fake(|img: &mut [u8], l: &Layout, _, _| {
+        incw(img, l, 0);
+        ScanStatus::Ok
+    });
     plc.scan(0, &mut isr, |b, l| {
         mem::set_u8(b, l.base(Area::SM) + 34, 1);
         run(b, l, attach(0, 10));
         run(b, l, Action::Enable);
     });
-    assert_eq!(plc.scan(0, &mut isr, |_, _| {}), ScanStatus::Fatal);
-    assert_eq!(plc.img.fatal(), FatalCode::Watchdog as u16);
-    assert_eq!(plc.img.error_site().0, EVENT_PHASE as u16);
+    assert_eq!(plc.scan(0, &mut isr, |_, _| {}), ScanStatus::Ok);
+    assert_eq!(plc.vw(0), 70_000 % 65_536);
+}
+
+#[test]
+fn routines_cannot_raise_timer_events_for_their_own_instant() {
+    // INT0 (event 21) turns T32's bit off and T96's on, INT1 (event 22) the other way round:
+    // polled after every routine they would raise each other's event forever at one instant.
+    // The timer sources are polled at the phase starts only: two runs per scan.
+    let mut p = program(ProfileId::S7_200, &[0, 1]);
+    for n in [32, 96] {
+        p.timers.push(stljit_core::ir::TimerDecl {
+            id: stljit_core::TimerId(n),
+            kind: stljit_core::ir::TimerKind::On,
+            resolution: stljit_core::profile::Resolution::Ms1,
+        });
+    }
+    let mut plc = Plc {
+        img: Image::cold_start(&p),
+        plan: ScanPlan::of(&p),
+        k: 0,
+        scan_ms: 10,
+    };
+    let mut runs = Vec::new();
+    let mut isr = Fake(|img: &mut [u8], l: &Layout, pou: PouId, _| {
+        runs.push(pou.0);
+        let on = |n: u32| l.base(Area::TimerBit) + n;
+        let (off, set) = if pou.0 == 1 { (32, 96) } else { (96, 32) };
+        mem::set_u8(img, on(off), 0);
+        mem::set_u8(img, on(set), 1);
+        ScanStatus::Ok
+    });
+    plc.scan(0, &mut isr, |b, l| {
+        run(b, l, attach(0, 21));
+        run(b, l, attach(1, 22));
+        run(b, l, Action::Enable);
+        mem::set_u8(b, l.base(Area::TimerBit) + 32, 1);
+    });
+    for _ in 0..4 {
+        plc.scan(0, &mut isr, |_, _| {});
+    }
+    assert_eq!(runs, [1, 2, 1, 2, 1, 2, 1, 2]);
 }
 
 #[test]
