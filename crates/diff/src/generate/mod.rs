@@ -8,11 +8,12 @@
 //! eight, pointers stepped past their area, loops left to the watchdog.
 //!
 //! The parts: [`operands`] picks operands per operand class, [`programs`] builds networks and
-//! POUs, [`params`] gives subroutines parameters and calls them with actuals, [`stimulus`] builds
-//! the per-scan inputs and scan times.
+//! POUs, [`params`] gives subroutines parameters and calls them with actuals, [`interrupts`] the
+//! interrupt routines and instructions, [`stimulus`] builds the per-scan inputs and scan times.
 
 pub mod boxes;
 pub mod control;
+pub mod interrupts;
 pub mod operands;
 pub mod params;
 pub mod programs;
@@ -132,8 +133,10 @@ pub(crate) struct Gen<'c, 'a> {
     pub(crate) wild_jumps: bool,
     /// Op limit of the POU being built (raised for the occasional very long main program).
     pub(crate) room_limit: usize,
-    /// The POU being built is an interrupt routine (no CRET, END or WDR there).
+    /// The POU being built is an interrupt routine (no END or WDR there).
     pub(crate) in_interrupt: bool,
+    /// The program's interrupt routines, `(POU, number)`.
+    pub(crate) int_routines: Vec<(PouId, u16)>,
     /// Wild-jump labels of the current POU not yet placed.
     pub(crate) pending_wild: Vec<LabelId>,
     /// Wild-jump labels of the current POU already placed (targets of backward jumps).
@@ -160,6 +163,7 @@ impl<'c, 'a> Gen<'c, 'a> {
             wild_jumps: false,
             room_limit: cfg.max_ops_per_pou,
             in_interrupt: false,
+            int_routines: Vec::new(),
             pending_wild: Vec::new(),
             placed_wild: Vec::new(),
             params: Vec::new(),
@@ -237,6 +241,7 @@ impl<'c, 'a> Gen<'c, 'a> {
         for i in 1..self.params.len() {
             self.params[i] = self.signature();
         }
+        self.int_routines = self.plan_interrupts(1 + plan.len());
         let mut pous = Vec::with_capacity(self.n_pous as usize);
         self.pou = Program::MAIN;
         self.main_body(&plan);
@@ -246,17 +251,16 @@ impl<'c, 'a> Gen<'c, 'a> {
             self.sub_body(sub);
             pous.push(self.take_pou(format!("SBR{i}"), PouKind::Subroutine(i as u16)));
         }
-        // An interrupt routine is compiled and checked but never runs (spec P8); engines must
-        // still accept it. It is not counted in `n_pous`, so nothing calls it.
-        if self.c.chance(1, 15) {
-            self.pou = PouId::new(pous.len());
+        // The interrupt routines: after the subroutines, not counted in `n_pous`, so no CALL
+        // names one; they may call the subroutines.
+        for (id, n) in self.int_routines.clone() {
+            self.pou = id;
             self.in_interrupt = true;
             let networks = self.c.range(1, 3);
             self.sub_body(&SubPlan {
                 chain_next: None,
                 networks,
             });
-            let n = self.c.below(8) as u16;
             pous.push(self.take_pou(format!("INT{n}"), PouKind::Interrupt(n)));
             self.in_interrupt = false;
         }

@@ -18,6 +18,9 @@ impl Gen<'_, '_> {
     /// start every deep call chain.
     pub(crate) fn main_body(&mut self, plan: &[SubPlan]) {
         let ctx = Ctx::default();
+        if !self.int_routines.is_empty() {
+            self.interrupt_setup();
+        }
         if self.c.chance(1, 2) {
             self.pointer_setup();
         }
@@ -109,6 +112,7 @@ impl Gen<'_, '_> {
             } else {
                 0
             }, // wild jump
+            if self.int_routines.is_empty() { 0 } else { 3 }, // interrupt instruction
         ];
         self.place_wild(ctx);
         match self.c.weighted(&weights) {
@@ -143,17 +147,23 @@ impl Gen<'_, '_> {
             11 => self.control(ctx),
             12 => self.immediate_io(),
             13 => self.flag_network(),
-            _ => self.wild_jump(),
+            14 => self.wild_jump(),
+            _ => self.interrupt_network(),
         }
     }
 
     fn has_callee(&self) -> bool {
-        (self.pou.0 + 1) < self.n_pous || (self.recursion && self.n_pous > 1)
+        let sub = self.n_pous > 1;
+        (self.pou.0 + 1) < self.n_pous || (self.recursion && sub) || (self.in_interrupt && sub)
     }
 
     /// A subroutine the current POU may call: a higher number (calls form a DAG), or in programs
-    /// with recursion now and then any subroutine, the caller included.
+    /// with recursion now and then any subroutine, the caller included; from an interrupt
+    /// routine any subroutine (the routine's one nesting level, §1.6, then 0x0008).
     fn callee(&mut self) -> Option<PouId> {
+        if self.in_interrupt {
+            return (self.n_pous > 1).then(|| PouId(self.c.range(1, self.n_pous - 1)));
+        }
         let higher = (self.pou.0 + 1) < self.n_pous;
         if self.recursion && self.n_pous > 1 && (!higher || self.c.chance(1, 4)) {
             return Some(PouId(self.c.range(1, self.n_pous - 1)));
@@ -598,7 +608,8 @@ impl Gen<'_, '_> {
     fn control(&mut self, ctx: Ctx) {
         let main = self.pou == PouId(0);
         let top = ctx.depth == 0 && ctx.scr.is_none();
-        let sub = !main && !self.in_interrupt;
+        // CRET in a subroutine, CRETI in an interrupt routine.
+        let sub = !main;
         // END and CRET inside loops and segments leave FOR and SCR state behind: rarer, not never.
         let weights = [
             3,

@@ -218,3 +218,36 @@ fn fuzzer_bytes_never_panic_and_run_out_small() {
         }
     }
 }
+
+/// The stimulus raises the events the programs attach: most programs with interrupt routines
+/// queue events (input edges, timed interrupts, T32/T96) and run routines.
+#[test]
+fn interrupt_routines_run() {
+    use crate::engines::EngineKind;
+    use crate::oracle::{RunOptions, apply_stimulus, start_image};
+    use stljit_core::layout::IntState;
+    let cfg = GenConfig::default();
+    let (mut programs, mut raised) = (0, 0);
+    for seed in 0..300 {
+        let case = case_from_seed(seed, &cfg);
+        if !case.program.has_interrupts() {
+            continue;
+        }
+        programs += 1;
+        let mut e = EngineKind::Interp.build(&case.program).expect("builds");
+        let mut img = start_image(&case.program, &RunOptions::default());
+        for s in &case.stimulus.scans {
+            apply_stimulus(&mut img, s);
+            if e.scan(&mut img, s.t_ms) != stljit_core::ScanStatus::Ok {
+                break;
+            }
+        }
+        let seq = img.layout().int_state(IntState::SEQ) as usize;
+        raised += usize::from(img.bytes()[seq..seq + 4] != [0; 4]);
+    }
+    assert!(programs > 50, "{programs} programs with interrupt routines");
+    assert!(
+        2 * raised > programs,
+        "{raised} of {programs} queued an event"
+    );
+}
