@@ -1,7 +1,7 @@
 //! Expectations on the L memory of a call level, for the cases of subroutine parameters
 //! (s7-200-more §12 M1 lists the callee's frame): `frame = { 1 = { "LW9" = 300 } }` in a
-//! `[[scan]]` reads L memory of nesting level 1 (0 is the main program's frame), which no watch
-//! spec can name.
+//! `[[scan]]` reads L memory of nesting level 1 (0 is the main program's frame, 9 an interrupt
+//! routine's, 10–13 its calls'), which no watch spec can name.
 
 use stljit_core::Area;
 use stljit_core::ir::Address;
@@ -29,7 +29,10 @@ pub(crate) fn parse(
             .parse()
             .ok()
             .filter(|&f| f < stljit_core::layout::L_FRAMES)
-            .ok_or(format!("frame: `{k}` is not a frame number 0 .. 8"))?;
+            .ok_or(format!(
+                "frame: `{k}` is not a frame number 0 .. {}",
+                stljit_core::layout::L_FRAMES - 1
+            ))?;
         let Value::Table(t) = t else {
             return Err(format!("frame {k}: must be a table of L addresses"));
         };
