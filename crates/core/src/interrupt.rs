@@ -141,14 +141,36 @@ const fn edge(number: u8, pri: u8, bit: u8, rising: bool, what: &'static str) ->
     )
 }
 
-use EventGroup::{Communication as COMM, Discrete as IO, Timed as TIME};
+/// Timed interrupt `channel`: the timed group, its priority the channel.
+const fn timed(number: u8, channel: u8, what: &'static str) -> EventInfo {
+    ev(
+        number,
+        EventGroup::Timed,
+        channel,
+        EventSource::Timed { channel },
+        what,
+    )
+}
+
+/// A timer reaching its preset: the timed group after the timed interrupts.
+const fn timer(number: u8, pri: u8, timer: u16, what: &'static str) -> EventInfo {
+    ev(
+        number,
+        EventGroup::Timed,
+        pri,
+        EventSource::TimerReached { timer },
+        what,
+    )
+}
+
+use EventGroup::{Communication as COMM, Discrete as IO};
 use EventSource::{Communication as PORT, HighSpeedCounter as HSC, PulseOutput as PLS};
 
-/// Every event of every S7 profile: the S7-200 table 6-50 (§3.1) and the S7-200 SMART
-/// additions 34–38 (§3.2, in the discrete group after the S7-200's entries, ascending). Which
-/// of them a CPU has is its [`InterruptProfile::events`]. The SMART's signal-board inputs
-/// I7.0/I7.1 are bits 8 and 9 of [`edge`]'s numbering (byte 7).
-pub static EVENTS: &[EventInfo] = &[
+/// Every event of every S7 profile, entry `n` for event `n`: the S7-200 table 6-50 (§3.1) and
+/// the S7-200 SMART additions 34–38 (§3.2, in the discrete group after the S7-200's entries,
+/// ascending). Which of them a CPU has is its [`InterruptProfile::events`]. The SMART's
+/// signal-board inputs I7.0/I7.1 are bits 8 and 9 of [`edge`]'s numbering (byte 7).
+pub const EVENTS: &[EventInfo] = &[
     edge(0, 2, 0, true, "I0.0 rising edge"),
     edge(1, 6, 0, false, "I0.0 falling edge"),
     edge(2, 3, 1, true, "I0.1 rising edge"),
@@ -159,20 +181,8 @@ pub static EVENTS: &[EventInfo] = &[
     edge(7, 9, 3, false, "I0.3 falling edge"),
     ev(8, COMM, 0, PORT, "port 0 receive character"),
     ev(9, COMM, 0, PORT, "port 0 transmit complete"),
-    ev(
-        10,
-        TIME,
-        0,
-        EventSource::Timed { channel: 0 },
-        "timed interrupt 0 (SMB34)",
-    ),
-    ev(
-        11,
-        TIME,
-        1,
-        EventSource::Timed { channel: 1 },
-        "timed interrupt 1 (SMB35)",
-    ),
+    timed(10, 0, "timed interrupt 0 (SMB34)"),
+    timed(11, 1, "timed interrupt 1 (SMB35)"),
     ev(12, IO, 10, HSC, "HSC0 CV = PV"),
     ev(13, IO, 13, HSC, "HSC1 CV = PV"),
     ev(14, IO, 14, HSC, "HSC1 direction changed"),
@@ -182,20 +192,8 @@ pub static EVENTS: &[EventInfo] = &[
     ev(18, IO, 18, HSC, "HSC2 external reset"),
     ev(19, IO, 0, PLS, "PLS0 (Q0.0) pulse count complete"),
     ev(20, IO, 1, PLS, "PLS1 (Q0.1) pulse count complete"),
-    ev(
-        21,
-        TIME,
-        2,
-        EventSource::TimerReached { timer: 32 },
-        "timer T32 CT = PT",
-    ),
-    ev(
-        22,
-        TIME,
-        3,
-        EventSource::TimerReached { timer: 96 },
-        "timer T96 CT = PT",
-    ),
+    timer(21, 2, 32, "timer T32 CT = PT"),
+    timer(22, 3, 96, "timer T96 CT = PT"),
     ev(23, COMM, 0, PORT, "port 0 receive message complete"),
     ev(24, COMM, 1, PORT, "port 1 receive message complete"),
     ev(25, COMM, 1, PORT, "port 1 receive character"),
@@ -215,9 +213,27 @@ pub static EVENTS: &[EventInfo] = &[
 ];
 
 /// The event with number `n`, whatever the profile.
+#[inline]
 pub fn event(n: u8) -> Option<&'static EventInfo> {
-    EVENTS.iter().find(|e| e.number == n)
+    EVENTS.get(usize::from(n)).filter(|e| e.number == n)
 }
+
+/// The event timed interrupt `channel` raises, read off [`EVENTS`] at compile time.
+const fn timed_event(channel: u8) -> u8 {
+    let mut i = 0;
+    while i < EVENTS.len() {
+        if let EventSource::Timed { channel: c } = EVENTS[i].source
+            && c == channel
+        {
+            return EVENTS[i].number;
+        }
+        i += 1;
+    }
+    panic!("no timed interrupt event for the channel")
+}
+
+/// The events of timed interrupts 0 and 1 (10, 11).
+pub const TIMED_EVENTS: [u8; 2] = [timed_event(0), timed_event(1)];
 
 /// What a CPU offers for interrupts.
 #[derive(Debug)]
@@ -308,6 +324,7 @@ mod tests {
     #[test]
     fn numbers_are_unique_and_priorities_distinct_within_a_group() {
         for (i, e) in EVENTS.iter().enumerate() {
+            assert_eq!(usize::from(e.number), i, "EVENTS[n] is event n");
             assert!(usize::from(e.number) < EVENT_SLOTS);
             for o in &EVENTS[..i] {
                 assert_ne!(o.number, e.number, "event {} twice", e.number);
@@ -330,6 +347,7 @@ mod tests {
         assert_eq!(S7_200_INTERRUPTS.queue(EventGroup::Timed), (24, 8));
         assert_eq!(S7_200_INTERRUPTS.slots(), 32);
         assert!(!SMART_INTERRUPTS.has(14) && SMART_INTERRUPTS.has(38));
+        assert_eq!(TIMED_EVENTS, [10, 11]);
     }
 
     #[test]

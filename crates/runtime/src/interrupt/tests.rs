@@ -56,7 +56,18 @@ struct Plc {
 
 impl Plc {
     fn new(profile: ProfileId, ints: &[u16], scan_ms: u64) -> Plc {
-        let p = program(profile, ints);
+        Plc::with_timers(profile, ints, &[], scan_ms)
+    }
+
+    /// With the 1-ms TONs `timers` declared (T32, T96 on the Siemens profiles).
+    fn with_timers(profile: ProfileId, ints: &[u16], timers: &[u16], scan_ms: u64) -> Plc {
+        let mut p = program(profile, ints);
+        p.timers
+            .extend(timers.iter().map(|&n| stljit_core::ir::TimerDecl {
+                id: stljit_core::TimerId(n),
+                kind: stljit_core::ir::TimerKind::On,
+                resolution: stljit_core::profile::Resolution::Ms1,
+            }));
         Plc {
             img: Image::cold_start(&p),
             plan: ScanPlan::of(&p),
@@ -115,6 +126,12 @@ fn attach(routine: u16, event: u8) -> Action {
     Action::Attach { routine, event }
 }
 
+/// `MOVB ms, SMB34` and `ATCH INT0, 10`.
+fn attach_timed(b: &mut [u8], l: &Layout, ms: u8) {
+    mem::set_u8(b, l.base(Area::SM) + 34, ms);
+    run(b, l, attach(0, 10));
+}
+
 #[test]
 fn m3_timed_interrupt_faster_than_the_scan() {
     // §12 M3: SMB34 = 5 at ATCH, 10-ms scans: due at 5, 10, 15 … ms, two runs per interval,
@@ -127,8 +144,7 @@ fn m3_timed_interrupt_faster_than_the_scan() {
         ScanStatus::Ok
     });
     plc.scan(0, &mut isr, |b, l| {
-        mem::set_u8(b, l.base(Area::SM) + 34, 5);
-        run(b, l, attach(0, 10));
+        attach_timed(b, l, 5);
         run(b, l, Action::Enable);
         mem::set_u8(b, l.base(Area::SM) + 34, 1);
     });
@@ -152,10 +168,7 @@ fn m4_disabled_interrupts_overflow_and_pending_service() {
         seen.push((tau, mem::get_u8(img, l.base(Area::SM) + SMB4) & 0b100 != 0));
         ScanStatus::Ok
     });
-    plc.scan(0, &mut isr, |b, l| {
-        mem::set_u8(b, l.base(Area::SM) + 34, 1);
-        run(b, l, attach(0, 10));
-    });
+    plc.scan(0, &mut isr, |b, l| attach_timed(b, l, 1));
     plc.scan(1, &mut isr, |b, l| run(b, l, Action::Enable));
     assert_eq!((plc.vw(0), plc.sm4() & 0b100, plc.queued(2)), (0, 0b100, 8));
     plc.scan(0, &mut isr, |_, _| {});
@@ -312,10 +325,7 @@ fn stop_in_a_routine_discards_the_queue_and_the_scan_completes() {
         mem::set_sched_u8(img, l, Sched::STOP_REQ, 1);
         ScanStatus::Stopped
     });
-    plc.scan(0, &mut isr, |b, l| {
-        mem::set_u8(b, l.base(Area::SM) + 34, 1);
-        run(b, l, attach(0, 10));
-    });
+    plc.scan(0, &mut isr, |b, l| attach_timed(b, l, 1));
     plc.scan(0, &mut isr, |b, l| run(b, l, Action::Enable));
     let mut main_ran = false;
     let st = plc.scan(0, &mut isr, |_, _| main_ran = true);
@@ -351,8 +361,7 @@ fn a_long_interval_runs_every_due_time_within_the_budget() {
         ScanStatus::Ok
     });
     plc.scan(0, &mut isr, |b, l| {
-        mem::set_u8(b, l.base(Area::SM) + 34, 1);
-        run(b, l, attach(0, 10));
+        attach_timed(b, l, 1);
         run(b, l, Action::Enable);
     });
     assert_eq!(plc.scan(0, &mut isr, |_, _| {}), ScanStatus::Ok);
@@ -364,20 +373,7 @@ fn routines_cannot_raise_timer_events_for_their_own_instant() {
     // INT0 (event 21) turns T32's bit off and T96's on, INT1 (event 22) the other way round:
     // polled after every routine they would raise each other's event forever at one instant.
     // The timer sources are polled at the phase starts only: two runs per scan.
-    let mut p = program(ProfileId::S7_200, &[0, 1]);
-    for n in [32, 96] {
-        p.timers.push(stljit_core::ir::TimerDecl {
-            id: stljit_core::TimerId(n),
-            kind: stljit_core::ir::TimerKind::On,
-            resolution: stljit_core::profile::Resolution::Ms1,
-        });
-    }
-    let mut plc = Plc {
-        img: Image::cold_start(&p),
-        plan: ScanPlan::of(&p),
-        k: 0,
-        scan_ms: 10,
-    };
+    let mut plc = Plc::with_timers(ProfileId::S7_200, &[0, 1], &[32, 96], 10);
     let mut runs = Vec::new();
     let mut isr = Fake(|img: &mut [u8], l: &Layout, pou: PouId, _| {
         runs.push(pou.0);
@@ -403,18 +399,7 @@ fn routines_cannot_raise_timer_events_for_their_own_instant() {
 fn t32_reaching_its_preset_is_an_event_at_the_scan_instant() {
     // §3.5.3: T32 (1 ms, TON) with PT 15, running from scan 0: CT = 10 after the refresh of
     // scan 1, 20 in scan 2 → event 21 at 20 ms, once.
-    let mut p = program(ProfileId::S7_200, &[0]);
-    p.timers.push(stljit_core::ir::TimerDecl {
-        id: stljit_core::TimerId(32),
-        kind: stljit_core::ir::TimerKind::On,
-        resolution: stljit_core::profile::Resolution::Ms1,
-    });
-    let mut plc = Plc {
-        img: Image::cold_start(&p),
-        plan: ScanPlan::of(&p),
-        k: 0,
-        scan_ms: 10,
-    };
+    let mut plc = Plc::with_timers(ProfileId::S7_200, &[0], &[32], 10);
     let mut times = Vec::new();
     let mut isr = Fake(|_: &mut [u8], _: &Layout, _, tau| {
         times.push(tau);
