@@ -109,12 +109,7 @@ impl Lowerer<'_> {
                 .then(|| d.parse::<u32>().ok())
                 .flatten()
         };
-        let number = digits(text).or_else(|| {
-            upper
-                .strip_prefix("INT_")
-                .or_else(|| upper.strip_prefix("INT"))
-                .and_then(digits)
-        });
+        let number = digits(text).or_else(|| upper.strip_prefix("INT").and_then(digits));
         let number = match number {
             Some(n) => n,
             None => match self.names.get(text) {
@@ -129,7 +124,11 @@ impl Lowerer<'_> {
                 }
                 None => match self.cx.symbols.and_then(|s| s.get(text)) {
                     Some(SymTarget::Pou(PouRef::Interrupt(n))) => u32::from(*n),
-                    _ => u32::MAX,
+                    // `INT_n`: MicroWIN's default symbol of INTn.
+                    _ => upper
+                        .strip_prefix("INT_")
+                        .and_then(digits)
+                        .unwrap_or(u32::MAX),
                 },
             },
         };
