@@ -12,7 +12,7 @@
 //! apart; [`Layout::region`] and [`Block::field_at`] name any image offset from them.
 
 use crate::area::Area;
-use crate::profile::{CpuProfile, ProfileId};
+use crate::profile::{CpuProfile, Family, ProfileId};
 
 /// Bytes of private state per timer (see [`TimerState`]).
 pub const TIMER_STATE_SIZE: u32 = 16;
@@ -20,6 +20,9 @@ pub const TIMER_STATE_SIZE: u32 = 16;
 pub const COUNTER_STATE_SIZE: u32 = 4;
 /// Bytes of the scan bookkeeping block (see [`Sched`]).
 pub const SCHED_SIZE: u32 = 64;
+/// Bytes of the state of the s7-200-more instructions (see [`InstrState`]; 0 on Omron
+/// profiles).
+pub const INSTR_STATE_SIZE: u32 = 32;
 /// Number of `L` frames: the main program plus eight subroutine levels.
 pub const L_FRAMES: u32 = 9;
 
@@ -136,6 +139,25 @@ record_fields! {
     }
 }
 
+record_fields! {
+    /// Field offsets inside the state of the s7-200-more instructions (§11.1): the real-time
+    /// clock (§6.2) and the PID loops' power-flow history (§7.3). One record per image, read and
+    /// written only by `stljit_runtime::rtc` and `stljit_runtime::pid`.
+    InstrState {
+        /// Native-endian: seconds since 2000-01-01 00:00:00 that the clock showed at
+        /// `RTC_REF_US` (the start date at cold start, then the last TODW/TODWX).
+        RTC_EPOCH: i64 = 0;
+        /// Native-endian: the virtual time in µs at which the clock showed `RTC_EPOCH`.
+        RTC_REF_US: u64 = 8;
+        /// The daylight-saving bytes 8–20 of the last TODWX, which TODRX returns.
+        RTC_DST: [u8; 13] = 16;
+        /// Bit `n`: PID loop `n` ran without power flow at its last execution. 0 at cold start,
+        /// which is the manual's history bit *set*: no bumpless transfer on a first execution
+        /// with power flow.
+        PID_NO_FLOW: u8 = 29;
+    }
+}
+
 /// Default loop budget per scan (spec §2.5).
 pub const DEFAULT_LOOP_LIMIT: u32 = 65_536;
 
@@ -158,6 +180,8 @@ pub struct Layout {
     pub phys_in: u32,
     /// Physical output copy (written at scan end and by `=I`, `SI`, `RI`, `BIW`).
     pub phys_out: u32,
+    /// The state of the s7-200-more instructions, see [`InstrState`].
+    pub instr: u32,
     /// Total image size in bytes.
     pub size: u32,
     block_size: [u32; Block::ALL.len()],
@@ -201,6 +225,13 @@ impl Layout {
         let sched = take(Block::Sched, SCHED_SIZE);
         let phys_in = take(Block::PhysIn, profile.inputs);
         let phys_out = take(Block::PhysOut, profile.outputs);
+        let instr = take(
+            Block::Instr,
+            match profile.family {
+                Family::S7 => INSTR_STATE_SIZE,
+                Family::Omron => 0,
+            },
+        );
         Layout {
             profile: profile.id,
             area_base,
@@ -211,6 +242,7 @@ impl Layout {
             sched,
             phys_in,
             phys_out,
+            instr,
             size: next,
             block_size,
         }
@@ -262,6 +294,13 @@ impl Layout {
         self.sched + field
     }
 
+    /// Image offset of a field of the s7-200-more instructions' state (an [`InstrState`]
+    /// constant).
+    #[inline]
+    pub fn instr_state(&self, field: u32) -> u32 {
+        self.instr + field
+    }
+
     /// The area and in-area offset an image offset belongs to, for naming differing bytes.
     pub fn locate(&self, image_offset: u32) -> Option<(Area, u32)> {
         Area::ALL.into_iter().find_map(|area| {
@@ -285,6 +324,7 @@ impl Layout {
             Block::Sched => self.sched,
             Block::PhysIn => self.phys_in,
             Block::PhysOut => self.phys_out,
+            Block::Instr => self.instr,
         }
     }
 
@@ -352,17 +392,21 @@ pub enum Block {
     PhysIn,
     /// The physical output copy.
     PhysOut,
+    /// The state of the s7-200-more instructions, one [`InstrState`] record (none on Omron
+    /// profiles).
+    Instr,
 }
 
 impl Block {
     /// Every block, in layout order.
-    pub const ALL: [Block; 6] = [
+    pub const ALL: [Block; 7] = [
         Block::Edges,
         Block::TimerState,
         Block::CounterState,
         Block::Sched,
         Block::PhysIn,
         Block::PhysOut,
+        Block::Instr,
     ];
 
     /// A short name for reports (`timer state`).
@@ -374,6 +418,7 @@ impl Block {
             Block::Sched => "scheduler",
             Block::PhysIn => "physical inputs",
             Block::PhysOut => "physical outputs",
+            Block::Instr => "clock and PID state",
         }
     }
 
@@ -383,6 +428,7 @@ impl Block {
             Block::TimerState => Some((TIMER_STATE_SIZE, TimerState::FIELDS)),
             Block::CounterState => Some((COUNTER_STATE_SIZE, CounterState::FIELDS)),
             Block::Sched => Some((SCHED_SIZE, Sched::FIELDS)),
+            Block::Instr => Some((INSTR_STATE_SIZE, InstrState::FIELDS)),
             Block::Edges | Block::PhysIn | Block::PhysOut => None,
         }
     }
@@ -471,6 +517,7 @@ mod tests {
             blocks.push((l.sched, SCHED_SIZE));
             blocks.push((l.phys_in, p.inputs));
             blocks.push((l.phys_out, p.outputs));
+            blocks.push((l.instr, l.block_size(Block::Instr)));
             blocks.sort();
             for w in blocks.windows(2) {
                 assert!(
@@ -535,9 +582,19 @@ mod tests {
             (None, 60, 4, 1)
         );
         assert_eq!(Block::Edges.field_at(0), None);
+        // The A5's SM area (180 bytes) is padded to 192.
         assert_eq!(
-            l.region(l.phys_out + l.block_size(Block::PhysOut)),
+            l.region(l.base(Area::SM) + l.area_size(Area::SM)),
             Region::Padding
         );
+        assert_eq!(l.region(l.size), Region::Padding);
+        let Region::Block { block, offset } = l.region(l.instr_state(InstrState::PID_NO_FLOW))
+        else {
+            panic!("not a block")
+        };
+        let at = block.field_at(offset).unwrap();
+        assert_eq!((block, at.name), (Block::Instr, Some("PID_NO_FLOW")));
+        let omron = Layout::of(ProfileId::Cp1h);
+        assert_eq!(omron.block_size(Block::Instr), 0);
     }
 }

@@ -378,6 +378,7 @@ const CP1H_DATA: CpuProfile = CpuProfile {
     max_for_depth: 15,
     timer_table: OMRON_TIMERS,
     lacks: InstrSet::ALL,
+    clock: crate::profile::RealTimeClock::Absent,
 };
 
 /// The CP1E (E type), with the smaller ranges of spec §1.1 (U9: the per-model table is

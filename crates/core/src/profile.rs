@@ -268,6 +268,50 @@ pub struct CpuProfile {
     /// The optional instruction families the CPU does not have (s7-200-more Appendix A, its
     /// "rejected" entries; every family on Omron profiles, whose front end has its own table).
     pub lacks: &'static [InstrSet],
+    /// The CPU's real-time clock (s7-200-more §6.2 `rtc_present`): without one,
+    /// TODR/TODW/TODRX/TODWX fail at run time with 16#000C.
+    pub clock: RealTimeClock,
+}
+
+/// The real-time clock of a CPU (s7-200-more §6): whether there is one, and the
+/// daylight-saving modes its extended buffer (TODRX/TODWX) accepts in byte 8.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RealTimeClock {
+    /// No clock: the clock instructions fail with 16#000C.
+    Absent,
+    /// The classic S7-200's: modes 00–03, 08, 10–13 and FF, a 19-byte extended buffer.
+    Classic,
+    /// The S7-200 SMART's: 12 is reserved; EE (a user rule by day of week) uses bytes 9–20, a
+    /// 21-byte buffer.
+    Smart,
+}
+
+impl RealTimeClock {
+    /// The daylight-saving mode that makes the extended buffer 21 bytes long (SMART's EE).
+    pub const DAY_OF_WEEK_RULE: u8 = 0xEE;
+
+    /// Whether there is a clock.
+    pub fn present(self) -> bool {
+        self != RealTimeClock::Absent
+    }
+
+    /// The daylight-saving modes byte 8 of the extended buffer may hold.
+    pub fn dst_modes(self) -> &'static [u8] {
+        match self {
+            RealTimeClock::Absent => &[],
+            RealTimeClock::Classic => &[0x00, 0x01, 0x02, 0x03, 0x08, 0x10, 0x11, 0x12, 0x13, 0xFF],
+            RealTimeClock::Smart => &[0x00, 0x01, 0x02, 0x03, 0x08, 0x10, 0x11, 0x13, 0xFF, 0xEE],
+        }
+    }
+
+    /// The length of the extended buffer whose byte 8 is `mode`: 21 for SMART's EE, else 19.
+    pub fn extended_len(self, mode: u8) -> u32 {
+        if self == RealTimeClock::Smart && mode == Self::DAY_OF_WEEK_RULE {
+            21
+        } else {
+            19
+        }
+    }
 }
 
 const ALL_TIMER_KINDS: &[TimerKind] = &[TimerKind::On, TimerKind::Retentive, TimerKind::Off];
@@ -325,6 +369,8 @@ pub static A5: CpuProfile = CpuProfile {
         InstrSet::GetPut,
         InstrSet::IpAddress,
     ],
+    // "The seed does not mention a clock" (s7-200-more §6.2, Appendix A).
+    clock: RealTimeClock::Absent,
 };
 
 /// The Siemens timer table (s7-200-more §3.5.3): the number fixes both the kind family and the
@@ -431,6 +477,7 @@ pub static S7_200: CpuProfile = CpuProfile {
     max_for_depth: 8,
     timer_table: SIEMENS_TIMERS,
     lacks: &[InstrSet::GetPut, InstrSet::IpAddress],
+    clock: RealTimeClock::Classic,
 };
 
 /// A Siemens S7-200 SMART, sized as its largest standard CPU, the ST60 (s7-200-more §0.2; the
@@ -464,6 +511,7 @@ pub static SMART: CpuProfile = CpuProfile {
     timer_table: SIEMENS_TIMERS,
     // Micro/WIN SMART rejects NETR/NETW (the corpus's instruction probe confirms it).
     lacks: &[InstrSet::NetReadWrite],
+    clock: RealTimeClock::Smart,
 };
 
 impl CpuProfile {

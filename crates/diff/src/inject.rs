@@ -132,6 +132,7 @@ mod tests {
             edges: vec![],
             logic_stack_depth: 9,
             files: vec![],
+            data: Vec::new(),
         }
     }
 
