@@ -102,6 +102,8 @@ pub(crate) fn validate(prog: &Program) -> Result<(), JitError> {
 pub(crate) struct Built {
     pub(crate) module: JITModule,
     pub(crate) run_id: FuncId,
+    /// The payloads whose addresses the code holds; they must live as long as it.
+    pub(crate) ext: crate::lower::ext::ExtKeep,
 }
 
 /// Which function of a POU [`build`] hands to its `dump` callback.
@@ -164,6 +166,7 @@ pub(crate) fn build(
     let run_id = module
         .declare_function("run_scans", Linkage::Local, &run_signature(cc))
         .map_err(cg)?;
+    let ext = crate::lower::ext::ExtKeep::of(prog);
     let env = Env {
         prog,
         layout,
@@ -174,6 +177,7 @@ pub(crate) fn build(
         plans,
         hot_ops: opts.hot_ops,
         rules,
+        ext: &ext,
     };
     let mut ctx = module.make_context();
     let mut fbc = FunctionBuilderContext::new();
@@ -230,7 +234,12 @@ pub(crate) fn build(
     );
     dump(&ctx.func, 0, Part::ScanLoop);
     define_fn(&mut module, &mut ctx, run_id)?;
-    Ok(Built { module, run_id })
+    drop(env);
+    Ok(Built {
+        module,
+        run_id,
+        ext,
+    })
 }
 
 /// Lowers POU `pou` (or its chunk `chunk`) into `ctx.func`.

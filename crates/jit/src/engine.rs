@@ -28,6 +28,8 @@ pub struct JitProgram {
     /// runtime's `scan::begin` through the address baked into the code.
     _plan: Box<ScanPlan>,
     op_count: usize,
+    /// The s7-200-more ops' payloads, whose addresses are baked into the code.
+    _ext: crate::lower::ext::ExtKeep,
     /// The executed-op counter of an instrumented build ([`JitProgram::compile_counting`]).
     counter: Option<Box<AtomicU64>>,
 }
@@ -85,7 +87,11 @@ impl JitProgram {
             scan_plan: &*plan as *const ScanPlan as i64,
             op_counter: counter.as_deref().map(|c| c.as_ptr() as i64),
         };
-        let Built { mut module, run_id } = build::build(
+        let Built {
+            mut module,
+            run_id,
+            ext,
+        } = build::build(
             program,
             opts,
             rules,
@@ -108,6 +114,7 @@ impl JitProgram {
             layout,
             _plan: plan,
             op_count: program.op_count(),
+            _ext: ext,
             counter,
         })
     }

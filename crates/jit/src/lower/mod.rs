@@ -20,6 +20,7 @@ pub(crate) mod boxes;
 pub(crate) mod cache;
 pub(crate) mod call;
 pub(crate) mod control;
+pub(crate) mod ext;
 pub(crate) mod flow;
 pub(crate) mod mem;
 pub(crate) mod omron;
@@ -71,6 +72,8 @@ pub(crate) struct Env<'a> {
     pub(crate) hot_ops: usize,
     /// The semantic switches the inlined code follows (`Rules::IN_FORCE` but in tests).
     pub(crate) rules: Rules,
+    /// The payloads of the s7-200-more ops, passed to the runtime by address.
+    pub(crate) ext: &'a ext::ExtKeep,
 }
 
 /// Memory flags for every image access: the image is never null and every direct offset is in
@@ -630,6 +633,8 @@ impl<'e, 'f> Lower<'e, 'f> {
                 ref set_value,
             } => self.omron_counter(kind, counter.0, set_value),
             Op::Omron(ref bx) => self.omron_box(bx),
+            Op::Ext(ref bx) => self.ext_box(bx),
+            Op::StrCompare(ref c) => self.str_compare(c),
         }
     }
 }
