@@ -485,6 +485,8 @@ impl<'s> Lowerer<'s> {
                 }
             }
             Group::Control(flow) => return self.control(ps, flow, m, line),
+            Group::Ext => return self.ext(ps, m, line),
+            Group::StrCompare => return self.str_compare(ps, m, line),
         };
         self.emit(ps, op);
         Ok(())

@@ -128,6 +128,10 @@ codes! {
     LocalLimit = "E036", Error, "the local variables exceed 64 bytes of L memory or 16 parameters";
     /// `Symbol:Address` whose symbol names another address.
     SymbolMismatch = "E037", Error, "in a `symbol:address` operand the symbol names a different address";
+    /// Two PID instructions with one loop number.
+    PidLoopTwice = "E060", Error, "two PID instructions use the same loop number";
+    /// A data block entry that cannot be loaded.
+    DataBlock = "E061", Error, "a DATA_BLOCK line is malformed, or its value does not fit its address";
     /// Contact or stack operation consuming an unloaded level.
     StackUnderflow = "W001", Warning, "a contact or ALD/OLD/LPP/LRD consumes a stack level that nothing loaded";
     /// Too many live stack levels.
@@ -138,6 +142,10 @@ codes! {
     UnprefixedLocal = "W004", Warning, "a name without `#` is taken as the block's local variable";
     /// `Symbol:Address` with a symbol no table defines.
     UncheckedSymbol = "W005", Warning, "in a `symbol:address` operand the symbol is not defined; the address is used";
+    /// Two data block values for one V byte.
+    DataOverlap = "W060", Warning, "a DATA_BLOCK value sets V bytes an earlier value already set; the later one wins";
+    /// A clock instruction on a CPU without a clock.
+    NoClock = "W061", Warning, "the selected CPU has no real-time clock: the clock instruction fails with error 16#000C at run time";
 
     // ---- Omron CP dialect (omron-cp.md §5; the spec's numbers with the `OMR-` prefix) --------
     /// A task program without END.
