@@ -306,6 +306,13 @@ impl<'e, 'f> Lower<'e, 'f> {
         let a = self.sched(Sched::LAST_ERR);
         self.store_ne(a, c16);
         self.record_site();
+        // SM4.3 (`RUN_Err`), as the runtime's `scan::record_error` sets it.
+        if let Some((at, bit)) = stljit_runtime::scan::run_err_bit(self.env.layout) {
+            let a = Addr::img(at);
+            let v = self.byte(a);
+            let v = self.b.ins().bor_imm_s(v, 1 << bit);
+            self.set_byte(a, v);
+        }
         // Every non-fatal error clears ENO, boxes or not (the interpreter's `error`).
         self.set_eno(B::K(false));
     }
