@@ -54,6 +54,10 @@ pub(crate) struct Args {
     /// Add scan-time figures (wall clock per scan) to the summary.
     #[arg(long)]
     stats: bool,
+    /// The date and time the real-time clock shows at the first scan, `YYYY-MM-DD` or
+    /// `YYYY-MM-DD HH:MM:SS` (default 2000-01-01 00:00:00); it then runs on virtual time.
+    #[arg(long, value_name = "DATE", value_parser = stljit_runtime::rtc::DateTime::parse)]
+    start_time: Option<stljit_runtime::rtc::DateTime>,
 }
 
 pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
@@ -94,7 +98,11 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     let mut stats = ScanStats::default();
     let mut stdout = std::io::stdout().lock();
     let report = {
-        let mut sim = Simulation::new(engine.as_mut(), Image::cold_start(program), args.scan_time)?
+        let mut image = Image::cold_start(program);
+        if let Some(start) = args.start_time {
+            image.set_clock_start(start);
+        }
+        let mut sim = Simulation::new(engine.as_mut(), image, args.scan_time)?
             .with_cancel(&CANCEL)
             .with_progress(&mut progress);
         let mut observers: Vec<Box<dyn Observer + '_>> = Vec::new();
