@@ -743,13 +743,10 @@ fn parse_scan(
     let fatal = match string(row, "fatal")? {
         None => None,
         Some(name) => Some(
-            [
-                FatalCode::Watchdog,
-                FatalCode::CompareIndirect,
-                FatalCode::CompareNaN,
-            ]
-            .into_iter()
-            .find(|c| format!("{c:?}") == name)
+            FatalCode::ALL
+                .iter()
+                .copied()
+                .find(|c| format!("{c:?}") == name)
             .ok_or(format!("unknown fatal code `{name}`"))?,
         ),
     };
