@@ -64,7 +64,7 @@ impl Reader<'_> {
         }
         if let Some(inner) = piece.strip_prefix('"').and_then(|s| s.strip_suffix('"')) {
             if width != Width::Byte {
-                return Err("a string \"…\" is given at a VB address".into());
+                return Err("a string \"…\" needs a VB address".into());
             }
             let chars = stljit_source::decode::encode(inner, encoding);
             if chars.len() > MAX_STRING || inner.contains('"') {
@@ -85,7 +85,7 @@ impl Reader<'_> {
             Ok(Const::Int(i)) if (lo..=hi).contains(&i) => (i as u32) & width.mask(),
             Ok(Const::Bits(b)) if b <= u64::from(width.mask()) => b as u32,
             Ok(Const::Real(f)) if width == Width::DWord => f.to_bits(),
-            Ok(Const::Real(_)) => return Err("a real value is given at a VD address".into()),
+            Ok(Const::Real(_)) => return Err("a real value needs a VD address".into()),
             Ok(_) => return Err(format!("the value does not fit: allowed {lo} .. {hi}")),
             Err(_) => {
                 return Err("expected a number, 16#…, 2#…, a real, 'text' or \"text\"".to_owned());
@@ -194,7 +194,11 @@ impl Reader<'_> {
                         Code::DataOverlap,
                         span,
                         piece,
-                        format!("`{}` sets VB{at} … VB{} again", clip(piece), end - 1),
+                        if end - 1 == at as usize {
+                            format!("`{}` sets VB{at} again", clip(piece))
+                        } else {
+                            format!("`{}` sets VB{at} … VB{} again", clip(piece), end - 1)
+                        },
                     )
                     .help("the later value wins"),
                 );

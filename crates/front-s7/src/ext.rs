@@ -5,6 +5,7 @@
 
 use crate::classes::{R, Val};
 use crate::lexer::{Line, Tok};
+use crate::operand::Syn;
 use crate::print::{b, d, r, w};
 use crate::program::{Lowerer, PouState};
 use stljit_core::Area;
@@ -81,25 +82,33 @@ impl<'s> Lowerer<'s> {
             }
             return Ok(StrArg::Const(bytes));
         }
-        let o = self.cx.value(t, run(out))?;
-        if let Operand::Mem(l) = o
-            && !matches!(l.area, Area::V | Area::L)
-        {
+        // A peek without diagnostics: `value` reports everything else, once.
+        let found = match self.cx.scope().resolve(t.text).map(|r| r.syn) {
+            Ok(Syn::Mem {
+                area: Area::V | Area::L,
+                width: Byte,
+                ..
+            })
+            | Ok(Syn::Indirect { .. })
+            | Err(_) => None,
+            Ok(other) => Some(other.describe()),
+        };
+        if let Some(found) = found {
+            let constant = if out {
+                ""
+            } else {
+                ", a constant string \"…\""
+            };
             return Err(self.cx.report(
                 Code::OperandClass,
                 t,
-                format!("`{}` cannot hold a string", clip(t.text)),
+                format!("expected a string, found {found} `{}`", clip(t.text)),
                 Some(format!(
-                    "allowed: VB, LB, *VD, *LD, *AC{}",
-                    if out {
-                        ""
-                    } else {
-                        ", a constant string \"…\""
-                    }
+                    "a string is named by its first byte: allowed VB, LB, *VD, *LD, *AC{constant}"
                 )),
             ));
         }
-        Ok(StrArg::Mem(o))
+        Ok(StrArg::Mem(self.cx.value(t, run(out))?))
     }
 
     /// A string output (`OUT` of SCPY, ITS, …).
@@ -304,7 +313,7 @@ impl<'s> Lowerer<'s> {
             .cx
             .number(o[1], 0, 7, "PID loop number", Code::NumberRange);
         let table = match self.cx.syn(o[0]) {
-            Ok(crate::operand::Syn::Mem {
+            Ok(Syn::Mem {
                 area: Area::V,
                 width: Byte,
                 offset,
