@@ -131,6 +131,7 @@ fn program() -> Program {
         edges: vec![EdgeDecl { init: false }; 256],
         logic_stack_depth: 9,
         files: vec![],
+        data: Vec::new(),
     }
 }
 

@@ -223,6 +223,8 @@ struct Case {
     /// The front-end options (`tc_mode`, `allow_backward_jumps`: Omron's).
     options: stljit_front::Options,
     scan_ms: u64,
+    /// The date the real-time clock shows at t = 0 (s7-200-more §6.2 `rtc_start`).
+    rtc_start: Option<stljit_runtime::rtc::DateTime>,
     program: String,
     scans: Vec<ScanSpec>,
     known_failure: Option<String>,
@@ -325,8 +327,11 @@ fn run(
     stimulus: &Stimulus,
 ) -> Result<(Records, Outcome), String> {
     let mut records = Vec::new();
-    let mut sim = Simulation::new(engine, Image::cold_start(program), case.scan_ms)
-        .map_err(|e| e.to_string())?;
+    let mut image = Image::cold_start(program);
+    if let Some(start) = case.rtc_start {
+        image.set_clock_start(start);
+    }
+    let mut sim = Simulation::new(engine, image, case.scan_ms).map_err(|e| e.to_string())?;
     let mut rec = FnObserver(|e: &ScanEvent<'_>| {
         records.push((e.status, e.image.clone()));
         Ok(())
@@ -567,6 +572,7 @@ const CASE_KEYS: &[&str] = &[
     "known_failure",
     "tc_mode",
     "allow_backward_jumps",
+    "rtc_start",
 ];
 const SCAN_KEYS: &[&str] = &[
     "scan", "t_ms", "inputs", "expect", "frame", "status", "fatal", "last_err",
@@ -630,6 +636,10 @@ fn parse_case(text: &str) -> Result<Case, String> {
     if options != stljit_front::Options::default() && dialect != Dialect::Omron {
         return Err("`tc_mode` and `allow_backward_jumps` are options of the omron dialect".into());
     }
+    let rtc_start = string(&t, "rtc_start")?
+        .map(stljit_runtime::rtc::DateTime::parse)
+        .transpose()
+        .map_err(|e| format!("rtc_start: {e}"))?;
     let scan_ms = uint(&t, "scan_ms", "case")?.unwrap_or(10);
     if scan_ms == 0 {
         return Err("`scan_ms` must be at least 1".to_string());
@@ -663,6 +673,7 @@ fn parse_case(text: &str) -> Result<Case, String> {
         profile,
         options,
         scan_ms,
+        rtc_start,
         program: string(&t, "program")?.unwrap_or_default().to_string(),
         scans,
         known_failure: string(&t, "known_failure")?.map(str::to_string),
@@ -732,14 +743,11 @@ fn parse_scan(
     let fatal = match string(row, "fatal")? {
         None => None,
         Some(name) => Some(
-            [
-                FatalCode::Watchdog,
-                FatalCode::CompareIndirect,
-                FatalCode::CompareNaN,
-            ]
-            .into_iter()
-            .find(|c| format!("{c:?}") == name)
-            .ok_or(format!("unknown fatal code `{name}`"))?,
+            FatalCode::ALL
+                .iter()
+                .copied()
+                .find(|c| format!("{c:?}") == name)
+                .ok_or(format!("unknown fatal code `{name}`"))?,
         ),
     };
     if fatal.is_some() && status != ScanStatus::Fatal {

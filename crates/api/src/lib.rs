@@ -80,6 +80,7 @@ pub use snapshot::{Snapshot, fnv1a as fingerprint};
 pub use stljit_core::ScanStatus;
 pub use stljit_front::{Dialect, SourceFile};
 pub use stljit_jit::OptLevel;
+pub use stljit_runtime::rtc::DateTime;
 pub use stljit_sim::{
     FnObserver, Observer, Outcome, Progress, RunReport, ScanEvent, Stimulus, Until,
 };

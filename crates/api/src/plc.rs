@@ -16,6 +16,7 @@ use std::sync::atomic::AtomicBool;
 use stljit_core::ir::Program;
 use stljit_interp::Interpreter;
 use stljit_jit::{JitOptions, JitProgram, OptLevel};
+use stljit_runtime::rtc::DateTime;
 use stljit_runtime::{Engine, Image};
 use stljit_sim::{Observer, Progress, RunReport, ScanEvent, Simulation, Stimulus, TimeBase, Until};
 
@@ -55,6 +56,9 @@ pub struct Options {
     pub opt: OptLevel,
     /// Virtual time per scan, at least 1 ms.
     pub scan_ms: u64,
+    /// The date and time the real-time clock shows at cold start (s7-200-more §6.2); `None`
+    /// is 2000-01-01 00:00:00. Ignored by profiles without a clock.
+    pub clock_start: Option<DateTime>,
 }
 
 impl Default for Options {
@@ -64,6 +68,7 @@ impl Default for Options {
             engine: EngineKind::Jit,
             opt: OptLevel::Speed,
             scan_ms: 10,
+            clock_start: None,
         }
     }
 }
@@ -84,6 +89,15 @@ pub fn build_engine(
                 .map_err(|e| engine_error(e.to_string()))?,
         ),
     })
+}
+
+/// A cold-started image of `program` whose clock shows `clock_start` (if given).
+fn cold_image(program: &Program, clock_start: Option<DateTime>) -> Image {
+    let mut image = Image::cold_start(program);
+    if let Some(start) = clock_start {
+        image.set_clock_start(start);
+    }
+    image
 }
 
 /// One run of [`Plc::simulate`]: how long, and optionally a stimulus, an observer, a cancel
@@ -164,6 +178,7 @@ pub struct Plc {
     kind: EngineKind,
     image: Image,
     scan_ms: u64,
+    clock_start: Option<DateTime>,
     forces: Forces,
     fingerprint: u64,
     hook: Option<Box<dyn Observer + Send>>,
@@ -194,7 +209,7 @@ impl Plc {
         let program = compiled.program()?;
         let engine = build_engine(options.engine, options.opt, program)?;
         let fingerprint = fnv1a(stljit_core::text::print(program).as_bytes());
-        let image = Image::cold_start(program);
+        let image = cold_image(program, options.clock_start);
         let stimulus = Stimulus::empty(TimeBase::Scan, program.profile.profile());
         let program = program.clone();
         Ok(Plc {
@@ -204,6 +219,7 @@ impl Plc {
             kind: options.engine,
             image,
             scan_ms: options.scan_ms,
+            clock_start: options.clock_start,
             forces: Forces::default(),
             fingerprint,
             hook: None,
@@ -424,7 +440,7 @@ impl Plc {
     /// Back to the power-up state (spec §1.7): a cold-started image at scan 0, no forces. The
     /// engine, scan time and hook stay.
     pub fn reset(&mut self) {
-        self.image = Image::cold_start(&self.program);
+        self.image = cold_image(&self.program, self.clock_start);
         self.forces.clear();
     }
 

@@ -73,6 +73,10 @@ pub(crate) struct Args {
     /// Add scan-time figures (wall clock per scan) to the summary.
     #[arg(long)]
     stats: bool,
+    /// The date and time the real-time clock shows at the first scan, `YYYY-MM-DD` or
+    /// `YYYY-MM-DD HH:MM:SS` (default 2000-01-01 00:00:00); it then runs on virtual time.
+    #[arg(long, value_name = "DATE", value_parser = stljit_runtime::rtc::DateTime::parse)]
+    start_time: Option<stljit_runtime::rtc::DateTime>,
 }
 
 pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
@@ -103,6 +107,7 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
         engine: args.engine.into(),
         opt: args.opt.into(),
         scan_ms: args.scan_time,
+        clock_start: args.start_time,
     };
     let until = match (args.scans, args.duration) {
         (Some(n), _) => Until::Scans(n),

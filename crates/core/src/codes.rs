@@ -57,13 +57,20 @@ code_enum! {
         InInterrupt = 0x0004,
         /// Illegal indirect address (bad pointer, out of range, or a read-only target).
         IndirectAddress = 0x0006,
+        /// TODW/TODWX data error: a field is no BCD value, out of its range, or no such day
+        /// (s7-200-more §0.4, §6.2).
+        ClockData = 0x0007,
         /// Subroutine nesting exceeded.
         CallNesting = 0x0008,
+        /// The CPU has no real-time clock (TODR/TODW on a profile without one, §6.2).
+        NoClock = 0x000C,
         /// Operand out of range (an S/R/BM* count runs past the area end).
         OperandRange = 0x0091,
         /// Bad count field (SHRB length 0 or above 64). Block-move and FILL counts use
         /// [`ErrorCode::OperandRange`] (spec §4.7).
         CountField = 0x0092,
+        /// Illegal index 0 in a string instruction (SSCPY, SFND, CFND, STI/STD/STR, §0.4).
+        StringIndex = 0x009B,
     }
 }
 
@@ -72,9 +79,12 @@ impl fmt::Display for ErrorCode {
         let what = match self {
             ErrorCode::InInterrupt => "ENI or DISI in an interrupt routine",
             ErrorCode::IndirectAddress => "illegal indirect address",
+            ErrorCode::ClockData => "clock data error",
             ErrorCode::CallNesting => "subroutine nesting exceeded",
+            ErrorCode::NoClock => "no real-time clock",
             ErrorCode::OperandRange => "operand out of range",
             ErrorCode::CountField => "bad count field",
+            ErrorCode::StringIndex => "string index 0",
         };
         write!(f, "error 16#{:04X} ({what})", *self as u16)
     }
@@ -90,6 +100,9 @@ code_enum! {
         CompareIndirect = 0x0102,
         /// A real compare saw a NaN operand.
         CompareNaN = 0x0103,
+        /// A string compare read a string with length byte 255 or one running past its area
+        /// (s7-200-more §5.6).
+        CompareString = 0x0104,
     }
 }
 
@@ -99,6 +112,7 @@ impl fmt::Display for FatalCode {
             FatalCode::Watchdog => "watchdog: loop budget of the scan exhausted",
             FatalCode::CompareIndirect => "illegal indirect address in a compare",
             FatalCode::CompareNaN => "NaN operand in a real compare",
+            FatalCode::CompareString => "invalid string in a string compare",
         };
         write!(f, "fatal 16#{:04X} ({what})", *self as u16)
     }
@@ -120,6 +134,6 @@ mod tests {
             assert_eq!(FatalCode::try_from(e as u16), Ok(e));
         }
         assert_eq!(ScanStatus::try_from(9), Err(9));
-        assert_eq!(ErrorCode::try_from(0x0007), Err(0x0007));
+        assert_eq!(ErrorCode::try_from(0x0005), Err(0x0005));
     }
 }

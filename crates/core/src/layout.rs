@@ -12,7 +12,7 @@
 //! apart; [`Layout::region`] and [`Block::field_at`] name any image offset from them.
 
 use crate::area::Area;
-use crate::profile::{CpuProfile, ProfileId};
+use crate::profile::{CpuProfile, Family, ProfileId};
 
 /// Bytes of private state per timer (see [`TimerState`]).
 pub const TIMER_STATE_SIZE: u32 = 16;
@@ -32,6 +32,9 @@ pub const L_FRAMES: u32 = 14;
 /// The L frame of the running interrupt routine; frames below it are the main program's call
 /// chain, frames above it the routine's (only one routine runs at a time).
 pub const ISR_FRAME: u32 = 9;
+/// Bytes of the state of the s7-200-more instructions (see [`InstrState`]; 0 on Omron
+/// profiles).
+pub const INSTR_STATE_SIZE: u32 = 32;
 
 /// One named field of a private record ([`TimerState`], [`CounterState`], [`Sched`]): its name,
 /// its offset in the record and its size in bytes.
@@ -190,6 +193,25 @@ record_fields! {
     }
 }
 
+record_fields! {
+    /// Field offsets inside the state of the s7-200-more instructions (§11.1): the real-time
+    /// clock (§6.2) and the PID loops' power-flow history (§7.3). One record per image, read and
+    /// written only by `stljit_runtime::rtc` and `stljit_runtime::pid`.
+    InstrState {
+        /// Native-endian: seconds since 2000-01-01 00:00:00 that the clock showed at
+        /// `RTC_REF_US` (the start date at cold start, then the last TODW/TODWX).
+        RTC_EPOCH: i64 = 0;
+        /// Native-endian: the virtual time in µs at which the clock showed `RTC_EPOCH`.
+        RTC_REF_US: u64 = 8;
+        /// The daylight-saving bytes 8–20 of the last TODWX, which TODRX returns.
+        RTC_DST: [u8; 13] = 16;
+        /// Bit `n`: PID loop `n` ran without power flow at its last execution. 0 at cold start,
+        /// which is the manual's history bit *set*: no bumpless transfer on a first execution
+        /// with power flow.
+        PID_NO_FLOW: u8 = 29;
+    }
+}
+
 /// Default loop budget per scan (spec §2.5).
 pub const DEFAULT_LOOP_LIMIT: u32 = 65_536;
 
@@ -216,6 +238,8 @@ pub struct Layout {
     pub interrupts: u32,
     /// The interrupt queues' entries, see [`QueueEntry`].
     pub queue: u32,
+    /// The state of the s7-200-more instructions, see [`InstrState`].
+    pub instr: u32,
     /// Total image size in bytes.
     pub size: u32,
     block_size: [u32; Block::ALL.len()],
@@ -265,6 +289,13 @@ impl Layout {
             if ints.any() { INT_STATE_SIZE } else { 0 },
         );
         let queue = take(Block::Queue, QUEUE_ENTRY_SIZE * ints.slots());
+        let instr = take(
+            Block::Instr,
+            match profile.family {
+                Family::S7 => INSTR_STATE_SIZE,
+                Family::Omron => 0,
+            },
+        );
         Layout {
             profile: profile.id,
             area_base,
@@ -277,6 +308,7 @@ impl Layout {
             phys_out,
             interrupts,
             queue,
+            instr,
             size: next,
             block_size,
         }
@@ -340,6 +372,13 @@ impl Layout {
         self.queue + QUEUE_ENTRY_SIZE * slot
     }
 
+    /// Image offset of a field of the s7-200-more instructions' state (an [`InstrState`]
+    /// constant).
+    #[inline]
+    pub fn instr_state(&self, field: u32) -> u32 {
+        self.instr + field
+    }
+
     /// The area and in-area offset an image offset belongs to, for naming differing bytes.
     pub fn locate(&self, image_offset: u32) -> Option<(Area, u32)> {
         Area::ALL.into_iter().find_map(|area| {
@@ -365,6 +404,7 @@ impl Layout {
             Block::PhysOut => self.phys_out,
             Block::Interrupts => self.interrupts,
             Block::Queue => self.queue,
+            Block::Instr => self.instr,
         }
     }
 
@@ -437,11 +477,14 @@ pub enum Block {
     Interrupts,
     /// The interrupt queues, one [`QueueEntry`] record per slot.
     Queue,
+    /// The state of the s7-200-more instructions, one [`InstrState`] record (none on Omron
+    /// profiles).
+    Instr,
 }
 
 impl Block {
     /// Every block, in layout order.
-    pub const ALL: [Block; 8] = [
+    pub const ALL: [Block; 9] = [
         Block::Edges,
         Block::TimerState,
         Block::CounterState,
@@ -450,6 +493,7 @@ impl Block {
         Block::PhysOut,
         Block::Interrupts,
         Block::Queue,
+        Block::Instr,
     ];
 
     /// A short name for reports (`timer state`).
@@ -463,6 +507,7 @@ impl Block {
             Block::PhysOut => "physical outputs",
             Block::Interrupts => "interrupt state",
             Block::Queue => "interrupt queue",
+            Block::Instr => "clock and PID state",
         }
     }
 
@@ -474,6 +519,7 @@ impl Block {
             Block::Sched => Some((SCHED_SIZE, Sched::FIELDS)),
             Block::Interrupts => Some((INT_STATE_SIZE, IntState::FIELDS)),
             Block::Queue => Some((QUEUE_ENTRY_SIZE, QueueEntry::FIELDS)),
+            Block::Instr => Some((INSTR_STATE_SIZE, InstrState::FIELDS)),
             Block::Edges | Block::PhysIn | Block::PhysOut => None,
         }
     }
@@ -565,6 +611,7 @@ mod tests {
             blocks.push((l.phys_out, p.outputs));
             blocks.push((l.interrupts, l.block_size(Block::Interrupts)));
             blocks.push((l.queue, l.block_size(Block::Queue)));
+            blocks.push((l.instr, l.block_size(Block::Instr)));
             blocks.sort();
             for w in blocks.windows(2) {
                 assert!(
@@ -656,5 +703,13 @@ mod tests {
         };
         let at = block.field_at(offset).unwrap();
         assert_eq!((at.name, at.byte), (Some("ATTACH"), 10));
+        let Region::Block { block, offset } = l.region(l.instr_state(InstrState::PID_NO_FLOW))
+        else {
+            panic!("not a block")
+        };
+        let at = block.field_at(offset).unwrap();
+        assert_eq!((block, at.name), (Block::Instr, Some("PID_NO_FLOW")));
+        let omron = Layout::of(ProfileId::Cp1h);
+        assert_eq!(omron.block_size(Block::Instr), 0);
     }
 }

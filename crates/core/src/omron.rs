@@ -380,6 +380,7 @@ const CP1H_DATA: CpuProfile = CpuProfile {
     timer_table: OMRON_TIMERS,
     lacks: InstrSet::ALL,
     interrupts: &InterruptProfile::NONE,
+    clock: crate::profile::RealTimeClock::Absent,
 };
 
 /// The CP1E (E type), with the smaller ranges of spec §1.1 (U9: the per-model table is

@@ -273,6 +273,50 @@ pub struct CpuProfile {
     /// Interrupt events, queues and the CALL depth of interrupt routines
     /// ([`InterruptProfile::NONE`] on Omron profiles).
     pub interrupts: &'static InterruptProfile,
+    /// The CPU's real-time clock (s7-200-more §6.2 `rtc_present`): without one,
+    /// TODR/TODW/TODRX/TODWX fail at run time with 16#000C.
+    pub clock: RealTimeClock,
+}
+
+/// The real-time clock of a CPU (s7-200-more §6): whether there is one, and the
+/// daylight-saving modes its extended buffer (TODRX/TODWX) accepts in byte 8.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RealTimeClock {
+    /// No clock: the clock instructions fail with 16#000C.
+    Absent,
+    /// The classic S7-200's: modes 00–03, 08, 10–13 and FF, a 19-byte extended buffer.
+    Classic,
+    /// The S7-200 SMART's: 12 is reserved; EE (a user rule by day of week) uses bytes 9–20, a
+    /// 21-byte buffer.
+    Smart,
+}
+
+impl RealTimeClock {
+    /// The daylight-saving mode that makes the extended buffer 21 bytes long (SMART's EE).
+    pub const DAY_OF_WEEK_RULE: u8 = 0xEE;
+
+    /// Whether there is a clock.
+    pub fn present(self) -> bool {
+        self != RealTimeClock::Absent
+    }
+
+    /// The daylight-saving modes byte 8 of the extended buffer may hold.
+    pub fn dst_modes(self) -> &'static [u8] {
+        match self {
+            RealTimeClock::Absent => &[],
+            RealTimeClock::Classic => &[0x00, 0x01, 0x02, 0x03, 0x08, 0x10, 0x11, 0x12, 0x13, 0xFF],
+            RealTimeClock::Smart => &[0x00, 0x01, 0x02, 0x03, 0x08, 0x10, 0x11, 0x13, 0xFF, 0xEE],
+        }
+    }
+
+    /// The length of the extended buffer whose byte 8 is `mode`: 21 for SMART's EE, else 19.
+    pub fn extended_len(self, mode: u8) -> u32 {
+        if self == RealTimeClock::Smart && mode == Self::DAY_OF_WEEK_RULE {
+            21
+        } else {
+            19
+        }
+    }
 }
 
 const ALL_TIMER_KINDS: &[TimerKind] = &[TimerKind::On, TimerKind::Retentive, TimerKind::Off];
@@ -331,6 +375,8 @@ pub static A5: CpuProfile = CpuProfile {
         InstrSet::IpAddress,
     ],
     interrupts: &interrupt::A5_INTERRUPTS,
+    // "The seed does not mention a clock" (s7-200-more §6.2, Appendix A).
+    clock: RealTimeClock::Absent,
 };
 
 /// The Siemens timer table (s7-200-more §3.5.3): the number fixes both the kind family and the
@@ -438,6 +484,7 @@ pub static S7_200: CpuProfile = CpuProfile {
     timer_table: SIEMENS_TIMERS,
     lacks: &[InstrSet::GetPut, InstrSet::IpAddress],
     interrupts: &interrupt::S7_200_INTERRUPTS,
+    clock: RealTimeClock::Classic,
 };
 
 /// A Siemens S7-200 SMART, sized as its largest standard CPU, the ST60 (s7-200-more §0.2; the
@@ -472,6 +519,7 @@ pub static SMART: CpuProfile = CpuProfile {
     // Micro/WIN SMART rejects NETR/NETW (the corpus's instruction probe confirms it).
     lacks: &[InstrSet::NetReadWrite],
     interrupts: &interrupt::SMART_INTERRUPTS,
+    clock: RealTimeClock::Smart,
 };
 
 impl CpuProfile {

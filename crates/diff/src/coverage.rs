@@ -2,7 +2,10 @@
 //! campaign shows what it exercised (and what it never reached).
 
 use std::collections::BTreeMap;
-use stljit_core::ir::{BoxOp, CmpType, Contact, Conversion, IntOp, Op, Operand, Program};
+use stljit_core::ir::{
+    BoxOp, ClockOp, CmpType, Contact, Conversion, ExtBox, FindRel, IntOp, NumType, Op, Operand,
+    Program, StackForm,
+};
 use stljit_core::{Area, Width};
 use stljit_front_s7::spelling::{area_prefix, counter_mnemonic, timer_mnemonic};
 
@@ -61,7 +64,10 @@ pub const ALL_MNEMONICS: &[&str] = &[
     "SLB", "SLW", "SLD", "SRB", "SRW", "SRD", "RLB", "RLW", "RLD", "RRB", "RRW", "RRD", "SHRB",
     "BTI", "ITB", "ITD", "DTI", "DTR", "ROUND", "TRUNC", "BCDI", "IBCD", "DECO", "ENCO", "SEG",
     "BIR", "BIW", "JMP", "LBL", "CALL", "CRET", "RET", "END", "MEND", "STOP", "WDR", "NOP", "FOR",
-    "NEXT", "LSCR", "SCRT", "CSCRE", "SCRE", "ATCH", "DTCH", "ENI", "DISI", "CEVNT",
+    "NEXT", "LSCR", "SCRT", "CSCRE", "SCRE", "ATCH", "DTCH", "ENI", "DISI", "CEVNT", "ATT", "FIFO",
+    "LIFO", "FND=", "FND<>", "FND<", "FND>", "ATH", "HTA", "ITA", "DTA", "RTA", "ITS", "DTS",
+    "RTS", "STI", "STD", "STR", "SLEN", "SCPY", "SCAT", "SSCPY", "SFND", "CFND", "TODR", "TODW",
+    "TODRX", "TODWX", "PID", "LDS=", "LDS<>", "AS=", "AS<>", "OS=", "OS<>",
 ];
 
 fn contact_mnemonic(prefix: usize, c: &Contact) -> &'static str {
@@ -177,6 +183,55 @@ pub fn mnemonic(op: &Op) -> &'static str {
         Op::OmronTimer { .. } => "TIM",
         Op::OmronCounter { .. } => "CNT",
         Op::Omron(_) => "MOV/CMP/+",
+        Op::Ext(b) => ext_mnemonic(b),
+        Op::StrCompare(c) => {
+            let form = match c.form {
+                StackForm::Load => 0,
+                StackForm::And => 1,
+                StackForm::Or => 2,
+            };
+            ["LDS=", "LDS<>", "AS=", "AS<>", "OS=", "OS<>"][form * 2 + usize::from(c.ne)]
+        }
+    }
+}
+
+fn ext_mnemonic(b: &ExtBox) -> &'static str {
+    match b {
+        ExtBox::TableAdd { .. } => "ATT",
+        ExtBox::TableTake { lifo, .. } => ["FIFO", "LIFO"][usize::from(*lifo)],
+        ExtBox::TableFind { rel, .. } => match rel {
+            FindRel::Eq => "FND=",
+            FindRel::Ne => "FND<>",
+            FindRel::Lt => "FND<",
+            FindRel::Gt => "FND>",
+        },
+        ExtBox::AsciiToHex { .. } => "ATH",
+        ExtBox::HexToAscii { .. } => "HTA",
+        ExtBox::NumToText { ty, string, .. } => {
+            let t = match ty {
+                NumType::Int => 0,
+                NumType::DInt => 1,
+                NumType::Real => 2,
+            };
+            ["ITA", "DTA", "RTA", "ITS", "DTS", "RTS"][t + 3 * usize::from(*string)]
+        }
+        ExtBox::TextToNum { ty, .. } => match ty {
+            NumType::Int => "STI",
+            NumType::DInt => "STD",
+            NumType::Real => "STR",
+        },
+        ExtBox::StrLen { .. } => "SLEN",
+        ExtBox::StrCopy { .. } => "SCPY",
+        ExtBox::StrCat { .. } => "SCAT",
+        ExtBox::SubStr { .. } => "SSCPY",
+        ExtBox::StrFind { chars, .. } => ["SFND", "CFND"][usize::from(*chars)],
+        ExtBox::Clock { op, .. } => match op {
+            ClockOp::Read => "TODR",
+            ClockOp::Write => "TODW",
+            ClockOp::ReadExt => "TODRX",
+            ClockOp::WriteExt => "TODWX",
+        },
+        ExtBox::Pid { .. } => "PID",
     }
 }
 
@@ -313,6 +368,8 @@ pub fn for_each_operand(op: &Op, mut f: impl FnMut(&Operand)) {
             BoxOp::ImmediateRead { dst, .. } => f(dst),
             BoxOp::ImmediateWrite { src, .. } => f(src),
         },
+        Op::Ext(b) => b.operand_uses().iter().for_each(|u| f(&u.operand)),
+        Op::StrCompare(c) => c.operand_uses().iter().for_each(|u| f(&u.operand)),
         _ => {}
     }
 }

@@ -139,6 +139,7 @@ mod tests {
             edges: vec![],
             logic_stack_depth: 9,
             files: vec![],
+            data: Vec::new(),
         }
     }
 

@@ -1,6 +1,6 @@
 //! Names for image offsets: the PLC areas, and the private blocks (edge memories, timer and
 //! counter state, the scan bookkeeping, the physical I/O copies, the interrupt state and
-//! queues) by field, so that a divergence
+//! queues, the clock and PID state) by field, so that a divergence
 //! report says `Sched.LOOP_COUNT` or `T37.RUN` instead of a bare number. Which block and field a
 //! byte belongs to comes from core's layout ([`Layout::region`]); this module only spells it.
 
@@ -66,6 +66,13 @@ pub enum Place {
     PhysIn(u32),
     /// The physical output copy.
     PhysOut(u32),
+    /// A field of the clock and PID state, and the byte inside it.
+    Instr {
+        /// Field name.
+        field: &'static str,
+        /// Byte inside the field.
+        byte: u32,
+    },
     /// Alignment padding.
     Padding(u32),
 }
@@ -111,13 +118,18 @@ impl Place {
             },
             (Block::PhysIn, _) => Place::PhysIn(offset),
             (Block::PhysOut, _) => Place::PhysOut(offset),
+            (Block::Instr, Some(at)) => Place::Instr {
+                field: at.name.unwrap_or("(unused)"),
+                byte: at.byte,
+            },
             // Record blocks always name their bytes; a block without fields is matched above.
             (
                 Block::TimerState
                 | Block::CounterState
                 | Block::Sched
                 | Block::Interrupts
-                | Block::Queue,
+                | Block::Queue
+                | Block::Instr,
                 None,
             ) => Place::Padding(off),
         }
@@ -173,6 +185,7 @@ impl fmt::Display for Place {
             }
             Place::PhysIn(n) => write!(f, "physical input byte {n}"),
             Place::PhysOut(n) => write!(f, "physical output byte {n}"),
+            Place::Instr { field, byte } => write!(f, "InstrState.{field} byte {byte}"),
             Place::Padding(o) => write!(f, "padding at {o:#x}"),
         }
     }

@@ -198,6 +198,7 @@ pub fn compile_with(
         edges,
         logic_stack_depth: LOGIC_STACK_DEPTH,
         files: files.iter().map(|f| f.name.clone()).collect(),
+        data: Vec::new(),
     });
     Compilation {
         program,

@@ -30,6 +30,7 @@ pub fn parse_address(
         file: FileId(0),
         line: 1,
         file_names: Vec::new(),
+        encodings: Vec::new(),
     };
     let tok = Tok {
         text,

@@ -157,6 +157,8 @@ pub(crate) struct Cx<'s> {
     pub(crate) line: u32,
     /// File names, for "first defined in …" notes.
     pub(crate) file_names: Vec<String>,
+    /// Each file's encoding, by [`FileId`] (constant strings keep its bytes).
+    pub(crate) encodings: Vec<stljit_source::Encoding>,
 }
 
 impl Cx<'_> {

@@ -69,7 +69,7 @@ fn tok<'a>(line: &'a str, ascii: bool, start: usize, end: usize) -> Tok<'a> {
 }
 
 /// Byte offset where the `//` comment starts (outside quotes), or the line length.
-fn code_end(line: &str) -> usize {
+pub(crate) fn code_end(line: &str) -> usize {
     let b = line.as_bytes();
     let mut quote = 0u8;
     let mut i = 0;
@@ -121,7 +121,7 @@ pub(crate) fn lex_line(line: &str, number: u32) -> Option<Line<'_>> {
 
 /// Calls `piece(start, end)` for each comma-separated piece of `text` from byte `from` on, commas
 /// inside `"…"` or `'…'` not counting.
-fn comma_pieces(text: &str, from: usize, mut piece: impl FnMut(usize, usize)) {
+pub(crate) fn comma_pieces(text: &str, from: usize, mut piece: impl FnMut(usize, usize)) {
     let b = text.as_bytes();
     let (mut quote, mut start) = (0u8, from);
     for i in from..=b.len() {

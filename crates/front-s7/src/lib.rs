@@ -7,13 +7,16 @@
 //! same IR; [`parse_address`] reads the addresses the CLI's stimulus and watch options name.
 //!
 //! Pipeline: `decode` → `structure` (lines into POUs, using `lexer`; `VAR_…` declarations with
-//! `locals`) → `program` (lowering with `lower`/`control`/`interrupts`, operands through
+//! `locals`; `DATA_BLOCK` lines read by `data_block`) → `program` (lowering with
+//! `lower`/`control`/`interrupts`/`ext`, operands through
 //! `operand`/`names`/`classes` against the project symbols, the CPU's `system_symbols` and the
 //! block's `locals`, the `stack` analysis) → IR.
 
 mod address;
 mod classes;
 mod control;
+mod data_block;
+mod ext;
 mod interrupts;
 mod lexer;
 pub mod locals;
@@ -60,7 +63,9 @@ pub fn compile(
             .enumerate()
             .map(|(i, s)| (FileId::new(i), s.text.as_str(), s.name.as_str()))
             .collect();
-        let pous = structure::structure(&texts, profile_data, &mut diags);
+        let (pous, data_lines) = structure::structure(&texts, profile_data, &mut diags);
+        let encodings: Vec<_> = sources.files.iter().map(|s| s.encoding).collect();
+        let data = data_block::lower(&data_lines, profile_data, &encodings, &mut diags);
         let cx = Cx {
             profile: profile_data,
             symbols: table.as_ref(),
@@ -70,9 +75,11 @@ pub fn compile(
             file: FileId(0),
             line: 0,
             file_names: files.iter().map(|f| f.name.clone()).collect(),
+            encodings,
         };
         let names = files.iter().map(|f| f.name.clone()).collect();
-        let (program, d) = program::lower(&pous, cx, names);
+        let (mut program, d) = program::lower(&pous, cx, names);
+        program.data = data;
         diags = d;
         program
     };

@@ -58,16 +58,16 @@ fn val(o: Operand, width: Width, real: bool) -> String {
     }
 }
 
-fn b(o: Operand) -> String {
+pub(crate) fn b(o: Operand) -> String {
     val(o, Width::Byte, false)
 }
-fn w(o: Operand) -> String {
+pub(crate) fn w(o: Operand) -> String {
     val(o, Width::Word, false)
 }
-fn d(o: Operand) -> String {
+pub(crate) fn d(o: Operand) -> String {
     val(o, Width::DWord, false)
 }
-fn r(o: Operand) -> String {
+pub(crate) fn r(o: Operand) -> String {
     val(o, Width::DWord, true)
 }
 
@@ -306,6 +306,8 @@ pub fn print_op(program: &Program, pou: &Pou, op: &Op) -> String {
             format!("{} {counter}, {}", counter_mnemonic(*kind), w(*preset))
         }
         Op::Box(x) => box_op(x),
+        Op::Ext(x) => crate::ext::print_ext(x),
+        Op::StrCompare(c) => crate::ext::print_str_compare(c),
         Op::Jump(l) => format!("JMP {}", l.0),
         Op::Label(l) => format!("LBL {}", l.0),
         Op::Call(id) => format!("CALL {}", call_target(program, *id)),
@@ -435,6 +437,14 @@ pub fn print_program(program: &Program) -> String {
             let _ = writeln!(out, "\t{}", print_op(program, pou, op));
         }
         let _ = writeln!(out, "END_{kw}");
+    }
+    if !program.data.is_empty() {
+        out.push_str("DATA_BLOCK USER1:DB1\nBEGIN\n");
+        for d in &program.data {
+            let values: Vec<String> = d.bytes.iter().map(|b| format!("16#{b:02X}")).collect();
+            let _ = writeln!(out, "VB{}\t{}", d.offset, values.join(", "));
+        }
+        out.push_str("END_DATA_BLOCK\n");
     }
     out
 }

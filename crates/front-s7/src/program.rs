@@ -98,6 +98,8 @@ pub(crate) struct Lowerer<'s> {
     pub(crate) pou_names: Vec<String>,
     /// See `pou_names`.
     pub(crate) pou_spans: Vec<Span>,
+    /// PID loop numbers in use, with the first use (each belongs to one PID, §7.3).
+    pub(crate) pid_loops: HashMap<u8, Span>,
 }
 
 impl<'s> Lowerer<'s> {
@@ -331,6 +333,7 @@ pub(crate) fn lower<'s>(
         locals,
         pou_names: srcs.iter().map(|p| p.name.clone()).collect(),
         pou_spans: srcs.iter().map(|p| p.decl).collect(),
+        pid_loops: HashMap::new(),
     };
     let mut states = Vec::with_capacity(srcs.len());
     let mut pous = Vec::with_capacity(srcs.len());
@@ -420,6 +423,7 @@ pub(crate) fn lower<'s>(
         edges: vec![EdgeDecl { init: false }; lw.edges],
         logic_stack_depth: 9,
         files,
+        data: Vec::new(),
     };
     (program, lw.cx.diags)
 }

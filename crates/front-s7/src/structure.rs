@@ -3,8 +3,10 @@
 //! blocks (`ORGANIZATION_BLOCK`, `SUBROUTINE_BLOCK`, `INTERRUPT_BLOCK` with `TITLE=`, `VAR_…`
 //! sections, `BEGIN` and `END_…_BLOCK`). The declarations of the `VAR_…` sections are read here
 //! (`locals::parse_decl`) and kept with their POU; a linear `SBR n`/`INT n` may be followed by
-//! such sections too [design].
+//! such sections too [design]. The lines of `DATA_BLOCK … END_DATA_BLOCK` (V memory's initial
+//! values) are collected for `data_block`.
 
+use crate::data_block::DataLine;
 use crate::lexer::{Line, Tok, lex_line};
 use crate::locals::{Decl, Section, parse_decl};
 use stljit_core::interrupt::MAX_ROUTINE;
@@ -49,6 +51,8 @@ impl BlockKind {
 
 struct Builder<'a, 'd> {
     pous: Vec<PouSrc<'a>>,
+    /// The lines inside `DATA_BLOCK … END_DATA_BLOCK`, in order.
+    data: Vec<DataLine<'a>>,
     diags: &'d mut Vec<Diagnostic>,
     profile: &'static CpuProfile,
     names: Vec<&'a str>,
@@ -233,9 +237,10 @@ pub(crate) fn structure<'a>(
     files: &[(FileId, &'a str, &'a str)],
     profile: &'static CpuProfile,
     diags: &mut Vec<Diagnostic>,
-) -> Vec<PouSrc<'a>> {
+) -> (Vec<PouSrc<'a>>, Vec<DataLine<'a>>) {
     let mut b = Builder {
         pous: Vec::new(),
+        data: Vec::new(),
         diags,
         profile,
         names: files.iter().map(|f| f.2).collect(),
@@ -243,7 +248,7 @@ pub(crate) fn structure<'a>(
     for &(file, text, _) in files {
         structure_file(&mut b, file, text);
     }
-    let mut pous = b.pous;
+    let (mut pous, data) = (b.pous, b.data);
     match pous.iter().position(|p| p.kind == PouKind::Main) {
         Some(0) => {}
         Some(i) => {
@@ -262,13 +267,13 @@ pub(crate) fn structure<'a>(
             },
         ),
     }
-    pous
+    (pous, data)
 }
 
 fn structure_file<'a>(b: &mut Builder<'a, '_>, file: FileId, text: &'a str) {
     // The open block and whether its BEGIN was seen; the linear POU lines go to.
     let mut block: Option<(BlockKind, usize, Span)> = None;
-    // Inside a `DATA_BLOCK` (skipped, reported once at its header).
+    // Inside a `DATA_BLOCK` (its lines are the V memory's initial values).
     let mut in_data = false;
     // The open `VAR_…` section: where it opened, its section and the POU it declares for.
     let mut in_var: Option<(Span, Section, usize)> = None;
@@ -308,20 +313,17 @@ fn structure_file<'a>(b: &mut Builder<'a, '_>, file: FileId, text: &'a str) {
         }
         if in_data {
             in_data = !is(&m, "END_DATA_BLOCK");
+            if in_data {
+                b.data.push(DataLine {
+                    file,
+                    line: number,
+                    text: raw,
+                });
+            }
             continue;
         }
         if is(&m, "DATA_BLOCK") {
-            // MicroWIN exports the data block (V-memory initial values) in the same file; they
-            // are not loaded yet, which must not pass silently.
-            b.diags.push(
-                Diagnostic::new(
-                    Code::Unsupported,
-                    s,
-                    m.text,
-                    "`DATA_BLOCK` is not supported yet: its V-memory initial values would be lost",
-                )
-                .help("set the initial values in the first scan (LD SM0.1 / MOV…) meanwhile"),
-            );
+            // MicroWIN exports the data block (V-memory initial values) in the same file.
             used_blocks = true;
             in_data = true;
             continue;
@@ -455,5 +457,19 @@ fn structure_file<'a>(b: &mut Builder<'a, '_>, file: FileId, text: &'a str) {
     }
     if let Some((at, _, _)) = in_var {
         b.error(at, "", "VAR section is not closed".into(), Some("END_VAR"));
+    }
+    if in_data {
+        let at = Span {
+            file,
+            line: u32::try_from(text.split('\n').count()).unwrap_or(u32::MAX),
+            col: 1,
+            len: 1,
+        };
+        b.error(
+            at,
+            "",
+            "DATA_BLOCK is not closed before the end of the file".into(),
+            Some("END_DATA_BLOCK"),
+        );
     }
 }

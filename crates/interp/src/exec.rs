@@ -2,12 +2,12 @@
 //! of state in the image.
 
 use crate::Interpreter;
-use stljit_core::ir::{Contact, Op, Operand, Program};
+use stljit_core::ir::{Contact, Op, Operand, Program, StackForm};
 use stljit_core::layout::{ISR_FRAME, Layout, Sched};
 use stljit_core::{ErrorCode, FatalCode, PouId, ScanStatus, Width};
 use stljit_runtime::interrupt::{self, Action, Isr};
 use stljit_runtime::rules::{Gate, Rules};
-use stljit_runtime::{block, compare, counter, edge, mem, scan, timer};
+use stljit_runtime::{block, compare, counter, edge, ext, mem, scan, timer};
 
 /// What the loop does after an op.
 enum Step {
@@ -380,6 +380,21 @@ impl<'a> Machine<'a> {
             Op::OmronTimer { .. } | Op::OmronCounter { .. } | Op::Omron(_) => {
                 self.omron(op, frame, *st, pf);
             }
+            // PID runs without power flow too (its history bit); the others skip then.
+            Op::Ext(b) => match ext::execute(self.img, self.layout, b, frame, pf) {
+                Ok(eno) => self.set_eno(eno),
+                Err(e) => self.error(e, pou, pc),
+            },
+            Op::StrCompare(c) => match ext::str_compare(self.img, self.layout, c, frame) {
+                Ok(v) => {
+                    *st = match c.form {
+                        StackForm::Load => self.push(*st, v),
+                        StackForm::And => *st & (!1 | u16::from(v)),
+                        StackForm::Or => *st | u16::from(v),
+                    }
+                }
+                Err(f) => return self.fatal(f, pou, pc),
+            },
         }
         Step::Next
     }

@@ -6,21 +6,16 @@ use crate::exec::Machine;
 use stljit_core::ir::{BitLoc, Operand};
 use stljit_core::{Area, ErrorCode, Width};
 use stljit_runtime::block::Span;
-use stljit_runtime::image::{bit_addr, loc_addr};
-use stljit_runtime::{mem, pointer};
+use stljit_runtime::image::bit_addr;
+use stljit_runtime::{mem, operand};
 
-/// A resolved operand.
-#[derive(Clone, Copy, Debug)]
-pub(crate) enum Addr {
-    /// Image offset of the value's first byte.
-    Image(u32),
-    /// A constant (or an `&x` pointer value).
-    Value(u32),
-}
+/// A resolved operand (the runtime's, so that the interpreter and the runtime's own
+/// instructions resolve alike).
+pub(crate) use stljit_runtime::operand::Addr;
 
 impl Machine<'_> {
     /// Resolves `op` for a `width` access; `write` rejects constants and read-only pointer
-    /// targets.
+    /// targets ([`operand::resolve`]).
     pub(crate) fn resolve(
         &self,
         op: &Operand,
@@ -28,48 +23,23 @@ impl Machine<'_> {
         frame: u32,
         write: bool,
     ) -> Result<Addr, ErrorCode> {
-        match *op {
-            Operand::Mem(loc) => loc_addr(self.layout, loc, width, frame)
-                .map(Addr::Image)
-                .ok_or(ErrorCode::OperandRange),
-            Operand::Const(c) if !write => Ok(Addr::Value(c & width.mask())),
-            Operand::AddressOf(loc) if !write => pointer::make(loc.area, loc.offset)
-                .map(|p| Addr::Value(p & width.mask()))
-                .ok_or(ErrorCode::IndirectAddress),
-            // Omron indirect operands are resolved by the runtime (`omron_image`), only in
-            // Omron boxes (the verifier rejects them elsewhere).
-            Operand::Const(_) | Operand::AddressOf(_) | Operand::Omron(_) => {
-                Err(ErrorCode::OperandRange)
-            }
-            Operand::Indirect(loc) => {
-                let at = loc_addr(self.layout, loc, Width::DWord, frame)
-                    .ok_or(ErrorCode::IndirectAddress)?;
-                let ptr = mem::get_be(self.img, at, Width::DWord);
-                pointer::resolve(self.layout, ptr, width, write).map(Addr::Image)
-            }
-        }
+        operand::resolve(self.img, self.layout, op, width, frame, write)
     }
 
     pub(crate) fn load(&self, a: Addr, width: Width) -> u32 {
-        match a {
-            Addr::Image(at) => mem::get_be(self.img, at, width),
-            Addr::Value(v) => v,
-        }
+        operand::load(self.img, a, width)
     }
 
     pub(crate) fn store(&mut self, a: Addr, width: Width, v: u32) {
-        if let Addr::Image(at) = a {
-            mem::set_be(self.img, at, width, v);
-        }
+        operand::store(self.img, a, width, v);
     }
 
     /// Reads an input operand.
     pub(crate) fn read(&self, op: &Operand, width: Width, frame: u32) -> Result<u32, ErrorCode> {
-        let a = self.resolve(op, width, frame, false)?;
-        Ok(self.load(a, width))
+        operand::read(self.img, self.layout, op, width, frame)
     }
 
-    /// Resolves the start of a run for the block instructions.
+    /// Resolves the start of a run for the block instructions ([`operand::span`]).
     pub(crate) fn span(
         &self,
         op: &Operand,
@@ -77,20 +47,7 @@ impl Machine<'_> {
         frame: u32,
         write: bool,
     ) -> Result<Span, ErrorCode> {
-        match *op {
-            Operand::Mem(loc) => {
-                Span::of(self.layout, loc.area, loc.offset, frame).ok_or(ErrorCode::OperandRange)
-            }
-            Operand::Indirect(loc) => {
-                let at = loc_addr(self.layout, loc, Width::DWord, frame)
-                    .ok_or(ErrorCode::IndirectAddress)?;
-                let ptr = mem::get_be(self.img, at, Width::DWord);
-                Span::of_pointer(self.layout, ptr, width, write)
-            }
-            Operand::Const(_) | Operand::AddressOf(_) | Operand::Omron(_) => {
-                Err(ErrorCode::OperandRange)
-            }
-        }
+        operand::span(self.img, self.layout, op, width, frame, write)
     }
 
     /// Reads a bit (0 when the IR names one outside its area, which a checked program never does).

@@ -104,6 +104,8 @@ pub(crate) struct Built {
     pub(crate) run_id: FuncId,
     /// The function of each POU (index = POU), for the interrupt routines' table.
     pub(crate) pou_ids: Vec<FuncId>,
+    /// The payloads whose addresses the code holds; they must live as long as it.
+    pub(crate) ext: crate::lower::ext::ExtKeep,
 }
 
 /// Which function of a POU [`build`] hands to its `dump` callback.
@@ -166,6 +168,7 @@ pub(crate) fn build(
     let run_id = module
         .declare_function("run_scans", Linkage::Local, &run_signature(cc))
         .map_err(cg)?;
+    let ext = crate::lower::ext::ExtKeep::of(prog);
     let env = Env {
         prog,
         layout,
@@ -176,6 +179,7 @@ pub(crate) fn build(
         plans,
         hot_ops: opts.hot_ops,
         rules,
+        ext: &ext,
     };
     let mut ctx = module.make_context();
     let mut fbc = FunctionBuilderContext::new();
@@ -232,10 +236,12 @@ pub(crate) fn build(
     );
     dump(&ctx.func, 0, Part::ScanLoop);
     define_fn(&mut module, &mut ctx, run_id)?;
+    drop(env);
     Ok(Built {
         module,
         run_id,
         pou_ids: pou_funcs,
+        ext,
     })
 }
 

@@ -32,6 +32,8 @@ pub struct JitProgram {
     /// routines); boxed for the same reason, and only read through the baked address.
     _routines: Option<Box<NativeRoutines>>,
     op_count: usize,
+    /// The s7-200-more ops' payloads, whose addresses are baked into the code.
+    _ext: crate::lower::ext::ExtKeep,
     /// The executed-op counter of an instrumented build ([`JitProgram::compile_counting`]).
     counter: Option<Box<AtomicU64>>,
 }
@@ -100,6 +102,7 @@ impl JitProgram {
             mut module,
             run_id,
             pou_ids,
+            ext,
         } = build::build(
             program,
             opts,
@@ -144,6 +147,7 @@ impl JitProgram {
             _plan: plan,
             _routines: routines,
             op_count: program.op_count(),
+            _ext: ext,
             counter,
         })
     }

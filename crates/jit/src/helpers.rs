@@ -114,6 +114,10 @@ helpers! {
     OmronArith => "stljit_rt_omron_arith", ffi::stljit_rt_omron_arith, Nothing, [I32, I32, I32, I32] -> I64;
     /// `stljit_rt_omron_box_refs(code, lhs_ref, lhs_val, rhs_ref, rhs_val, dst_ref, dst_off, words)`.
     OmronBoxRefs => "stljit_rt_omron_box_refs", ffi::stljit_rt_omron_box_refs, ImageLayout, [I32, I32, I32, I32, I32, I32, I32, I32] -> I32;
+    /// `stljit_rt_ext(op, frame, pf) -> u64`: an s7-200-more box, ENO or the error code.
+    Ext => "stljit_rt_ext", ffi::stljit_rt_ext, ImageLayout, [I64, I32, I32] -> I64;
+    /// `stljit_rt_str_compare(c, frame) -> u64`: the contact's value or the fatal code.
+    StrCompare => "stljit_rt_str_compare", ffi::stljit_rt_str_compare, ImageLayout, [I64, I32] -> I64;
     /// `stljit_rt_omron_box(code, a, b, dst)`.
     OmronBox => "stljit_rt_omron_box", ffi::stljit_rt_omron_box, ImageLayout, [I32, I32, I32, I32] -> I32;
 }

@@ -45,6 +45,16 @@ impl Span {
     fn fits(self, count: u32, width: Width) -> bool {
         u64::from(self.start) + u64::from(count) * u64::from(width.bytes()) <= u64::from(self.end)
     }
+
+    /// The image range of the `len` bytes from the span's start, or 0x0091 when they run past
+    /// the area's end (or the image).
+    pub fn bytes(self, len: u32, img_len: usize) -> Result<std::ops::Range<usize>, ErrorCode> {
+        let end = u64::from(self.start) + u64::from(len);
+        if end > u64::from(self.end) || end > img_len as u64 {
+            return Err(ErrorCode::OperandRange);
+        }
+        Ok(self.start as usize..end as usize)
+    }
 }
 
 /// T/C bits: one 0/1 byte per element instead of eight bits per byte.

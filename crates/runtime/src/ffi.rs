@@ -36,6 +36,8 @@
 //! | `stljit_rt_shift_register(img, l, data, area, byte, bit, frame, len: i32)` | [`crate::block::shift_register`] | status |
 //! | `stljit_rt_pointer_end(img, l, ptr)` | end of a pointer's [`crate::block::Span`] | image offset (0 = bad) |
 //! | `stljit_rt_value(op, sub, out, in1)` | [`ValueOp::outcome`] | u64: packed [`crate::flags::Outcome`] |
+//! | `stljit_rt_ext(img, l, op: *const ExtBox, frame, pf)` | [`crate::ext::execute`] | u64: ENO, or the error code |
+//! | `stljit_rt_str_compare(img, l, c: *const StrCompare, frame)` | [`crate::ext::str_compare`] | u64: the contact, or the fatal code |
 //! | `stljit_rt_omron_box(img, l, code, a, b, dst)` | [`crate::omron_image::run_box`] | status |
 //! | `stljit_rt_omron_box_refs(img, l, code, lhs_ref, lhs_val, rhs_ref, rhs_val, dst_ref, dst_off, words)` | [`crate::omron_image::run_box_refs`] | status |
 //! | `stljit_rt_omron_arith(op, a, b, cy)` | [`crate::omron::arith::execute`] | u64: result, flag writes |
@@ -66,11 +68,13 @@
 //! the rest of the scan cycle's rules the JIT inlines from the same constants.
 #![allow(unsafe_code)]
 
+mod ext;
 mod fast;
 mod interrupts;
 mod omron;
 mod ops;
 mod value;
+pub use ext::*;
 pub use fast::*;
 pub use interrupts::*;
 pub use omron::*;

@@ -17,8 +17,14 @@ pub const OVERFLOW: u8 = 1 << 1;
 pub const NEGATIVE: u8 = 1 << 2;
 /// SM1.3: division by zero.
 pub const DIV_ZERO: u8 = 1 << 3;
+/// SM1.4: ATT into a full table (s7-200-more §4.2).
+pub const TABLE_FULL: u8 = 1 << 4;
+/// SM1.5: FIFO or LIFO from an empty table.
+pub const TABLE_EMPTY: u8 = 1 << 5;
 /// SM1.6: not a BCD value.
 pub const BCD: u8 = 1 << 6;
+/// SM1.7: ATH met a character that is no hex digit (s7-200-more §5.2).
+pub const NOT_HEX: u8 = 1 << 7;
 /// The bits every integer and real result assigns (OK and OVF rules of spec §4.8): SM1.0,
 /// SM1.1, SM1.2.
 pub const RESULT: u8 = ZERO | OVERFLOW | NEGATIVE;

@@ -90,7 +90,9 @@ impl Image {
 
     /// The power-up image of `program` (spec §1.7 cold start): everything 0 except each used
     /// timer's KIND and RES bytes, each used counter's KIND byte, the edge memories' initial
-    /// values, FIRST_SCAN = 1, LOOP_LIMIT = [`DEFAULT_LOOP_LIMIT`] and SCR_ENABLE = 1.
+    /// values, the initial V values of its data block (`Program::data`, in order),
+    /// FIRST_SCAN = 1, LOOP_LIMIT = [`DEFAULT_LOOP_LIMIT`] and SCR_ENABLE = 1. The clock starts
+    /// at 2000-01-01 00:00:00 ([`Image::set_clock_start`] sets another date).
     /// Declarations naming a timer, counter or slot the profile lacks are ignored (the front end
     /// rejects them; an engine must not crash on them either).
     pub fn cold_start(program: &Program) -> Image {
@@ -116,7 +118,21 @@ impl Image {
                 mem::set_u8(&mut img.bytes, l.edges + slot as u32, u8::from(e.init));
             }
         }
+        let (v, v_size) = (l.base(Area::V) as usize, l.area_size(Area::V) as usize);
+        for d in &program.data {
+            // The verifier keeps runs inside V; one that is not is left out, never a panic.
+            let start = d.offset as usize;
+            if start.saturating_add(d.bytes.len()) <= v_size {
+                img.bytes[v + start..v + start + d.bytes.len()].copy_from_slice(&d.bytes);
+            }
+        }
         img
+    }
+
+    /// Sets the date and time the real-time clock shows at t = 0 (before the first scan;
+    /// s7-200-more §6.2 `rtc_start`). Nothing on a profile without the clock's state.
+    pub fn set_clock_start(&mut self, start: crate::rtc::DateTime) {
+        crate::rtc::set_start(&mut self.bytes, &self.layout, start);
     }
 
     /// The raw bytes.
@@ -354,6 +370,7 @@ mod tests {
             edges: vec![EdgeDecl { init: false }, EdgeDecl { init: true }],
             logic_stack_depth: 9,
             files: vec![],
+            data: Vec::new(),
         }
     }
 

@@ -5,7 +5,10 @@
 //! and the gate policy ([`rules`]) and the [`Engine`] trait. The Omron CP rules (BCD,
 //! condition flags, moves, comparisons, arithmetic, timers and counters) are pure functions
 //! over plain values in [`omron`], which the engines wire to the image ([`omron_image`]); which
-//! flags each Omron op can change is read off those rules by [`omron_written`].
+//! flags each Omron op can change is read off those rules by [`omron_written`]. The
+//! instructions of s7-200-more §4–§7 are [`ext`] over their rules: [`table`], [`text`] (ASCII
+//! and number text), [`string`], [`rtc`] (the clock) and [`pid`]; [`operand`] resolves the
+//! operands of every instruction the runtime runs whole.
 //!
 //! Everything is a function on the image bytes (`&mut [u8]` plus its [`Layout`]), so the
 //! interpreter calls it directly and the Cranelift JIT calls the same code through the
@@ -21,6 +24,7 @@ pub mod convert;
 pub mod counter;
 pub mod edge;
 pub mod engine;
+pub mod ext;
 pub mod ffi;
 pub mod flags;
 pub mod image;
@@ -29,9 +33,15 @@ pub mod mem;
 pub mod omron;
 pub mod omron_image;
 pub mod omron_written;
+pub mod operand;
+pub mod pid;
 pub mod pointer;
+pub mod rtc;
 pub mod rules;
 pub mod scan;
+pub mod string;
+pub mod table;
+pub mod text;
 pub mod timer;
 
 #[cfg(test)]

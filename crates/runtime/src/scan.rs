@@ -420,11 +420,26 @@ pub fn run(
     end(img, layout, status)
 }
 
-/// Records a non-fatal error (spec §2.5): `LAST_ERR`, `ERR_POU`, `ERR_OP`. ENO is the caller's.
+/// SM4.3 (`RUN_Err`), `(SM byte, bit)`: set by every non-fatal run-time error, cleared only
+/// at RUN entry, that is at cold start (s7-200-more §0.4).
+pub const RUN_ERR: (u32, u8) = (4, 3);
+
+/// The image offset and bit of SM4.3 in `layout`, if its profile has an SM area that holds it
+/// (the Omron profiles have none). The JIT inlines the same bit from here.
+pub fn run_err_bit(layout: &Layout) -> Option<(u32, u8)> {
+    let (byte, bit) = RUN_ERR;
+    (byte < layout.area_size(Area::SM)).then(|| (layout.base(Area::SM) + byte, bit))
+}
+
+/// Records a non-fatal error (spec §2.5): `LAST_ERR`, `ERR_POU`, `ERR_OP`, and SM4.3 := 1.
+/// ENO is the caller's.
 pub fn record_error(img: &mut [u8], layout: &Layout, code: ErrorCode, pou: u32, op: u32) {
     mem::set_u16_ne(img, layout.sched(Sched::LAST_ERR), code as u16);
     mem::set_u16_ne(img, layout.sched(Sched::ERR_POU), pou as u16);
     mem::set_u32_ne(img, layout.sched(Sched::ERR_OP), op);
+    if let Some((at, bit)) = run_err_bit(layout) {
+        mem::set_bit(img, at, bit, true);
+    }
 }
 
 /// Records a fatal error: `FATAL`, `ERR_POU`, `ERR_OP`. The engine then aborts the scan and

@@ -132,6 +132,10 @@ codes! {
     UnknownInterrupt = "E050", Error, "ATCH names an interrupt routine that is not defined, or a block that is not an interrupt routine";
     /// Event number not on the CPU.
     EventNumber = "E051", Error, "the interrupt event does not exist on the selected CPU";
+    /// Two PID instructions with one loop number.
+    PidLoopTwice = "E060", Error, "two PID instructions use the same loop number";
+    /// A data block entry that cannot be loaded.
+    DataBlock = "E061", Error, "a DATA_BLOCK line is malformed, or its value does not fit its address";
     /// Contact or stack operation consuming an unloaded level.
     StackUnderflow = "W001", Warning, "a contact or ALD/OLD/LPP/LRD consumes a stack level that nothing loaded";
     /// Too many live stack levels.
@@ -146,6 +150,10 @@ codes! {
     EventNotSimulated = "W050", Warning, "the attached event never occurs in the simulation: its source (high-speed counter, pulse output, port) is not simulated yet";
     /// ENI/DISI in an interrupt routine.
     EnableInInterrupt = "W051", Warning, "ENI or DISI in an interrupt routine has no effect (run-time error 16#0004)";
+    /// Two data block values for one V byte.
+    DataOverlap = "W060", Warning, "a DATA_BLOCK value sets V bytes an earlier value already set; the later one wins";
+    /// A clock instruction on a CPU without a clock.
+    NoClock = "W061", Warning, "the selected CPU has no real-time clock: the clock instruction fails with error 16#000C at run time";
 
     // ---- Omron CP dialect (omron-cp.md §5; the spec's numbers with the `OMR-` prefix) --------
     /// A task program without END.

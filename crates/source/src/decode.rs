@@ -9,9 +9,10 @@ pub struct DecodeIssue {
 }
 
 /// The text encoding a file turned out to use.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Encoding {
     /// UTF-8, with or without a byte-order mark.
+    #[default]
     Utf8,
     /// GBK (code page 936), as written by MicroWIN on Chinese systems.
     Gbk,
@@ -43,6 +44,19 @@ pub fn decode(bytes: &[u8]) -> (String, Encoding, Option<DecodeIssue>) {
     }
 }
 
+/// The bytes of `text` in `encoding` (what a constant string in a file of that encoding
+/// stores): UTF-8 for UTF-8 and lossy files, GBK for GBK files (a character GBK cannot hold
+/// becomes `?`, which a GBK file cannot contain anyway).
+pub fn encode(text: &str, encoding: Encoding) -> Vec<u8> {
+    match encoding {
+        Encoding::Utf8 | Encoding::Lossy => text.as_bytes().to_vec(),
+        Encoding::Gbk => {
+            let (bytes, _, _) = encoding_rs::GBK.encode(text);
+            bytes.into_owned()
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -53,6 +67,13 @@ mod tests {
         assert_eq!(s, "LD I0.0\r\n");
         assert_eq!(e, Encoding::Utf8);
         assert!(i.is_none());
+    }
+
+    #[test]
+    fn encode_keeps_the_file_encoding() {
+        assert_eq!(encode("启动", Encoding::Gbk), b"\xC6\xF4\xB6\xAF");
+        assert_eq!(encode("启动", Encoding::Utf8), "启动".as_bytes());
+        assert_eq!(encode("AB", Encoding::Gbk), b"AB");
     }
 
     #[test]

@@ -86,6 +86,8 @@ pub struct SourceText {
     pub name: String,
     /// The decoded text.
     pub text: String,
+    /// The encoding the file was decoded from (constant strings keep its bytes).
+    pub encoding: crate::Encoding,
 }
 
 /// The decoded texts of every file of a compilation (program files first, then the symbol table),
@@ -243,6 +245,7 @@ mod tests {
         Sources::new(vec![SourceText {
             name: "a.stl".into(),
             text: "LD I0.0\r\n=\tQ16.0 // \"x\"\n".into(),
+            encoding: crate::Encoding::Utf8,
         }])
     }
 

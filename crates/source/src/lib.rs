@@ -118,7 +118,7 @@ pub fn decode_project<S>(
 
 /// Decodes `file`, reporting undecodable bytes as [`Code::Encoding`] on `id`.
 pub fn decode_file(file: &SourceFile, id: FileId, diags: &mut Vec<Diagnostic>) -> SourceText {
-    let (text, _, issue) = decode::decode(&file.bytes);
+    let (text, encoding, issue) = decode::decode(&file.bytes);
     if let Some(issue) = issue {
         let before = String::from_utf8_lossy(&file.bytes[..issue.byte.min(file.bytes.len())]);
         let line = before.matches('\n').count() + 1;
@@ -142,5 +142,6 @@ pub fn decode_file(file: &SourceFile, id: FileId, diags: &mut Vec<Diagnostic>) -
     SourceText {
         name: file.name.clone(),
         text,
+        encoding,
     }
 }

@@ -186,6 +186,10 @@ impl Op {
     pub fn stack_effect(&self) -> StackEffect {
         match self {
             Op::Load(_) | Op::ScrBegin { .. } => StackEffect::push(0),
+            Op::StrCompare(c) => match c.form {
+                super::StackForm::Load => StackEffect::push(0),
+                super::StackForm::And | super::StackForm::Or => StackEffect::REPLACE_TOP,
+            },
             Op::And(_) | Op::Or(_) | Op::Not | Op::AndEno => StackEffect::REPLACE_TOP,
             Op::Edge { .. } => StackEffect {
                 uses: 0b1,
@@ -227,6 +231,7 @@ impl Op {
             | Op::ResetCounters { .. }
             | Op::Timer { .. }
             | Op::Box(_)
+            | Op::Ext(_)
             | Op::Jump(_)
             | Op::Call(_)
             | Op::CallArgs(_)

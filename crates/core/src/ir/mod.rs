@@ -17,6 +17,7 @@
 //! Consumers (coils, boxes, timers, jumps, ...) read `PF`; no consumer pops the stack.
 
 mod call;
+mod ext;
 mod facts;
 mod omron;
 mod op;
@@ -27,6 +28,7 @@ mod uses;
 mod verify;
 
 pub use call::{Arg, ArgDir, ArgValue, CallArgs};
+pub use ext::{ClockOp, ExtBox, FindRel, MAX_STRING, NumType, StackForm, StrArg, StrCompare};
 pub use facts::{GateEffect, StackEffect, Successors, enclosing_loop, loop_entered_by};
 pub use omron::{
     BoxOperands, IndexOffset, IndexStep, OmronArith, OmronBox, OmronCounterKind, OmronRef,
@@ -57,6 +59,19 @@ pub struct Program {
     pub logic_stack_depth: u8,
     /// Source file names, indexed by [`FileId`].
     pub files: Vec<String>,
+    /// Initial values of V memory (MicroWIN's data block), written at cold start in this
+    /// order (a later run wins where two overlap).
+    pub data: Vec<DataInit>,
+}
+
+/// A run of V-memory bytes set at cold start (one line of a `DATA_BLOCK`, or several that
+/// follow each other).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DataInit {
+    /// The first V byte.
+    pub offset: u32,
+    /// The bytes.
+    pub bytes: Vec<u8>,
 }
 
 impl Program {
@@ -229,6 +244,10 @@ all_variants! {
     CmpOp: [Eq, Ne, Ge, Le, Gt, Lt];
     TimerKind: [On, Retentive, Off];
     CounterKind: [Up, Down, UpDown];
+    NumType: [Int, DInt, Real];
+    FindRel: [Eq, Ne, Lt, Gt];
+    ClockOp: [Read, Write, ReadExt, WriteExt];
+    StackForm: [Load, And, Or];
     OmronTimerKind: [Tim, TimX, TimH, TimHX, Tmhh, TmhhX, Ttim, TtimX];
     OmronCounterKind: [Cnt, CntX, Cntr, CntrX];
     OmronArith: [

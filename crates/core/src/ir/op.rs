@@ -1,6 +1,7 @@
 //! The instructions: [`Op`] and the box operations [`BoxOp`] with their small enums.
 
 use super::call::CallArgs;
+use super::ext::{ExtBox, StrCompare};
 use super::operand::{BitLoc, Contact, Operand};
 use super::{CounterKind, OmronBox, OmronCounterKind, OmronTimerKind, TimerKind};
 use crate::area::Width;
@@ -195,6 +196,14 @@ pub enum Op {
     },
     /// An Omron data, compare or arithmetic box: runs when PF.
     Omron(OmronBox),
+
+    // ---- s7-200-more §4–§7 --------------------------------------------------------------------
+    /// A table, ASCII, string, clock or PID box: runs when PF and sets ENO (PID also runs
+    /// without PF, for its history bit). The runtime's `ext::execute` is its semantics.
+    Ext(Box<ExtBox>),
+    /// A string compare contact: push, AND or OR its result like [`Op::Load`], [`Op::And`],
+    /// [`Op::Or`] of a compare contact.
+    StrCompare(Box<StrCompare>),
 }
 
 /// An interrupt instruction (s7-200-more §3.4). `RETI`/`CRETI` are [`Op::Return`] in an

@@ -25,6 +25,7 @@ pub(super) fn program(ops: Vec<Op>, labels: Vec<usize>) -> Program {
         edges: vec![],
         logic_stack_depth: 9,
         files: vec![],
+        data: Vec::new(),
     }
 }
 

@@ -5,7 +5,7 @@
 //! [`Conversion::widths`].
 
 use super::{BitLoc, Operand};
-use super::{BoxOp, Contact, Conversion, OmronBox, Op};
+use super::{BoxOp, ClockOp, Contact, Conversion, ExtBox, OmronBox, Op, StrArg, StrCompare};
 use crate::area::Width;
 
 /// How an op uses a location.
@@ -161,6 +161,97 @@ impl BoxOp {
     }
 }
 
+/// A string input's first byte, read (nothing for a constant string).
+fn string(s: &StrArg) -> Option<OperandUse> {
+    s.operand().map(|o| read(o, Width::Byte))
+}
+
+impl ExtBox {
+    /// Every value operand with its width and access, in operand order: a run (table, buffer,
+    /// string) by its first element, constant strings left out.
+    pub fn operand_uses(&self) -> Uses {
+        use Width::{Byte, DWord, Word};
+        let list: Vec<OperandUse> = match self {
+            ExtBox::TableAdd { data, table } => vec![read(*data, Word), update(*table, Word)],
+            ExtBox::TableTake { table, data, .. } => vec![update(*table, Word), write(*data, Word)],
+            ExtBox::TableFind {
+                table,
+                pattern,
+                index,
+                ..
+            } => vec![
+                read(*table, Word),
+                read(*pattern, Word),
+                update(*index, Word),
+            ],
+            // ATH keeps the low nibble of an odd LEN's last byte: OUT is updated.
+            ExtBox::AsciiToHex { src, dst, len } => {
+                vec![read(*src, Byte), update(*dst, Byte), read(*len, Byte)]
+            }
+            ExtBox::HexToAscii { src, dst, len } => {
+                vec![read(*src, Byte), write(*dst, Byte), read(*len, Byte)]
+            }
+            ExtBox::NumToText {
+                ty, src, dst, fmt, ..
+            } => {
+                vec![read(*src, ty.width()), write(*dst, Byte), read(*fmt, Byte)]
+            }
+            ExtBox::TextToNum {
+                ty,
+                src,
+                index,
+                dst,
+            } => string(src)
+                .into_iter()
+                .chain([read(*index, Byte), write(*dst, ty.width())])
+                .collect(),
+            ExtBox::StrLen { src, dst } => {
+                string(src).into_iter().chain([write(*dst, Byte)]).collect()
+            }
+            ExtBox::StrCopy { src, dst } => {
+                string(src).into_iter().chain([write(*dst, Byte)]).collect()
+            }
+            ExtBox::StrCat { src, dst } => string(src)
+                .into_iter()
+                .chain([update(*dst, Byte)])
+                .collect(),
+            ExtBox::SubStr {
+                src,
+                index,
+                count,
+                dst,
+            } => string(src)
+                .into_iter()
+                .chain([read(*index, Byte), read(*count, Byte), write(*dst, Byte)])
+                .collect(),
+            ExtBox::StrFind {
+                src, pattern, pos, ..
+            } => string(src)
+                .into_iter()
+                .chain(string(pattern))
+                .chain([update(*pos, Byte)])
+                .collect(),
+            ExtBox::Clock { op, buf } => match op {
+                ClockOp::Read | ClockOp::ReadExt => vec![write(*buf, Byte)],
+                ClockOp::Write | ClockOp::WriteExt => vec![read(*buf, Byte)],
+            },
+            ExtBox::Pid { table, .. } => vec![update(*table, DWord)],
+        };
+        Uses::of(&list)
+    }
+}
+
+impl StrCompare {
+    /// The strings in memory the contact reads (constant strings left out).
+    pub fn operand_uses(&self) -> Uses {
+        let list: Vec<OperandUse> = string(&self.lhs)
+            .into_iter()
+            .chain(string(&self.rhs))
+            .collect();
+        Uses::of(&list)
+    }
+}
+
 /// The width of an Omron operand of `words` words (1 or 2; a four-word result is two uses).
 fn omron_width(words: u32) -> Width {
     if words == 1 {
@@ -233,6 +324,8 @@ impl Op {
                 Uses::of(&[read(*set_value, Word)])
             }
             Op::Omron(b) => omron_uses(b),
+            Op::Ext(b) => b.operand_uses(),
+            Op::StrCompare(c) => c.operand_uses(),
             Op::For {
                 index, init, limit, ..
             } => Uses::of(&[write(*index, Word), read(*init, Word), read(*limit, Word)]),

@@ -44,6 +44,13 @@ pub enum VerifyError {
         /// Its number.
         number: u16,
     },
+    /// Initial V values (`Program::data`) run past the end of V.
+    DataOutOfArea {
+        /// The first V byte.
+        offset: u32,
+        /// Bytes.
+        len: u32,
+    },
     /// A POU breaks a rule.
     Pou {
         /// POU index.
@@ -125,6 +132,10 @@ pub enum OpRule {
     /// An op of one PLC family's execution model (Omron interlocks, timers, counters and
     /// flag boxes; S7 SCR segments) in a program for a profile of the other.
     WrongFamily,
+    /// A PID loop number above 7.
+    PidLoop,
+    /// A constant string longer than [`super::MAX_STRING`] bytes.
+    StringTooLong,
 }
 
 impl fmt::Display for VerifyError {
@@ -140,6 +151,9 @@ impl fmt::Display for VerifyError {
                     f,
                     "{area:?} {number} is declared twice or not in the profile"
                 )
+            }
+            VerifyError::DataOutOfArea { offset, len } => {
+                write!(f, "{len} initial byte(s) at V {offset} run past the area")
             }
             VerifyError::Pou { pou, rule } => {
                 let what = match rule {
@@ -188,6 +202,8 @@ impl fmt::Display for VerifyError {
                     OpRule::WrongFamily => {
                         f.write_str("op of another PLC family than the program's profile")
                     }
+                    OpRule::PidLoop => f.write_str("PID loop number above 7"),
+                    OpRule::StringTooLong => f.write_str("constant string longer than 254 bytes"),
                 }
             }
         }
@@ -211,6 +227,18 @@ pub fn verify(program: &Program) -> Result<(), VerifyError> {
     declarations(program, &layout)?;
     let interrupts = program.profile.profile().interrupts;
     let mut numbers = std::collections::HashSet::new();
+    for d in &program.data {
+        let len = u32::try_from(d.bytes.len()).unwrap_or(u32::MAX);
+        if d.offset
+            .checked_add(len)
+            .is_none_or(|end| end > layout.area_size(Area::V))
+        {
+            return Err(VerifyError::DataOutOfArea {
+                offset: d.offset,
+                len,
+            });
+        }
+    }
     for (p, pou) in program.pous.iter().enumerate() {
         if let Some(n) = pou.kind.interrupt()
             && (n > MAX_ROUTINE || !numbers.insert(n) || !interrupts.any())
@@ -411,7 +439,9 @@ fn locations(program: &Program, layout: &Layout, op: &Op) -> Result<(), OpRule> 
         | Op::Timer { .. }
         | Op::Counter { .. }
         | Op::Interrupt(_)
-        | Op::Box(_) => Some(Family::S7),
+        | Op::Box(_)
+        | Op::Ext(_)
+        | Op::StrCompare(_) => Some(Family::S7),
         _ => None,
     };
     if op_family.is_some_and(|f| f != family) {
@@ -456,12 +486,35 @@ fn locations(program: &Program, layout: &Layout, op: &Op) -> Result<(), OpRule> 
             inside(Area::CounterBit, u32::from(first.0), 1)?;
             true
         }
+        Op::Ext(b) => {
+            if matches!(**b, super::ExtBox::Pid { lp, .. } if lp > 7) {
+                return Err(OpRule::PidLoop);
+            }
+            constant_strings(b.strings())?;
+            true
+        }
+        Op::StrCompare(c) => {
+            constant_strings(vec![&c.lhs, &c.rhs])?;
+            true
+        }
         _ => true,
     };
     if declared {
         Ok(())
     } else {
         Err(OpRule::UndeclaredObject)
+    }
+}
+
+/// Constant strings hold at most [`super::MAX_STRING`] bytes (their length byte is 0..=254).
+fn constant_strings(strings: Vec<&super::StrArg>) -> Result<(), OpRule> {
+    let too_long = strings
+        .iter()
+        .any(|s| matches!(s, super::StrArg::Const(b) if b.len() > super::MAX_STRING));
+    if too_long {
+        Err(OpRule::StringTooLong)
+    } else {
+        Ok(())
     }
 }
 

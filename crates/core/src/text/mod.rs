@@ -33,6 +33,7 @@
 //! column ([`ParseError`]).
 
 mod error;
+mod ext;
 mod lex;
 mod parse;
 mod print;

@@ -9,8 +9,9 @@ use crate::area::Width;
 use crate::index::{CounterId, EdgeSlot, FileId, LabelId, OpIdx, PouId, TimerId};
 use crate::ir::{
     Arg, ArgDir, ArgValue, ArithOp, BoxOp, CallArgs, CmpOp, CmpType, Contact, Conversion,
-    CounterDecl, CounterKind, EdgeDecl, IntOp, LogicOp, OmronArith, OmronBox, OmronCounterKind,
-    OmronTimerKind, Op, Operand, Pou, PouKind, Program, RealFn, TimerDecl, TimerKind,
+    CounterDecl, CounterKind, DataInit, EdgeDecl, IntOp, LogicOp, OmronArith, OmronBox,
+    OmronCounterKind, OmronTimerKind, Op, Operand, Pou, PouKind, Program, RealFn, TimerDecl,
+    TimerKind,
 };
 use crate::profile::{ProfileId, Resolution};
 use std::fmt;
@@ -40,6 +41,7 @@ struct Reader {
     timers: Vec<TimerDecl>,
     counters: Vec<CounterDecl>,
     edges: Vec<EdgeDecl>,
+    data: Vec<DataInit>,
     pous: Vec<Pou>,
     open: Option<OpenPou>,
 }
@@ -128,6 +130,12 @@ impl Reader {
                 let init = line.field("init")?.flag()?;
                 self.edges.push(EdgeDecl { init });
             }
+            "data" => {
+                let offset = line.word("a V offset")?.number("V offset")?;
+                let s = line.string("the bytes")?;
+                let bytes = super::ext::bytes_of(&s, key)?;
+                self.data.push(DataInit { offset, bytes });
+            }
             "pou" => {
                 positional(line.word("a POU index")?, PouId(0), self.pous.len())?;
                 let kind = pou_kind(line.word("`main`, `subroutine(n)` or `interrupt(n)`")?)?;
@@ -181,6 +189,7 @@ impl Reader {
             edges: self.edges,
             logic_stack_depth,
             files: self.files,
+            data: self.data,
         })
     }
 }
@@ -372,6 +381,8 @@ fn op(line: &mut Line<'_>) -> Result<Op> {
             set_value: line.field("set_value")?.operand()?,
         },
         "omron" => Op::Omron(omron_box(line)?),
+        "ext" => Op::Ext(Box::new(super::ext::parse_ext(line)?)),
+        "str_compare" => Op::StrCompare(Box::new(super::ext::parse_str_compare(line)?)),
         _ => return Err(key.unknown("op")),
     })
 }

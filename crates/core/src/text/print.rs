@@ -39,6 +39,9 @@ fn write_program(out: &mut String, p: &Program) -> fmt::Result {
     for (i, e) in p.edges.iter().enumerate() {
         writeln!(out, "edge {} init={}", EdgeSlot::new(i), Flag(e.init))?;
     }
+    for d in &p.data {
+        writeln!(out, "data {} {}", d.offset, super::ext::Bytes(&d.bytes))?;
+    }
     for (i, pou) in p.pous.iter().enumerate() {
         out.push('\n');
         write_pou(out, i, pou)?;
@@ -220,6 +223,11 @@ fn write_op(out: &mut String, op: &Op) -> fmt::Result {
             out.write_str("omron ")?;
             write_omron(out, b)
         }
+        Op::Ext(b) => {
+            out.write_str("ext ")?;
+            super::ext::write_ext(out, b)
+        }
+        Op::StrCompare(c) => super::ext::write_str_compare(out, c),
     }
 }
 
@@ -376,7 +384,7 @@ fn write_box(out: &mut String, b: &BoxOp) -> fmt::Result {
 }
 
 /// A boolean field: `0` or `1`.
-struct Flag(bool);
+pub(super) struct Flag(pub(super) bool);
 
 impl fmt::Display for Flag {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -403,7 +411,7 @@ impl fmt::Display for Place {
 }
 
 /// A value operand: a location, `const(n)`, `deref(location)` or `addr(location)`.
-struct Opd(Operand);
+pub(super) struct Opd(pub(super) Operand);
 
 impl fmt::Display for Opd {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -461,7 +469,7 @@ impl fmt::Display for At {
 
 /// A string in double quotes; `"`, `\` and control characters are escaped (`\"`, `\\`, `\n`,
 /// `\t`, `\r`, `\u{..}`), everything else is written as it is.
-struct Quoted<'a>(&'a str);
+pub(super) struct Quoted<'a>(pub(super) &'a str);
 
 impl fmt::Display for Quoted<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {

@@ -357,6 +357,7 @@ fn sample() -> Program {
         edges: vec![EdgeDecl { init: false }, EdgeDecl { init: true }],
         logic_stack_depth: 9,
         files: vec!["main.stl".into(), "sub dir/b\"\n.awl".into()],
+        data: Vec::new(),
     }
 }
 
@@ -380,6 +381,7 @@ fn an_empty_program_parses_back() {
         edges: Vec::new(),
         logic_stack_depth: 0,
         files: Vec::new(),
+        data: Vec::new(),
     };
     assert_eq!(parse(&print(&p)), Ok(p));
 }
@@ -426,6 +428,7 @@ fn a_small_program_prints_as_documented() {
         edges: vec![EdgeDecl { init: false }],
         logic_stack_depth: 9,
         files: vec!["main.stl".into()],
+        data: Vec::new(),
     };
     let expected = "\
 stljit-ir 1

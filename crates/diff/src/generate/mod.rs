@@ -290,6 +290,7 @@ impl<'c, 'a> Gen<'c, 'a> {
             edges: vec![EdgeDecl { init: false }; usize::from(self.edges)],
             logic_stack_depth: 9,
             files: vec!["fuzz.stl".into()],
+            data: Vec::new(),
         };
         crate::canon::canonicalize(&mut program);
         program

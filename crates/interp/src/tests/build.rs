@@ -158,6 +158,7 @@ pub(crate) fn program(main: Vec<Op>, subs: Vec<Vec<Op>>) -> Program {
         edges: vec![EdgeDecl { init: false }; edges],
         logic_stack_depth: 9,
         files: vec!["test.stl".into()],
+        data: Vec::new(),
     }
 }
 

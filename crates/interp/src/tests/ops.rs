@@ -84,7 +84,8 @@ fn bad_pointer_is_0x0006_and_writes_nothing() {
     assert_eq!(sim.img.error_site(), (0, 6));
     assert!(!sim.bit(q(0, 0)));
     assert!(!sim.img.eno());
-    assert_eq!(sim.val(mem(Area::SM, 4), Width::Word), 0);
+    // Nothing written through the pointer; the error sets SM4.3 (`RUN_Err`, s7-200-more §0.4).
+    assert_eq!(sim.val(mem(Area::SM, 4), Width::Word), 0x0800);
     assert_eq!(smb1(&sim), 0, "operand error: no flags");
 }
 

@@ -237,7 +237,7 @@ impl Lower<'_, '_> {
     /// zero-extended and the halves are just registers. It also hides the value from the
     /// e-graph's `NOT (a AND NOT b)` rewrite (see `value::is_andn`) and, being a lowering
     /// root, stops a later double use from marking the whole rung as used twice.
-    fn anchor(&mut self, x: B) -> B {
+    pub(crate) fn anchor(&mut self, x: B) -> B {
         use cranelift_codegen::ir::{Opcode, types::I64};
         use cranelift_codegen::settings::OptLevel;
         use cranelift_module::Module;

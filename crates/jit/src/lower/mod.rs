@@ -20,6 +20,7 @@ pub(crate) mod boxes;
 pub(crate) mod cache;
 pub(crate) mod call;
 pub(crate) mod control;
+pub(crate) mod ext;
 pub(crate) mod flow;
 pub(crate) mod mem;
 pub(crate) mod omron;
@@ -74,6 +75,8 @@ pub(crate) struct Env<'a> {
     pub(crate) hot_ops: usize,
     /// The semantic switches the inlined code follows (`Rules::IN_FORCE` but in tests).
     pub(crate) rules: Rules,
+    /// The payloads of the s7-200-more ops, passed to the runtime by address.
+    pub(crate) ext: &'a ext::ExtKeep,
 }
 
 /// Memory flags for every image access: the image is never null and every direct offset is in
@@ -306,6 +309,13 @@ impl<'e, 'f> Lower<'e, 'f> {
         let a = self.sched(Sched::LAST_ERR);
         self.store_ne(a, c16);
         self.record_site();
+        // SM4.3 (`RUN_Err`), as the runtime's `scan::record_error` sets it.
+        if let Some((at, bit)) = stljit_runtime::scan::run_err_bit(self.env.layout) {
+            let a = Addr::img(at);
+            let v = self.byte(a);
+            let v = self.b.ins().bor_imm_s(v, 1 << bit);
+            self.set_byte(a, v);
+        }
         // Every non-fatal error clears ENO, boxes or not (the interpreter's `error`).
         self.set_eno(B::K(false));
     }
@@ -634,6 +644,8 @@ impl<'e, 'f> Lower<'e, 'f> {
                 ref set_value,
             } => self.omron_counter(kind, counter.0, set_value),
             Op::Omron(ref bx) => self.omron_box(bx),
+            Op::Ext(ref bx) => self.ext_box(bx),
+            Op::StrCompare(ref c) => self.str_compare(c),
         }
     }
 }

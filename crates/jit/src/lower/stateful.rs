@@ -260,7 +260,7 @@ impl Lower<'_, '_> {
     }
 
     /// Branches to the failure block with the (dynamic) status when it is not 0.
-    fn fail_on_status(&mut self, st: Value, fail: OnFail) {
+    pub(crate) fn fail_on_status(&mut self, st: Value, fail: OnFail) {
         if let OnFail::Branch(err) = fail {
             let cont = self.b.create_block();
             self.b

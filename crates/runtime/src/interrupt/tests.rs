@@ -33,6 +33,7 @@ fn program(profile: ProfileId, ints: &[u16]) -> Program {
         edges: vec![],
         logic_stack_depth: 9,
         files: vec![],
+        data: vec![],
     }
 }
 
