@@ -49,6 +49,7 @@ pub type CounterBytes = ([u8; 2], u8, [u8; COUNTER_STATE_SIZE as usize]);
 /// the logic stack `stack` (bit i = `S_i`: the TIM family's execution condition is `S0`; TTIM's
 /// timer input `S1`, reset `S0`) under `gate`, with set value `sv` (the raw word); returns the
 /// condition-flag writes. Both engines' timer paths end here.
+#[inline(always)]
 pub fn timer_step(
     (value, flag, state): (&mut [u8; 2], &mut u8, &mut [u8; TIMER_STATE_SIZE as usize]),
     t_ms: u64,
@@ -127,6 +128,7 @@ impl CounterLevels {
 /// Executes Omron counter instruction `kind` on one counter's bytes with the logic stack
 /// `stack` (levels as [`CounterLevels`] says) under `gate`, set value `sv`; returns the
 /// condition-flag writes.
+#[inline(always)]
 pub fn counter_step(
     (value, flag, state): (
         &mut [u8; 2],

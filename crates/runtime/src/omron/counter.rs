@@ -39,6 +39,7 @@ impl OmronCounter {
     /// [`COUNT`], [`DEC`], [`RESET`] and `sv` is the set value word as read. Returns the
     /// condition flags written: ER ON on invalid BCD data, else ER OFF; nothing under an active
     /// interlock.
+    #[inline(always)]
     pub fn step(
         &mut self,
         kind: OmronCounterKind,

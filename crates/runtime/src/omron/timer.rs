@@ -56,6 +56,7 @@ impl OmronTimer {
     /// the execution condition (TTIM: the timer input), `reset` TTIM's reset input (unused by
     /// the TIM family), `sv` the set value word as read. Returns the condition flags written:
     /// ER ON on invalid BCD data, else ER OFF; nothing under an active interlock.
+    #[inline(always)]
     pub fn step(
         &mut self,
         kind: OmronTimerKind,
@@ -93,6 +94,7 @@ impl OmronTimer {
     }
 
     /// The TIM family, §2.12 literally.
+    #[inline(always)]
     fn count_down(&mut self, format: Format, unit: u64, ec: bool, sv: u16, t: u64) -> FlagWrites {
         if !ec {
             // Reset. A non-BCD SV: ER, PV and flag kept.
@@ -130,6 +132,7 @@ impl OmronTimer {
 
     /// TTIM/TTIMX (unit 100 ms): the PV grows by the elapsed ticks while the input is ON,
     /// saturating at SV; reset wins.
+    #[inline(always)]
     fn totalize(
         &mut self,
         format: Format,
