@@ -42,15 +42,24 @@ impl Coverage {
         }
     }
 
-    /// Mnemonics of [`ALL_MNEMONICS`] never generated.
+    /// Mnemonics of [`ALL_MNEMONICS`] never generated, except those in [`NOT_GENERATED_YET`].
     pub fn missing(&self) -> Vec<&'static str> {
         ALL_MNEMONICS
             .iter()
             .copied()
-            .filter(|m| !self.mnemonics.contains_key(m))
+            .filter(|m| !self.mnemonics.contains_key(m) && !NOT_GENERATED_YET.contains(m))
             .collect()
     }
 }
+
+/// Known gap (issue 13, open): mnemonics both engines run but the S7 generator does not make
+/// yet, the s7-200-more §4–§7 instructions. Conformance cases check them on both engines
+/// meanwhile; the list shrinks to nothing when the generator learns them.
+pub const NOT_GENERATED_YET: &[&str] = &[
+    "ATT", "FIFO", "LIFO", "FND=", "FND<>", "FND<", "FND>", "ATH", "HTA", "ITA", "DTA", "RTA",
+    "ITS", "DTS", "RTS", "STI", "STD", "STR", "SLEN", "SCPY", "SCAT", "SSCPY", "SFND", "CFND",
+    "TODR", "TODW", "TODRX", "TODWX", "PID", "LDS=", "LDS<>", "AS=", "AS<>", "OS=", "OS<>",
+];
 
 /// Every mnemonic [`mnemonic`] can return (compare contacts count per type, not per relation).
 pub const ALL_MNEMONICS: &[&str] = &[
