@@ -78,6 +78,7 @@ mod boxes;
 mod circuit;
 mod control;
 mod detect;
+pub mod forms;
 mod lexer;
 mod lower;
 pub mod mnemonics;

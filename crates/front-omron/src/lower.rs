@@ -634,7 +634,7 @@ pub(crate) enum DataBox {
 }
 
 /// The circuit class of an instruction group (§2.4).
-fn class_of(group: Group) -> Class {
+pub(crate) fn class_of(group: Group) -> Class {
     use crate::mnemonics::Flow;
     match group {
         Group::Contact(Join::Load, _) => Class::Start,

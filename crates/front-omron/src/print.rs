@@ -13,16 +13,12 @@
 //! contact, an output coil), constants are `#hex`, and IORF, which lowers to nothing, never
 //! appears.
 
-use crate::address::print_address;
 use crate::mnemonics::{COMPARE_JOINS, COMPARE_SUFFIXES, Flow, Group, Join, RELATIONS, TABLE};
-use crate::operand::area_prefix;
+use operands::{bit_text, ea_operand, tr, word};
 use std::fmt;
-use stljit_core::ir::{
-    Address, BitLoc, CmpOp, Contact, IndexOffset, IndexStep, Loc, OmronBox, OmronRef, Op, Operand,
-    Pou, PouKind, Program,
-};
-use stljit_core::omron::{EA_MAP, EaRegion, SystemBit, effective_address};
-use stljit_core::{Area, CpuProfile, Family, LabelId, Width};
+use stljit_core::ir::{BitLoc, CmpOp, Contact, Loc, OmronBox, Op, Operand, Pou, PouKind, Program};
+use stljit_core::omron::SystemBit;
+use stljit_core::{Area, CpuProfile, Family, LabelId};
 
 /// Why a program cannot be printed as Omron text: it is not a program the Omron front end
 /// produces (for example IR built by hand or cut by a shrinker).
@@ -94,6 +90,19 @@ pub fn print_program(program: &Program) -> Result<String, PrintError> {
     }
     out.push_str(&line(&control(0, Flow::End)?, &[]));
     Ok(out)
+}
+
+/// A printed instruction line, and for the `NOT` that starts an unfolded `NOT; OUT b; NOT`
+/// (or `NOT; CJP n; NOT`) the one line the three fold into (`OUT NOT b`, `JMP n`).
+struct Line {
+    text: String,
+    folded: Option<String>,
+}
+
+impl Line {
+    fn plain(text: String) -> Line {
+        Line { text, folded: None }
+    }
 }
 
 /// One instruction line.
@@ -179,16 +188,38 @@ impl<'a> Body<'a> {
 
     /// Prints `ops` (the POU without its final END/RET).
     fn print(mut self, ops: &[Op], out: &mut String) -> Result<(), PrintError> {
+        let mut lines = Vec::new();
         let mut i = 0;
         while i < ops.len() {
-            let (text, used) = self.instruction(ops, i).map_err(|message| PrintError {
-                pou: self.pou,
+            let pou = self.pou;
+            let err = |message| PrintError {
+                pou,
                 op: Some(i),
                 message,
-            })?;
-            out.push_str(&text);
+            };
+            // `NOT; OUT b; NOT` and `OUT NOT b` (likewise `NOT; CJP n; NOT` and `JMP n`) give
+            // the same ops but leave the circuit in a different place: the folded form is
+            // printed unless an LD follows, whose role `circuits::separate` then settles.
+            if let Some(folded) = self.fold(ops, i).map_err(err)? {
+                if !opens_block(ops, i + 3) {
+                    lines.push(Line::plain(folded));
+                    i += 3;
+                    continue;
+                }
+                let not = line(&head("", Group::Not).map_err(err)?, &[]);
+                lines.push(Line {
+                    text: not,
+                    folded: Some(folded),
+                });
+                i += 1;
+                continue;
+            }
+            let (text, used) = self.instruction(ops, i).map_err(err)?;
+            lines.push(Line::plain(text));
             i += used;
         }
+        circuits::separate(&mut lines);
+        out.extend(lines.into_iter().map(|l| l.text));
         if !self.loops.is_empty() {
             return Err(PrintError {
                 pou: self.pou,
@@ -221,16 +252,7 @@ impl<'a> Body<'a> {
             Op::Load(_) => self.contact(ops, i, Join::Load),
             Op::And(_) => self.contact(ops, i, Join::And),
             Op::Or(_) => self.contact(ops, i, Join::Or),
-            Op::Not => match (at(1), at(2)) {
-                (Some(Op::Assign { bit, immediate }), Some(Op::Not)) => {
-                    Ok((self.out(*bit, *immediate, true)?, 3))
-                }
-                (Some(Op::Jump(l)), Some(Op::Not)) if !self.is_exit(*l) => {
-                    let n = self.number(*l, i + 1)?;
-                    Ok((line(&head("", Group::Control(Flow::Jmp))?, &[n]), 3))
-                }
-                _ => Ok((line(&head("", Group::Not)?, &[]), 1)),
-            },
+            Op::Not => Ok((line(&head("", Group::Not)?, &[]), 1)),
             Op::AndBlock => Ok((line(&head("", Group::Block(Join::And))?, &[]), 1)),
             Op::OrBlock => Ok((line(&head("", Group::Block(Join::Or))?, &[]), 1)),
             Op::Edge { falling, .. } => Ok((line(&head("", Group::Edge(*falling))?, &[]), 1)),
@@ -300,6 +322,23 @@ impl<'a> Body<'a> {
             other => Err(format!(
                 "{other:?} is not an op the Omron front end emits here"
             )),
+        }
+    }
+
+    /// The folded text of `Not; Assign; Not` (`OUT NOT b`) or `Not; Jump; Not` (`JMP n`) at
+    /// `i`, if the ops there are one.
+    fn fold(&mut self, ops: &[Op], i: usize) -> Res<Option<String>> {
+        match (ops.get(i), ops.get(i + 1), ops.get(i + 2)) {
+            (Some(Op::Not), Some(Op::Assign { bit, immediate }), Some(Op::Not))
+                if bit.area != Area::Tr =>
+            {
+                Ok(Some(self.out(*bit, *immediate, true)?))
+            }
+            (Some(Op::Not), Some(Op::Jump(l)), Some(Op::Not)) if !self.is_exit(*l) => {
+                let n = self.number(*l, i + 1)?;
+                Ok(Some(line(&head("", Group::Control(Flow::Jmp))?, &[n])))
+            }
+            _ => Ok(None),
         }
     }
 
@@ -543,6 +582,26 @@ impl<'a> Body<'a> {
     }
 }
 
+/// Whether the instruction printed from the ops at `j` is LD-type (a plain or comparison LD,
+/// not FOR's `Load(P_On)`).
+fn opens_block(ops: &[Op], j: usize) -> bool {
+    let on = Op::Load(Contact::Bit {
+        bit: SystemBit::On.bit_loc(),
+        negated: false,
+    });
+    match ops.get(j) {
+        Some(op) if *op == on => match (ops.get(j + 1), ops.get(j + 2), ops.get(j + 3)) {
+            (Some(Op::For { .. }), ..) => false,
+            (Some(Op::Omron(OmronBox::Compare { .. })), Some(Op::Pop), Some(flag)) => {
+                matches!(flag, Op::Load(_))
+            }
+            _ => true,
+        },
+        Some(Op::Load(_)) => true,
+        _ => false,
+    }
+}
+
 /// `LD>=S` … from `Omron(Compare)` and the contact of the relation's flag.
 fn compare_contact(cmp: &Op, flag_contact: &Op) -> Res<String> {
     let Op::Omron(OmronBox::Compare {
@@ -604,100 +663,7 @@ fn relation_flag(op: CmpOp) -> SystemBit {
     }
 }
 
-fn tr(bit: BitLoc) -> String {
-    format!("TR{}", bit.byte * 8 + u32::from(bit.bit))
-}
-
-/// A bit operand in Omron spelling; an error for locations no operand names.
-fn bit_text(bit: BitLoc) -> Res<String> {
-    if bit.area == Area::Tr {
-        return Err("a TR bit outside OUT/LD".into());
-    }
-    named(print_address(&Address::Bit(bit)))
-}
-
-fn named(text: String) -> Res<String> {
-    if text.starts_with('?') {
-        Err(format!("{text} has no Omron operand"))
-    } else {
-        Ok(text)
-    }
-}
-
-/// A word operand of `words` words: a location (its first word), a constant (`#` with 4 or 8
-/// digits), or an indirect form.
-fn word(o: Operand, words: u32) -> Res<String> {
-    match o {
-        Operand::Mem(loc) if loc.area == Area::DataReg => {
-            if words != 1 {
-                return Err("a data register as a multi-word operand".into());
-            }
-            Ok(format!("DR{}", loc.offset / 2))
-        }
-        Operand::Mem(loc) => named(print_address(&Address::Value {
-            loc,
-            width: Width::Word,
-        })),
-        Operand::Const(v) if words == 1 => {
-            if v > 0xFFFF {
-                return Err(format!("constant {v:#x} does not fit one word"));
-            }
-            Ok(format!("#{v:04X}"))
-        }
-        Operand::Const(v) => Ok(format!("#{v:08X}")),
-        Operand::Omron(r) => Ok(indirect(r)),
-        other => Err(format!("{other:?} is not an Omron operand")),
-    }
-}
-
-/// `@Dn`, `*Dn` and the index-register forms of §1.7.
-fn indirect(r: OmronRef) -> String {
-    match r {
-        OmronRef::DmBinary(n) => format!("@D{n}"),
-        OmronRef::DmBcd(n) => format!("*D{n}"),
-        OmronRef::Index { ir, offset, step } => {
-            let (pre, post) = match step {
-                IndexStep::None => ("", ""),
-                IndexStep::PostInc1 => ("", "+"),
-                IndexStep::PostInc2 => ("", "++"),
-                IndexStep::PreDec1 => ("-", ""),
-                IndexStep::PreDec2 => ("--", ""),
-            };
-            let off = match offset {
-                IndexOffset::Const(0) => String::new(),
-                IndexOffset::Const(c) => format!("{c:+}"),
-                IndexOffset::Dr(m) => format!("DR{m}"),
-            };
-            format!("{off},{pre}IR{ir}{post}")
-        }
-    }
-}
-
-/// The operand whose effective address (MOVR's source) is `ea`: a word, a timer or counter
-/// PV, or a bit (`16 · word address + bit`).
-fn ea_operand(profile: &CpuProfile, ea: u32) -> Option<String> {
-    let bit_base = 16 * EA_MAP.iter().map(|r| r.1).min()?;
-    let (word_ea, bit) = if ea >= bit_base {
-        (ea / 16, Some(ea % 16))
-    } else {
-        (ea, None)
-    };
-    let &(region, base) = EA_MAP
-        .iter()
-        .filter(|r| r.1 <= word_ea)
-        .max_by_key(|r| r.1)?;
-    let word = word_ea - base;
-    if effective_address(profile, region, word) != Some(word_ea) {
-        return None;
-    }
-    match (region, bit) {
-        (EaRegion::Word(a), None) => Some(format!("{}{word}", area_prefix(a))),
-        (EaRegion::Word(a), Some(b)) => Some(format!("{}{word}.{b:02}", area_prefix(a))),
-        (EaRegion::TimerPv, None) => Some(format!("T{word:04}")),
-        (EaRegion::CounterPv, None) => Some(format!("C{word:04}")),
-        _ => None,
-    }
-}
-
+mod circuits;
+mod operands;
 #[cfg(test)]
 mod tests;

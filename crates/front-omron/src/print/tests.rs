@@ -1,10 +1,12 @@
 //! The printer against the lowering: every instruction form compiles, prints and compiles
 //! back to the same IR (up to source locations), and IR no text produces is refused.
 
+use super::operands::ea_operand;
 use super::*;
 use crate::compile_str;
 use stljit_core::ProfileId;
 use stljit_core::ir::SrcLoc;
+use stljit_core::omron::{EaRegion, effective_address};
 
 fn compiled(text: &str, profile: ProfileId) -> Program {
     let c = compile_str("t.omr", text, profile);
@@ -142,6 +144,12 @@ MOV(021) ,IR5 D56
 CCS(282)
 @CCL(283)
 IORF(097) 10 12
+NOT(520)
+OUT TR1
+NOT(520)
+OUT W0.04
+LD TR1
+OUT W0.05
 LD 0.00
 JMP(004) &1
 LD 0.01
@@ -198,6 +206,42 @@ END(001)
         !printed.contains("JMP0") && !printed.contains("IORF"),
         "{printed}"
     );
+}
+
+#[test]
+fn iorf_boundaries_are_put_back() {
+    // IORF lowers to nothing, but the LD after it starts a new circuit.
+    let printed = round_trip(
+        "LD 0.04\nIORF(097) 7 7\n@LD 1.10\nOR 3.10\nMOV(021) #FFFF D0\nLD 0.00\nIORF(097) 0 1\nEND(001)\n",
+        ProfileId::Cp1h,
+    );
+    assert_eq!(printed.matches("IORF").count(), 2, "{printed}");
+    // Where the LD after it opens a block anyway, nothing is added.
+    let printed = round_trip(
+        "LD 0.04\nIORF(097) 7 7\nAND 0.01\nLD 0.02\nAND LD\nOUT 100.00\nEND(001)\n",
+        ProfileId::Cp1h,
+    );
+    assert!(!printed.contains("IORF"), "{printed}");
+}
+
+#[test]
+fn out_not_and_jmp_fold_only_where_the_circuit_allows() {
+    // `NOT / OUT b / NOT` followed by an LD opening a block: folding it into OUT NOT would end
+    // the rung there and make the LD start a new circuit.
+    round_trip(
+        "LD 0.00\nNOT(520)\nOUT W0.00\nNOT(520)\nLD 0.01\nOR LD\nOUT W0.01\nEND(001)\n",
+        ProfileId::Cp1h,
+    );
+    round_trip(
+        "LD 0.00\nNOT(520)\nCJP(510) 1\nNOT(520)\nLD 0.01\nAND LD\nOUT W0.01\nJME(005) 1\nEND(001)\n",
+        ProfileId::Cp1h,
+    );
+    // And an OUT NOT followed by a new circuit, or by FOR, stays OUT NOT.
+    let printed = round_trip(
+        "LD 0.00\nOUT NOT W0.00\nLD 0.01\nOUT W0.01\nLD 0.02\nOUT NOT W0.02\nFOR(503) &2\nNEXT(504)\nEND(001)\n",
+        ProfileId::Cp1h,
+    );
+    assert_eq!(printed.matches("OUT NOT").count(), 2, "{printed}");
 }
 
 #[test]
