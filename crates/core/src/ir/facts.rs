@@ -1,6 +1,6 @@
 //! The structural facts of every op, stated once: where control goes next ([`Op::successors`]),
-//! what it does to the logic stack ([`Op::stack_effect`]), and which FOR loop a jump would enter
-//! ([`loop_entered_by`]). The verifier, the JIT's analyses and the front ends' stack checks read
+//! what it does to the logic stack ([`Op::stack_effect`]) and to the gate ([`Op::gate_effect`]),
+//! and which FOR loop a jump would enter ([`loop_entered_by`]). The verifier, the JIT's analyses and the front ends' stack checks read
 //! these instead of matching on ops themselves, so a new op states its facts here and nowhere else.
 
 use super::{CounterKind, Op, Pou};
@@ -102,7 +102,60 @@ impl StackEffect {
     }
 }
 
+/// What an op does to the gate of `PF = S0 AND gate` (the SCR and interlock gate byte).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GateEffect {
+    /// Leaves it as it is (a `CALL` leaves whatever its callee leaves).
+    Keeps,
+    /// Sets it to 1 (`SCRE`, `ILC`).
+    Opens,
+    /// Sets it to a value known only at run time (`LSCR`: the S bit; `IL`: the power flow).
+    Sets,
+}
+
 impl Op {
+    /// The op's effect on the gate.
+    pub fn gate_effect(&self) -> GateEffect {
+        match self {
+            Op::ScrBegin { .. } | Op::Interlock => GateEffect::Sets,
+            Op::ScrEnd | Op::InterlockEnd => GateEffect::Opens,
+            Op::Load(_)
+            | Op::And(_)
+            | Op::Or(_)
+            | Op::Not
+            | Op::AndBlock
+            | Op::OrBlock
+            | Op::Dup
+            | Op::ReadSecond
+            | Op::Pop
+            | Op::Pick(_)
+            | Op::AndEno
+            | Op::Edge { .. }
+            | Op::Assign { .. }
+            | Op::SetRange { .. }
+            | Op::ResetTimers { .. }
+            | Op::ResetCounters { .. }
+            | Op::Timer { .. }
+            | Op::Counter { .. }
+            | Op::Box(_)
+            | Op::Jump(_)
+            | Op::Label(_)
+            | Op::Call(_)
+            | Op::Return { .. }
+            | Op::End { .. }
+            | Op::Stop
+            | Op::Wdr
+            | Op::Nop
+            | Op::For { .. }
+            | Op::Next { .. }
+            | Op::ScrTransition { .. }
+            | Op::ScrCondEnd { .. }
+            | Op::OmronTimer { .. }
+            | Op::OmronCounter { .. }
+            | Op::Omron(_) => GateEffect::Keeps,
+        }
+    }
+
     /// Where control may go after this op of `pou`. A target outside the POU (only in a program
     /// the verifier rejects) is clamped to its end.
     pub fn successors(&self, pou: &Pou) -> Successors {

@@ -24,7 +24,7 @@ mod test_ops;
 mod uses;
 mod verify;
 
-pub use facts::{StackEffect, Successors, enclosing_loop, loop_entered_by};
+pub use facts::{GateEffect, StackEffect, Successors, enclosing_loop, loop_entered_by};
 pub use omron::{
     BoxOperands, IndexOffset, IndexStep, OmronArith, OmronBox, OmronCounterKind, OmronRef,
     OmronTimerKind,
