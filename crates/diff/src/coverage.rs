@@ -1,5 +1,8 @@
 //! Coverage counters: how often each mnemonic and each operand kind was generated, so that a
-//! campaign shows what it exercised (and what it never reached).
+//! campaign shows what it exercised (and what it never reached). S7 programs are counted from
+//! their IR (per STL mnemonic); Omron programs from their generated text, per instruction form
+//! as written (`!@LD`, `LD>=S`, `TIMX`) and per operand form (`W bit`, `T PV`, `,IR+` …),
+//! which the Omron front end names and lists (`stljit_front_omron::forms`).
 
 use std::collections::BTreeMap;
 use stljit_core::ir::{BoxOp, CmpType, Contact, Conversion, Op, Operand, Program};
@@ -14,6 +17,10 @@ pub struct Coverage {
     pub mnemonics: BTreeMap<&'static str, u64>,
     /// Generated operands per kind.
     pub operands: BTreeMap<String, u64>,
+    /// Generated Omron instructions per form (mnemonic with its options as written).
+    pub omron_mnemonics: BTreeMap<String, u64>,
+    /// Generated Omron operands per form.
+    pub omron_operands: BTreeMap<&'static str, u64>,
 }
 
 impl Coverage {
@@ -29,6 +36,16 @@ impl Coverage {
         }
     }
 
+    /// Counts every instruction and operand of an Omron program's text.
+    pub fn add_omron_source(&mut self, text: &str) {
+        for f in stljit_front_omron::forms::forms(text) {
+            for o in &f.operands {
+                *self.omron_operands.entry(o).or_default() += 1;
+            }
+            *self.omron_mnemonics.entry(f.mnemonic).or_default() += 1;
+        }
+    }
+
     /// Adds another coverage (from a worker thread).
     pub fn merge(&mut self, other: &Coverage) {
         for (k, v) in &other.mnemonics {
@@ -37,6 +54,25 @@ impl Coverage {
         for (k, v) in &other.operands {
             *self.operands.entry(k.clone()).or_default() += v;
         }
+        for (k, v) in &other.omron_mnemonics {
+            *self.omron_mnemonics.entry(k.clone()).or_default() += v;
+        }
+        for (k, v) in &other.omron_operands {
+            *self.omron_operands.entry(k).or_default() += v;
+        }
+    }
+
+    /// Omron instruction forms (`stljit_front_omron::forms::mnemonic_forms`) and operand forms
+    /// (`forms::OPERAND_FORMS`) never generated.
+    pub fn missing_omron(&self) -> Vec<String> {
+        let forms = stljit_front_omron::forms::mnemonic_forms()
+            .into_iter()
+            .filter(|m| !self.omron_mnemonics.contains_key(m));
+        let operands = stljit_front_omron::forms::OPERAND_FORMS
+            .iter()
+            .filter(|o| !self.omron_operands.contains_key(*o))
+            .map(|o| format!("operand {o}"));
+        forms.chain(operands).collect()
     }
 
     /// Mnemonics of [`ALL_MNEMONICS`] never generated.
