@@ -362,6 +362,43 @@ mod tests {
         assert_eq!(small.stimulus.len(), 1);
     }
 
+    /// The same for Omron programs, which shrink by source lines: a program that still holds
+    /// a `/` (division) box ends as its condition, the box and END.
+    #[test]
+    fn omron_cases_shrink_by_source_lines() {
+        use stljit_core::ir::{OmronArith, OmronBox};
+        let has_div = |c: &Case| {
+            c.program.pous.iter().flat_map(|p| &p.ops).any(|op| {
+                matches!(
+                    op,
+                    Op::Omron(OmronBox::Arith {
+                        op: OmronArith::Div,
+                        ..
+                    })
+                )
+            })
+        };
+        let case = (0..500)
+            .filter_map(|s| {
+                let mut c = crate::rng::Choices::from_seed(s);
+                crate::generate::omron::generate(&mut c, &GenConfig::default()).ok()
+            })
+            .map(|g| g.case)
+            .find(|c| has_div(c) && c.program.op_count() > 100)
+            .expect("some program has a /");
+        let finding = Finding::Build {
+            engine: "test",
+            message: "/".into(),
+        };
+        let mut fails =
+            |c: &Case| (roundtrip(&c.program).is_ok() && has_div(c)).then(|| finding.clone());
+        let (small, _) = shrink(&case, &finding, &mut fails, 5000);
+        assert!(roundtrip(&small.program).is_ok());
+        assert!(has_div(&small));
+        assert!(small.program.op_count() <= 4, "{:#?}", small.program);
+        assert_eq!(small.stimulus.len(), 1);
+    }
+
     /// The whole failure path on a real engine: a divergence found by the oracle (an interpreter
     /// against one with a byte overwritten after scan 3) shrinks to scan 3 and a minimal program,
     /// and its reproducer directory reads back to the same case.
