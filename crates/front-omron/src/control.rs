@@ -71,6 +71,8 @@ struct OpenLoop {
     /// The jump numbers pending when the loop opened: their JME may not be inside the loop
     /// (a jump into a FOR body would reach NEXT with no FOR active).
     outside_jumps: Vec<u32>,
+    /// Whether a JMP0 was pending when the loop opened: no JME0 may then be inside the loop.
+    outside_jmp0: bool,
 }
 
 impl Lowerer<'_> {
@@ -277,6 +279,14 @@ impl Lowerer<'_> {
             Flow::Jme0 => {
                 self.operands(l, 0)?;
                 self.class(l, Class::Unconditional);
+                if self.control.loops.iter().any(|lp| lp.outside_jmp0) {
+                    self.at_head(
+                        l,
+                        Code::OmrInRegion,
+                        "JME0(516) is inside a FOR(503)–NEXT(504) loop its JMP0(515) is outside of"
+                            .into(),
+                    );
+                }
                 for (label, _) in std::mem::take(&mut self.control.jmp0) {
                     self.place(label);
                 }
@@ -387,11 +397,13 @@ impl Lowerer<'_> {
                 let exit = self.new_label();
                 let span = self.head_span(l);
                 let outside_jumps = self.control.jumps.iter().map(|j| j.number).collect();
+                let outside_jmp0 = !self.control.jmp0.is_empty();
                 self.control.loops.push(OpenLoop {
                     head,
                     exit,
                     span,
                     outside_jumps,
+                    outside_jmp0,
                 });
             }
             Flow::Next => {
