@@ -50,8 +50,8 @@ pub(crate) struct Control {
     /// JME numbers defined in the current POU, with their interlock region.
     defined: HashMap<u32, Option<u32>>,
     jumps: Vec<PendingJump>,
-    /// Open JMP0s: their labels and where they are.
-    jmp0: Vec<(LabelId, Span)>,
+    /// Open JMP0s: their labels, where they are and their interlock region.
+    jmp0: Vec<(LabelId, Span, Option<u32>)>,
     /// Subroutine numbers to their POUs.
     subs: HashMap<u32, PouId>,
     /// `SBS` calls to resolve at the end: POU index, op index, number, place.
@@ -135,7 +135,7 @@ impl Lowerer<'_> {
                 ),
             );
         }
-        for (_, span) in std::mem::take(&mut self.control.jmp0) {
+        for (_, span, _) in std::mem::take(&mut self.control.jmp0) {
             self.report_span(
                 Code::OmrJmp0,
                 span,
@@ -271,7 +271,8 @@ impl Lowerer<'_> {
                 self.class(l, Class::Output);
                 let label = self.new_label();
                 let span = self.head_span(l);
-                self.control.jmp0.push((label, span));
+                let interlock = self.interlock_id();
+                self.control.jmp0.push((label, span, interlock));
                 self.emit(Op::Not);
                 self.emit(Op::Jump(label));
                 self.emit(Op::Not);
@@ -287,7 +288,18 @@ impl Lowerer<'_> {
                             .into(),
                     );
                 }
-                for (label, _) in std::mem::take(&mut self.control.jmp0) {
+                let here = self.interlock_id();
+                for (label, span, interlock) in std::mem::take(&mut self.control.jmp0) {
+                    if interlock != here {
+                        self.report_span(
+                            Code::OmrJump,
+                            span,
+                            format!(
+                                "line {}: JMP0(515) crosses the boundary of an IL(002)–ILC(003) region",
+                                span.line
+                            ),
+                        );
+                    }
                     self.place(label);
                 }
             }
