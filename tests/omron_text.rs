@@ -40,22 +40,7 @@ fn texts() -> Vec<(String, SourceFile, Option<SourceFile>, ProfileId)> {
     let root = stljit_harness::repo_root();
     let mut out = Vec::new();
     for f in files_in(&root.join("tests/conformance/omron"), "toml") {
-        let table: toml::Table = std::fs::read_to_string(&f)
-            .unwrap_or_default()
-            .parse()
-            .unwrap_or_else(|e| panic!("{}: {e}", f.display()));
-        let Some(program) = table.get("program").and_then(|v| v.as_str()) else {
-            panic!("{}: no program", f.display());
-        };
-        let cpu = table
-            .get("cpu")
-            .and_then(|v| v.as_str())
-            .map_or(Some(ProfileId::Cp1h), ProfileId::from_name)
-            .unwrap_or_else(|| panic!("{}: unknown cpu", f.display()));
-        let file = SourceFile {
-            name: f.display().to_string(),
-            bytes: program.as_bytes().to_vec(),
-        };
+        let (file, cpu) = crate::ir_text::conformance_program(&f, ProfileId::Cp1h);
         out.push((f.display().to_string(), file, None, cpu));
     }
     for dir in [

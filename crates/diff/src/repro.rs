@@ -388,17 +388,22 @@ mod tests {
     use super::*;
     use crate::generate::{GenConfig, case_from_seed};
 
+    /// Writes `case` as a reproducer in `dir` and reads it back: the same meta, program and
+    /// stimulus.
+    fn reads_back(dir: &Path, case: &Case, seed: u64) {
+        let meta = Meta::new(case.program.profile, Some(seed), "interp jit(none)");
+        write_repro(dir, case, &meta, None).unwrap();
+        let (back, m) = read_case(dir).unwrap();
+        assert_eq!(m, meta);
+        assert_eq!(back.program, case.program, "seed {seed}");
+        assert_eq!(back.stimulus, case.stimulus, "seed {seed}");
+    }
+
     #[test]
     fn repro_directory_reads_back_the_same_case() {
         let dir = std::env::temp_dir().join(format!("stljit-repro-test-{}", std::process::id()));
         for seed in 0..40 {
-            let case = case_from_seed(seed, &GenConfig::default());
-            let meta = Meta::new(case.program.profile, Some(seed), "interp jit(none)");
-            write_repro(&dir, &case, &meta, None).unwrap();
-            let (back, m) = read_case(&dir).unwrap();
-            assert_eq!(m, meta);
-            assert_eq!(back.program, case.program, "seed {seed}");
-            assert_eq!(back.stimulus, case.stimulus, "seed {seed}");
+            reads_back(&dir, &case_from_seed(seed, &GenConfig::default()), seed);
         }
         let _ = std::fs::remove_dir_all(&dir);
     }
@@ -420,12 +425,7 @@ mod tests {
                 .iter()
                 .map(|s| s.writes.len())
                 .sum::<usize>();
-            let meta = Meta::new(case.program.profile, Some(seed), "interp jit(none)");
-            write_repro(&dir, &case, &meta, None).unwrap();
-            let (back, m) = read_case(&dir).unwrap();
-            assert_eq!(m, meta);
-            assert_eq!(back.program, case.program, "seed {seed}");
-            assert_eq!(back.stimulus, case.stimulus, "seed {seed}");
+            reads_back(&dir, &case, seed);
             let omr = std::fs::read_to_string(dir.join("program.omr")).unwrap();
             let compiled = crate::roundtrip::compile_dialect(&omr, case.program.profile).unwrap();
             assert_eq!(

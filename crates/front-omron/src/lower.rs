@@ -454,15 +454,7 @@ impl<'a> Lowerer<'a> {
                 Class::Combine
             },
         );
-        use stljit_core::ir::CmpOp;
-        let flag = match c.op {
-            CmpOp::Eq => SystemBit::Eq,
-            CmpOp::Ne => SystemBit::Ne,
-            CmpOp::Lt => SystemBit::Lt,
-            CmpOp::Le => SystemBit::Le,
-            CmpOp::Gt => SystemBit::Gt,
-            CmpOp::Ge => SystemBit::Ge,
-        };
+        let flag = mnemonics::relation_flag(c.op);
         let on = Contact::Bit {
             bit: SystemBit::On.bit_loc(),
             negated: false,

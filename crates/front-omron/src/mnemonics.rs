@@ -4,6 +4,7 @@
 //! their text by [`compare`]) and the instructions that are recognised but not supported yet.
 
 use stljit_core::ir::{CmpOp, OmronArith, OmronCounterKind, OmronTimerKind};
+use stljit_core::omron::SystemBit;
 
 /// The lowering routine of a mnemonic.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -230,6 +231,19 @@ pub const RELATIONS: [(&str, CmpOp, u16); 6] = [
     ("<", CmpOp::Lt, 310),
     (">", CmpOp::Gt, 320),
 ];
+
+/// The condition flag a comparison contact reads (U2's default: its relation's own flag); the
+/// lowering emits it and the printer reads it back.
+pub fn relation_flag(op: CmpOp) -> SystemBit {
+    match op {
+        CmpOp::Eq => SystemBit::Eq,
+        CmpOp::Ne => SystemBit::Ne,
+        CmpOp::Lt => SystemBit::Lt,
+        CmpOp::Le => SystemBit::Le,
+        CmpOp::Gt => SystemBit::Gt,
+        CmpOp::Ge => SystemBit::Ge,
+    }
+}
 
 /// How a comparison contact joins the execution condition, by its prefix.
 pub const COMPARE_JOINS: [(&str, Join); 3] =

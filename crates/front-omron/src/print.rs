@@ -13,7 +13,9 @@
 //! contact, an output coil), constants are `#hex`, and IORF, which lowers to nothing, never
 //! appears.
 
-use crate::mnemonics::{COMPARE_JOINS, COMPARE_SUFFIXES, Flow, Group, Join, RELATIONS, TABLE};
+use crate::mnemonics::{
+    COMPARE_JOINS, COMPARE_SUFFIXES, Flow, Group, Join, RELATIONS, TABLE, relation_flag,
+};
 use operands::{bit_text, ea_operand, tr, word};
 use std::fmt;
 use stljit_core::ir::{BitLoc, CmpOp, Contact, Loc, OmronBox, Op, Operand, Pou, PouKind, Program};
@@ -648,19 +650,6 @@ fn compare_contact(cmp: &Op, flag_contact: &Op) -> Res<String> {
         return Err("a comparison contact with an indirect operand".into());
     }
     Ok(line(&format!("{prefix}{rel}{suffix}({code:03})"), &[l, r]))
-}
-
-/// The condition flag a comparison contact reads (U2's default: the relation's own flag); the
-/// lowering's choice, which `tests::compare_contacts_read_their_relation` checks.
-fn relation_flag(op: CmpOp) -> SystemBit {
-    match op {
-        CmpOp::Eq => SystemBit::Eq,
-        CmpOp::Ne => SystemBit::Ne,
-        CmpOp::Lt => SystemBit::Lt,
-        CmpOp::Le => SystemBit::Le,
-        CmpOp::Gt => SystemBit::Gt,
-        CmpOp::Ge => SystemBit::Ge,
-    }
 }
 
 mod circuits;

@@ -4,6 +4,7 @@
 use super::operands::ea_operand;
 use super::*;
 use crate::compile_str;
+use crate::mnemonics::relation_flag;
 use stljit_core::ProfileId;
 use stljit_core::ir::SrcLoc;
 use stljit_core::omron::{EaRegion, effective_address};

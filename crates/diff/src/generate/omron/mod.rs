@@ -235,26 +235,12 @@ impl<'c, 'a> OmronGen<'c, 'a> {
         }
     }
 
-    /// Options for an instruction allowing `allowed`: mostly none.
-    pub(crate) fn options(&mut self, m: Group) -> String {
-        let Some(e) = Self::entry(m) else {
-            return String::new();
-        };
-        let a = e.allowed;
-        let edge = match self
-            .c
-            .weighted(&[10, u32::from(a.up) * 2, u32::from(a.down)])
-        {
-            1 => "@",
-            2 => "%",
-            _ => "",
-        };
-        let bang = if a.immediate && self.c.chance(1, 6) {
-            "!"
-        } else {
-            ""
-        };
-        format!("{bang}{edge}")
+    /// Options for the instruction of `group` ([`OmronGen::options_of`]).
+    pub(crate) fn options(&mut self, group: Group) -> String {
+        match Self::entry(group) {
+            Some(m) => self.options_of(m),
+            None => String::new(),
+        }
     }
 
     fn program(&mut self) {

@@ -26,16 +26,9 @@ fn generated_programs_compile() {
 
 #[test]
 fn programs_from_fuzzer_bytes_compile() {
-    let mut state = 0x9E37_79B9_7F4A_7C15u64;
     let bad = failures((0..1000).map(|i| {
-        let bytes: Vec<u8> = (0..(i % 500))
-            .map(|_| {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                state as u8
-            })
-            .collect();
+        let mut r = crate::rng::SplitMix64::new(i);
+        let bytes: Vec<u8> = (0..(i % 500)).map(|_| r.next_u64() as u8).collect();
         let mut c = Choices::from_bytes(&bytes);
         (
             format!("bytes #{i}"),
