@@ -240,7 +240,9 @@ pub fn write_repro(
     if let Some(seed) = meta.seed {
         let _ = writeln!(
             readme,
-            "Program seed: {seed} (stljit_diff::generate::case_from_seed)."
+            "Program seed: {seed} (stljit_diff::generate::generate_in({:?}, \
+             Choices::from_seed(seed)); `stljit fuzz` prints the campaign seed and index).",
+            meta.profile.profile().family
         );
     }
     let _ = writeln!(

@@ -30,7 +30,8 @@ pub use stimulus::{HmiWrite, ScanInput, Stimulus};
 /// Knobs of the generator. The defaults aim at many small, realistic programs per second.
 #[derive(Clone, Debug)]
 pub struct GenConfig {
-    /// The profile, or `None` to pick one per program.
+    /// The profile, or `None` to pick one per program (a profile of the other dialect than
+    /// the one generated is ignored).
     pub profile: Option<ProfileId>,
     /// Upper bound on networks in the main program (the actual count is random below it).
     pub max_networks: u32,
