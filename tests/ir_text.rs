@@ -9,7 +9,7 @@ use stljit_core::ir::Program;
 use stljit_core::text;
 use stljit_front_s7::{SourceFile, compile};
 
-fn files_in(dir: &Path, exts: &[&str]) -> Vec<PathBuf> {
+pub(crate) fn files_in(dir: &Path, exts: &[&str]) -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .flatten()
@@ -20,7 +20,7 @@ fn files_in(dir: &Path, exts: &[&str]) -> Vec<PathBuf> {
     v
 }
 
-fn source(path: &Path) -> SourceFile {
+pub(crate) fn source(path: &Path) -> SourceFile {
     SourceFile {
         name: path.display().to_string(),
         bytes: std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())),

@@ -5,7 +5,8 @@
 //! swapped or garbled, bytes flipped) never panic the front end, and every one it accepts
 //! prints, compiles back to the same IR and runs alike on the interpreter and the JIT.
 
-use std::path::{Path, PathBuf};
+use crate::ir_text::{files_in, source};
+use std::path::PathBuf;
 use stljit_core::ProfileId;
 use stljit_core::ir::Program;
 use stljit_diff::campaign::check_case;
@@ -17,29 +18,11 @@ use stljit_diff::roundtrip::roundtrip;
 use stljit_front::{Dialect, SourceFile};
 use stljit_jit::OptLevel;
 
-fn files_in(dir: &Path, ext: &str) -> Vec<PathBuf> {
-    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|e| e == ext))
-        .collect();
-    v.sort();
-    v
-}
-
-fn source(path: &Path) -> SourceFile {
-    SourceFile {
-        name: path.display().to_string(),
-        bytes: std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())),
-    }
-}
-
 /// Every Omron program text of the repository with its profile and symbol table.
 fn texts() -> Vec<(String, SourceFile, Option<SourceFile>, ProfileId)> {
     let root = stljit_harness::repo_root();
     let mut out = Vec::new();
-    for f in files_in(&root.join("tests/conformance/omron"), "toml") {
+    for f in files_in(&root.join("tests/conformance/omron"), &["toml"]) {
         let (file, cpu) = crate::ir_text::conformance_program(&f, ProfileId::Cp1h);
         out.push((f.display().to_string(), file, None, cpu));
     }
@@ -49,7 +32,7 @@ fn texts() -> Vec<(String, SourceFile, Option<SourceFile>, ProfileId)> {
         "examples/omron_conveyor",
         "benches/programs",
     ] {
-        for f in files_in(&root.join(dir), "omr") {
+        for f in files_in(&root.join(dir), &["omr"]) {
             let stem = f.with_extension("");
             let symbols = [
                 format!("{}.symbols.txt", stem.display()),
