@@ -2,8 +2,10 @@
 //! diagnostics compared with the `.expected` file next to it. A case is a `.stl`/`.awl` file
 //! (with an optional `<stem>.symbols.txt` or `<stem>.symbols.csv`), or a `<name>.project/`
 //! directory whose program files form one project (with `symbols.txt`/`symbols.csv` and
-//! `expected` inside). A stem containing `.s7-200` selects that CPU; the default is the A5.
-//! Cases under `omron/` (`.omr` files) compile with the Omron dialect on the CP1H.
+//! `expected` inside). A stem containing `.s7-200` or `.smart` selects that CPU; the default is
+//! the A5. Cases under `omron/` (`.omr` files) compile with the Omron dialect on the CP1H. A few
+//! programs are too long to commit and are generated here ([`generated`]); their `.expected`
+//! files are committed like any other.
 //! `STLJIT_BLESS=1` rewrites the expectations (read them before committing).
 //!
 //! Also here: every diagnostic code has a fixture named after it and an entry in
@@ -32,6 +34,8 @@ struct Case {
     expected: PathBuf,
     cpu: ProfileId,
     dialect: Dialect,
+    /// The program text of a generated case (else `files` are read).
+    text: Option<String>,
 }
 
 fn rel(p: &Path) -> String {
@@ -60,6 +64,8 @@ fn discover(dir: &Path, out: &mut Vec<Case>) {
             (Dialect::Omron, ProfileId::Cp1h)
         } else if name.contains(".s7-200") {
             (Dialect::S7, ProfileId::S7_200)
+        } else if name.contains(".smart") {
+            (Dialect::S7, ProfileId::Smart)
         } else {
             (Dialect::S7, ProfileId::A5)
         };
@@ -80,6 +86,7 @@ fn discover(dir: &Path, out: &mut Vec<Case>) {
                 expected: path.join("expected"),
                 cpu,
                 dialect,
+                text: None,
             });
         } else if path.is_dir() {
             discover(&path, out);
@@ -93,14 +100,38 @@ fn discover(dir: &Path, out: &mut Vec<Case>) {
                 expected: with(".expected"),
                 cpu,
                 dialect,
+                text: None,
             });
         }
     }
 }
 
+/// The generated cases: OMR-E035 needs a program larger than the CP1H's 20K steps: an `LD`
+/// and 4096 CMPLs of two double constants (3 steps and one per constant: 5 each) are 20481
+/// steps before the END.
+fn generated() -> Vec<Case> {
+    let mut text =
+        String::from("; generated: 4096 x CMPL with two constants (5 steps each)\nLD P_On\n");
+    for _ in 0..4096 {
+        text.push_str("CMPL(060) #00010002 #00030004\n");
+    }
+    text.push_str("END(001)\n");
+    let name = "omron/OMR-E035_capacity.omr";
+    vec![Case {
+        name: name.into(),
+        files: Vec::new(),
+        symbols: None,
+        expected: root().join("omron/OMR-E035_capacity.expected"),
+        cpu: ProfileId::Cp1h,
+        dialect: Dialect::Omron,
+        text: Some(text),
+    }]
+}
+
 fn cases() -> Vec<Case> {
     let mut out = Vec::new();
     discover(&root(), &mut out);
+    out.extend(generated());
     assert!(out.len() > 20, "too few diagnostics fixtures found");
     out
 }
@@ -126,7 +157,13 @@ fn fixtures_match_expectations() {
     let bless = std::env::var_os("STLJIT_BLESS").is_some_and(|v| v == "1");
     let mut failures = Vec::new();
     for case in cases() {
-        let files: Vec<_> = case.files.iter().map(|p| load(p)).collect();
+        let files: Vec<_> = match &case.text {
+            Some(text) => vec![SourceFile {
+                name: case.name.clone(),
+                bytes: text.clone().into_bytes(),
+            }],
+            None => case.files.iter().map(|p| load(p)).collect(),
+        };
         let symbols = case.symbols.as_deref().map(load);
         let c = case.dialect.compile(&files, symbols.as_ref(), case.cpu);
         let rendered: Vec<_> = c

@@ -2,6 +2,7 @@
 //! discovers its cases from data files under `tests/`, so a new case is a new file.
 
 mod conformance;
+mod corpus;
 mod diagnostics;
 mod examples;
 mod fuzz_smoke;

@@ -203,6 +203,8 @@ struct ScanSpec {
     /// `(name, address, raw)` of every driven address.
     inputs: Vec<(String, Address, u32)>,
     expect: Vec<(WatchSpec, Want)>,
+    /// L memory of call levels (`frame = { 1 = { "LW9" = … } }`).
+    frames: Vec<super::frames::FrameExpect>,
     status: ScanStatus,
     fatal: Option<FatalCode>,
     last_err: Option<u16>,
@@ -218,6 +220,8 @@ enum Want {
 struct Case {
     dialect: Dialect,
     profile: ProfileId,
+    /// The front-end options (`tc_mode`, `allow_backward_jumps`: Omron's).
+    options: stljit_front::Options,
     scan_ms: u64,
     program: String,
     scans: Vec<ScanSpec>,
@@ -358,6 +362,7 @@ fn check_scan(image: &Image, status: ScanStatus, spec: &ScanSpec) -> Vec<(String
             format!("expected 16#{code:04X}, got 16#{:04X}", image.last_error()),
         ));
     }
+    out.extend(super::frames::check(image, &spec.frames));
     for (watch, want) in &spec.expect {
         let Some(raw) = watch.read(image) else {
             out.push((watch.text.clone(), "address outside the image".to_string()));
@@ -453,7 +458,9 @@ fn compile(file: &str, case: &Case) -> Result<Program, String> {
         name: file.to_string(),
         bytes: case.program.as_bytes().to_vec(),
     };
-    let c = case.dialect.compile(&[source], None, case.profile);
+    let c = case
+        .dialect
+        .compile_with(&[source], None, case.profile, case.options);
     match c.program {
         Some(p) => Ok(p),
         None => {
@@ -558,9 +565,11 @@ const CASE_KEYS: &[&str] = &[
     "program",
     "scan",
     "known_failure",
+    "tc_mode",
+    "allow_backward_jumps",
 ];
 const SCAN_KEYS: &[&str] = &[
-    "scan", "t_ms", "inputs", "expect", "status", "fatal", "last_err",
+    "scan", "t_ms", "inputs", "expect", "frame", "status", "fatal", "last_err",
 ];
 
 fn check_keys(t: &Table, allowed: &[&str], what: &str) -> Result<(), String> {
@@ -608,6 +617,19 @@ fn parse_case(text: &str) -> Result<Case, String> {
             .filter(|p| dialect.profiles().contains(p))
             .ok_or(format!("unknown cpu `{cpu}` for dialect `{dialect_name}`"))?,
     };
+    let mut options = stljit_front::Options::default();
+    if let Some(mode) = string(&t, "tc_mode")? {
+        options.omron.tc_mode = stljit_front::TcMode::from_name(mode)
+            .ok_or(format!("unknown tc_mode `{mode}` (bcd, binary)"))?;
+    }
+    match t.get("allow_backward_jumps") {
+        None => {}
+        Some(Value::Boolean(b)) => options.omron.allow_backward_jumps = *b,
+        Some(_) => return Err("`allow_backward_jumps` must be true or false".to_string()),
+    }
+    if options != stljit_front::Options::default() && dialect != Dialect::Omron {
+        return Err("`tc_mode` and `allow_backward_jumps` are options of the omron dialect".into());
+    }
     let scan_ms = uint(&t, "scan_ms", "case")?.unwrap_or(10);
     if scan_ms == 0 {
         return Err("`scan_ms` must be at least 1".to_string());
@@ -639,6 +661,7 @@ fn parse_case(text: &str) -> Result<Case, String> {
     Ok(Case {
         dialect,
         profile,
+        options,
         scan_ms,
         program: string(&t, "program")?.unwrap_or_default().to_string(),
         scans,
@@ -699,6 +722,7 @@ fn parse_scan(
         };
         expect.push((watch, want));
     }
+    let frames = super::frames::parse(&table("frame")?, resolve, &raw_value)?;
     let status = match string(row, "status")? {
         None | Some("ok") => ScanStatus::Ok,
         Some("stopped") => ScanStatus::Stopped,
@@ -728,6 +752,7 @@ fn parse_scan(
     Ok(ScanSpec {
         inputs,
         expect,
+        frames,
         status,
         fatal,
         last_err,

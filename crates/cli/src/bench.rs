@@ -39,6 +39,12 @@ pub(crate) struct Args {
     /// MicroWIN symbol table used by every program (name<TAB>address, or CSV).
     #[arg(long)]
     symbols: Option<std::path::PathBuf>,
+    /// Omron: bcd or binary timers and counters (see `stljit check --help`).
+    #[arg(long)]
+    tc_mode: Option<String>,
+    /// Omron: accept backward jumps (see `stljit check --help`).
+    #[arg(long)]
+    allow_backward_jumps: bool,
     /// Interleaved rounds the scans are split into (the fastest round per engine is reported).
     #[arg(long, default_value_t = 10)]
     rounds: u64,
@@ -142,6 +148,8 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
             dialect: args.dialect.clone(),
             cpu: args.cpu.clone(),
             symbols: args.symbols.clone(),
+            tc_mode: args.tc_mode.clone(),
+            allow_backward_jumps: args.allow_backward_jumps,
             chosen: Default::default(),
         };
         let c = input.compile()?;

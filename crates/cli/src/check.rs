@@ -10,7 +10,7 @@ use anyhow::Context as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use stljit_core::ProfileId;
-use stljit_front::{Compilation, Dialect, SourceFile, render_human, render_json};
+use stljit_front::{Compilation, Dialect, Options, SourceFile, TcMode, render_human, render_json};
 
 /// Output format of the diagnostics.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -39,6 +39,14 @@ pub(crate) struct Input {
     /// (name<TAB>type<TAB>address[<TAB>comment], or CSV).
     #[arg(long)]
     pub(crate) symbols: Option<PathBuf>,
+    /// Omron: how TIM, TIMH, TMHH, TTIM, CNT and CNTR read set values and keep PVs: bcd (the
+    /// default) or binary (CX-Programmer's binary mode: as TIMX, CNTX …).
+    #[arg(long)]
+    pub(crate) tc_mode: Option<String>,
+    /// Omron: accept a JME before its jump (a backward jump; each one taken counts against the
+    /// scan's loop budget).
+    #[arg(long)]
+    pub(crate) allow_backward_jumps: bool,
     /// The dialect once chosen (detection runs and reports once).
     #[arg(skip)]
     pub(crate) chosen: std::cell::OnceCell<Dialect>,
@@ -128,7 +136,36 @@ impl Input {
             .map(|p| read(p))
             .collect::<anyhow::Result<Vec<_>>>()?;
         let symbols = self.symbols.as_deref().map(read).transpose()?;
-        Ok(dialect.compile(&files, symbols.as_ref(), profile))
+        let options = self.options(dialect)?;
+        Ok(dialect.compile_with(&files, symbols.as_ref(), profile, options))
+    }
+
+    /// The front-end options of the command line; `Err` is a usage error: an unknown
+    /// `--tc-mode`, or an Omron option for another dialect.
+    fn options(&self, dialect: Dialect) -> anyhow::Result<Options> {
+        let omron_only = [
+            ("--tc-mode", self.tc_mode.is_some()),
+            ("--allow-backward-jumps", self.allow_backward_jumps),
+        ];
+        if let Some((flag, _)) = omron_only.iter().find(|(_, set)| *set)
+            && dialect != Dialect::Omron
+        {
+            anyhow::bail!(
+                "{flag} is an option of the omron dialect, not {}",
+                dialect.name()
+            );
+        }
+        let tc_mode = match &self.tc_mode {
+            None => TcMode::default(),
+            Some(name) => TcMode::from_name(name).with_context(|| {
+                let names: Vec<_> = TcMode::ALL.iter().map(|m| m.name()).collect();
+                format!("unknown --tc-mode `{name}` (known: {})", names.join(", "))
+            })?,
+        };
+        let mut options = Options::default();
+        options.omron.tc_mode = tc_mode;
+        options.omron.allow_backward_jumps = self.allow_backward_jumps;
+        Ok(options)
     }
 }
 

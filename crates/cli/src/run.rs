@@ -190,6 +190,10 @@ impl Observer for Fanout<'_> {
     fn observe(&mut self, event: &ScanEvent<'_>) -> std::io::Result<()> {
         self.0.iter_mut().try_for_each(|o| o.observe(event))
     }
+
+    fn needs_every_scan(&self) -> bool {
+        self.0.iter().any(|o| o.needs_every_scan())
+    }
 }
 
 impl Fanout<'_> {

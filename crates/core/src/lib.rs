@@ -10,6 +10,7 @@
 pub mod area;
 pub mod codes;
 pub mod index;
+pub mod instr_set;
 pub mod ir;
 pub mod layout;
 pub mod omron;
@@ -19,5 +20,6 @@ pub mod text;
 pub use area::{Area, Width};
 pub use codes::{ErrorCode, FatalCode, ScanStatus};
 pub use index::{CounterId, EdgeSlot, FileId, LabelId, OpIdx, PouId, TimerId};
+pub use instr_set::InstrSet;
 pub use layout::Layout;
 pub use profile::{CpuProfile, Family, GatePolicy, ProfileId};

@@ -11,6 +11,7 @@
 //! lower-numbered word holds the low 16 bits, spec §1.6); only Omron ops read them.
 
 use crate::area::Area;
+use crate::instr_set::InstrSet;
 use crate::ir::{BitLoc, Loc};
 use crate::profile::{CpuProfile, Family, OmronAreas, ProfileId, TimerRange};
 
@@ -343,6 +344,12 @@ const CP1H_DATA: CpuProfile = CpuProfile {
         dm: 32768,
         max_jump: 255,
         dm_bits: false,
+        // CP Programming Manual §2-1-3: up to 32 cyclic tasks, numbers 0–31.
+        cyclic_tasks: 32,
+        // "20K steps" [uncertain: K read as 1024].
+        program_steps: 20 * 1024,
+        // BPRG(096) N: N = 0–127 (CS/CJ instruction list) [uncertain].
+        block_programs: 128,
     },
     model: "CP1H",
     inputs: 4,
@@ -352,8 +359,9 @@ const CP1H_DATA: CpuProfile = CpuProfile {
     special_memory: 0,
     special_memory_read_only: 0,
     variable_memory: 0,
-    // Not an Omron area: the front end's private words (the FOR/NEXT loop counters), one frame
-    // per call level like S7's L memory; no Omron operand can name them.
+    // Not an Omron area: the front end's private words (the FOR/NEXT loop counters, then the
+    // saved gate of an interlock around a step area), one frame per call level like S7's L
+    // memory; no Omron operand can name them.
     local_frame: 32,
     analog_inputs: 0,
     analog_outputs: 0,
@@ -369,6 +377,7 @@ const CP1H_DATA: CpuProfile = CpuProfile {
     max_call_depth: 8,
     max_for_depth: 15,
     timer_table: OMRON_TIMERS,
+    lacks: InstrSet::ALL,
 };
 
 /// The CP1E (E type), with the smaller ranges of spec §1.1 (U9: the per-model table is
@@ -382,6 +391,10 @@ pub static CP1E: CpuProfile = CpuProfile {
         dm: 2048,
         // [uncertain] U9: the CP1E manuals allow `Dn.bb`.
         dm_bits: true,
+        // [uncertain]: one cyclic task.
+        cyclic_tasks: 1,
+        // The N type's 8K steps (the E type has 2K) [uncertain].
+        program_steps: 8 * 1024,
         ..CP1H_DATA.omron
     },
     model: "CP1E",

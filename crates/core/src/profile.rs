@@ -5,6 +5,7 @@
 //! the timer resolution that the front end stored in the IR.
 
 use crate::area::Area;
+use crate::instr_set::InstrSet;
 use crate::ir::TimerKind;
 use std::fmt;
 
@@ -15,6 +16,8 @@ pub enum ProfileId {
     A5,
     /// A classic Siemens S7-200 CPU 226.
     S7_200,
+    /// A Siemens S7-200 SMART (the largest standard CPU, ST60; s7-200-more.md §0.2).
+    Smart,
     /// An Omron CP1H (and CP1L-M): the reference model of the Omron dialect.
     Cp1h,
     /// An Omron CP1E (its smaller ranges, spec omron-cp.md §1.1 / U9).
@@ -23,18 +26,20 @@ pub enum ProfileId {
 
 impl ProfileId {
     /// Every profile, for `--cpu` help texts.
-    pub const ALL: [ProfileId; 4] = [
+    pub const ALL: [ProfileId; 5] = [
         ProfileId::A5,
         ProfileId::S7_200,
+        ProfileId::Smart,
         ProfileId::Cp1h,
         ProfileId::Cp1e,
     ];
 
-    /// The name used on the command line (`a5`, `s7-200`, `cp1h`, `cp1e`).
+    /// The name used on the command line (`a5`, `s7-200`, `smart`, `cp1h`, `cp1e`).
     pub fn name(self) -> &'static str {
         match self {
             ProfileId::A5 => "a5",
             ProfileId::S7_200 => "s7-200",
+            ProfileId::Smart => "smart",
             ProfileId::Cp1h => "cp1h",
             ProfileId::Cp1e => "cp1e",
         }
@@ -52,6 +57,7 @@ impl ProfileId {
         match self {
             ProfileId::A5 => &A5,
             ProfileId::S7_200 => &S7_200,
+            ProfileId::Smart => &SMART,
             ProfileId::Cp1h => &crate::omron::CP1H,
             ProfileId::Cp1e => &crate::omron::CP1E,
         }
@@ -181,6 +187,12 @@ pub struct OmronAreas {
     pub max_jump: u16,
     /// Whether DM words are bit-addressable (`D10.03`; omron-cp.md §1.1, U9).
     pub dm_bits: bool,
+    /// Cyclic tasks `0` … `cyclic_tasks - 1` (omron-cp.md §2.1).
+    pub cyclic_tasks: u8,
+    /// User-memory capacity in steps, all tasks together (seed §1-1-11, E035).
+    pub program_steps: u32,
+    /// Block programs `0` … `block_programs - 1` (`BPRG(096) N`).
+    pub block_programs: u16,
 }
 
 impl OmronAreas {
@@ -196,6 +208,9 @@ impl OmronAreas {
         dm: 0,
         max_jump: 0,
         dm_bits: false,
+        cyclic_tasks: 0,
+        program_steps: 0,
+        block_programs: 0,
     };
 }
 
@@ -250,6 +265,9 @@ pub struct CpuProfile {
     pub max_for_depth: u8,
     /// Timer number → resolution table, per timer kind.
     pub timer_table: &'static [TimerRange],
+    /// The optional instruction families the CPU does not have (s7-200-more Appendix A, its
+    /// "rejected" entries; every family on Omron profiles, whose front end has its own table).
+    pub lacks: &'static [InstrSet],
 }
 
 const ALL_TIMER_KINDS: &[TimerKind] = &[TimerKind::On, TimerKind::Retentive, TimerKind::Off];
@@ -301,7 +319,90 @@ pub static A5: CpuProfile = CpuProfile {
             resolution: Resolution::Ms100,
         },
     ],
+    // No A5 document describes pulse outputs; Ethernet (GET/PUT, GIP/SIP) is the SMART's.
+    lacks: &[
+        InstrSet::PulseOutputs,
+        InstrSet::GetPut,
+        InstrSet::IpAddress,
+    ],
 };
+
+/// The Siemens timer table (s7-200-more §3.5.3): the number fixes both the kind family and the
+/// resolution; shared by the classic S7-200 and the S7-200 SMART.
+const SIEMENS_TIMERS: &[TimerRange] = &[
+    TimerRange {
+        first: 0,
+        last: 0,
+        kinds: TONR,
+        resolution: Resolution::Ms1,
+    },
+    TimerRange {
+        first: 1,
+        last: 4,
+        kinds: TONR,
+        resolution: Resolution::Ms10,
+    },
+    TimerRange {
+        first: 5,
+        last: 31,
+        kinds: TONR,
+        resolution: Resolution::Ms100,
+    },
+    TimerRange {
+        first: 32,
+        last: 32,
+        kinds: TON_TOF,
+        resolution: Resolution::Ms1,
+    },
+    TimerRange {
+        first: 33,
+        last: 36,
+        kinds: TON_TOF,
+        resolution: Resolution::Ms10,
+    },
+    TimerRange {
+        first: 37,
+        last: 63,
+        kinds: TON_TOF,
+        resolution: Resolution::Ms100,
+    },
+    TimerRange {
+        first: 64,
+        last: 64,
+        kinds: TONR,
+        resolution: Resolution::Ms1,
+    },
+    TimerRange {
+        first: 65,
+        last: 68,
+        kinds: TONR,
+        resolution: Resolution::Ms10,
+    },
+    TimerRange {
+        first: 69,
+        last: 95,
+        kinds: TONR,
+        resolution: Resolution::Ms100,
+    },
+    TimerRange {
+        first: 96,
+        last: 96,
+        kinds: TON_TOF,
+        resolution: Resolution::Ms1,
+    },
+    TimerRange {
+        first: 97,
+        last: 100,
+        kinds: TON_TOF,
+        resolution: Resolution::Ms10,
+    },
+    TimerRange {
+        first: 101,
+        last: 255,
+        kinds: TON_TOF,
+        resolution: Resolution::Ms100,
+    },
+];
 
 /// A classic S7-200 CPU 226: the number fixes both the kind family and the resolution.
 pub static S7_200: CpuProfile = CpuProfile {
@@ -328,80 +429,41 @@ pub static S7_200: CpuProfile = CpuProfile {
     max_subroutine: 63,
     max_call_depth: 8,
     max_for_depth: 8,
-    timer_table: &[
-        TimerRange {
-            first: 0,
-            last: 0,
-            kinds: TONR,
-            resolution: Resolution::Ms1,
-        },
-        TimerRange {
-            first: 1,
-            last: 4,
-            kinds: TONR,
-            resolution: Resolution::Ms10,
-        },
-        TimerRange {
-            first: 5,
-            last: 31,
-            kinds: TONR,
-            resolution: Resolution::Ms100,
-        },
-        TimerRange {
-            first: 32,
-            last: 32,
-            kinds: TON_TOF,
-            resolution: Resolution::Ms1,
-        },
-        TimerRange {
-            first: 33,
-            last: 36,
-            kinds: TON_TOF,
-            resolution: Resolution::Ms10,
-        },
-        TimerRange {
-            first: 37,
-            last: 63,
-            kinds: TON_TOF,
-            resolution: Resolution::Ms100,
-        },
-        TimerRange {
-            first: 64,
-            last: 64,
-            kinds: TONR,
-            resolution: Resolution::Ms1,
-        },
-        TimerRange {
-            first: 65,
-            last: 68,
-            kinds: TONR,
-            resolution: Resolution::Ms10,
-        },
-        TimerRange {
-            first: 69,
-            last: 95,
-            kinds: TONR,
-            resolution: Resolution::Ms100,
-        },
-        TimerRange {
-            first: 96,
-            last: 96,
-            kinds: TON_TOF,
-            resolution: Resolution::Ms1,
-        },
-        TimerRange {
-            first: 97,
-            last: 100,
-            kinds: TON_TOF,
-            resolution: Resolution::Ms10,
-        },
-        TimerRange {
-            first: 101,
-            last: 255,
-            kinds: TON_TOF,
-            resolution: Resolution::Ms100,
-        },
-    ],
+    timer_table: SIEMENS_TIMERS,
+    lacks: &[InstrSet::GetPut, InstrSet::IpAddress],
+};
+
+/// A Siemens S7-200 SMART, sized as its largest standard CPU, the ST60 (s7-200-more §0.2; the
+/// sizes are the SMART manual's, recalled: I/Q 256 bits each, V 20 kB, SM to SMB1535, AIW0 to
+/// AIW110, HSC0–HSC5, SBR0–SBR127). A smaller CPU's program fits; the simulator does not check
+/// the model's I/O count.
+pub static SMART: CpuProfile = CpuProfile {
+    id: ProfileId::Smart,
+    family: Family::S7,
+    omron: OmronAreas::NONE,
+    model: "S7-200 SMART",
+    inputs: 32,
+    outputs: 32,
+    bit_memory: 32,
+    sequence_relays: 32,
+    special_memory: 1536,
+    special_memory_read_only: 30,
+    variable_memory: 20480,
+    local_frame: 64,
+    analog_inputs: 112,
+    analog_outputs: 112,
+    timers: 256,
+    counters: 256,
+    high_speed_counters: 6,
+    accumulators: 4,
+    max_edges: 1024,
+    max_label: 255,
+    max_subroutine: 127,
+    max_call_depth: 8,
+    max_for_depth: 8,
+    timer_table: SIEMENS_TIMERS,
+    // Micro/WIN SMART rejects NETR/NETW (the corpus's instruction probe confirms it).
+    lacks: &[InstrSet::NetReadWrite],
 };
 
 impl CpuProfile {
@@ -457,6 +519,11 @@ impl CpuProfile {
             .map(|r| r.resolution)
     }
 
+    /// Whether the CPU has the instruction family `set`.
+    pub fn has(&self, set: InstrSet) -> bool {
+        !self.lacks.contains(&set)
+    }
+
     /// Timer kinds allowed on number `n` (empty when the number does not exist).
     pub fn timer_kinds(&self, n: u16) -> &'static [TimerKind] {
         self.timer_table
@@ -505,6 +572,45 @@ mod tests {
         for n in 0..256 {
             assert!(!p.timer_kinds(n).is_empty(), "T{n} has no kind");
         }
+    }
+
+    #[test]
+    fn smart_shares_the_siemens_timer_table_and_is_larger() {
+        let (smart, s7) = (ProfileId::Smart.profile(), ProfileId::S7_200.profile());
+        for n in 0..256 {
+            assert_eq!(smart.timer_kinds(n), s7.timer_kinds(n), "T{n}");
+        }
+        assert_eq!(smart.area_size(Area::SM), 1536);
+        assert_eq!(smart.area_size(Area::I), 32);
+        assert!(smart.area_size(Area::V) > s7.area_size(Area::V));
+    }
+
+    /// Appendix A of s7-200-more.md: NETR/NETW only on the classic CPUs, GET/PUT only on the
+    /// SMART, pulse outputs not on the A5.
+    #[test]
+    fn instruction_availability_follows_appendix_a() {
+        use InstrSet::*;
+        let has = |p: ProfileId, s| p.profile().has(s);
+        assert!(has(ProfileId::A5, NetReadWrite) && has(ProfileId::S7_200, NetReadWrite));
+        assert!(!has(ProfileId::Smart, NetReadWrite));
+        assert!(has(ProfileId::Smart, GetPut));
+        assert!(!has(ProfileId::A5, GetPut) && !has(ProfileId::S7_200, GetPut));
+        assert!(!has(ProfileId::A5, PulseOutputs));
+        assert!(has(ProfileId::S7_200, PulseOutputs) && has(ProfileId::Smart, PulseOutputs));
+        for p in [ProfileId::A5, ProfileId::S7_200, ProfileId::Smart] {
+            for s in [
+                Interrupts,
+                Tables,
+                Ascii,
+                Strings,
+                Clock,
+                Pid,
+                HighSpeedCounters,
+            ] {
+                assert!(has(p, s), "{p} {s:?}");
+            }
+        }
+        assert!(!ProfileId::Cp1h.profile().has(Interrupts));
     }
 
     #[test]

@@ -175,6 +175,7 @@ pub fn mnemonic(op: &Op) -> &'static str {
         Op::Jump(_) => "JMP",
         Op::Label(_) => "LBL",
         Op::Call(_) => "CALL",
+        Op::CallArgs(_) => "CALL (parameters)",
         Op::Return { conditional } => {
             if *conditional {
                 "CRET"
@@ -201,6 +202,7 @@ pub fn mnemonic(op: &Op) -> &'static str {
         // The Omron ops by their Omron mnemonic families (their own coverage: issue 12).
         Op::Interlock => "IL",
         Op::InterlockEnd => "ILC",
+        Op::TaskStart => "$TASK",
         Op::OmronTimer { .. } => "TIM",
         Op::OmronCounter { .. } => "CNT",
         Op::Omron(_) => "MOV/CMP/+",

@@ -105,8 +105,9 @@ mod tests {
         }
 
         fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
+            let plan = scan::ScanPlan::every_timer(image.layout());
             let (b, l) = image.split_mut();
-            scan::run(b, l, t_ms, |b, l| {
+            scan::run(b, l, &plan, t_ms, |b, l| {
                 let i = mem::get_u8(b, l.base(Area::I));
                 mem::set_u8(b, l.base(Area::Q), i);
                 let v = mem::get_u8(b, l.base(Area::V));

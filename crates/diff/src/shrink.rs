@@ -174,16 +174,19 @@ pub fn remove_pou(p: &Program, id: PouId) -> Option<Program> {
             .ops
             .iter()
             .enumerate()
-            .filter(|(_, op)| matches!(op, Op::Call(c) if *c == id))
+            .filter(|(_, op)| op.callee() == Some(id))
             .map(|(i, _)| i)
             .collect();
         for &i in calls.iter().rev() {
             q = remove_ops(&q, pi, i, i + 1)?;
         }
         for op in &mut q.pous[pi].ops {
-            if let Op::Call(c) = op
-                && c.index() > id.index()
-            {
+            let c = match op {
+                Op::Call(c) => c,
+                Op::CallArgs(a) => &mut a.callee,
+                _ => continue,
+            };
+            if c.index() > id.index() {
                 *c = PouId::new(c.index() - 1);
             }
         }

@@ -27,6 +27,7 @@ pub fn parse_address(
         file: FileId(0),
         line: 1,
         mn: "an address".into(),
+        options: crate::Options::default(),
     };
     let tok = Tok {
         text: text.to_owned(),

@@ -3,6 +3,7 @@
 //! number-reuse check E021.
 
 use crate::circuit::Class;
+use crate::immediate::{Refresh, words_of};
 use crate::lexer::{Line, Tok};
 use crate::lower::{DataBox, Lowerer, Written};
 use crate::resolve::Reported;
@@ -76,6 +77,7 @@ impl Lowerer<'_> {
 
     /// The TIM family and TTIM: `OmronTimer{kind, timer, set_value}`.
     pub(crate) fn timer(&mut self, l: &Line, kind: OmronTimerKind) -> Result<(), Reported> {
+        let kind = self.cx.options.tc_mode.timer(kind);
         let ops = self.operands(l, 2)?;
         let n = self.object_number(&ops[0], Area::TimerBit);
         let sv = self.set_value(&ops[1], kind.bcd());
@@ -97,6 +99,7 @@ impl Lowerer<'_> {
 
     /// CNT (2 conditions) and CNTR (3): `OmronCounter{kind, counter, set_value}`.
     pub(crate) fn counter(&mut self, l: &Line, kind: OmronCounterKind) -> Result<(), Reported> {
+        let kind = self.cx.options.tc_mode.counter(kind);
         let ops = self.operands(l, 2)?;
         let n = self.object_number(&ops[0], Area::CounterBit);
         let sv = self.set_value(&ops[1], kind.bcd());
@@ -162,7 +165,19 @@ impl Lowerer<'_> {
         }
         self.flags_changed = true;
         self.class(l, Class::Output);
-        self.edged(l.options, |s| s.emit(Op::Omron(op)));
+        let immediate = l.options.immediate;
+        self.edged(l.options, |s| {
+            let o = op.operands();
+            if immediate {
+                let sources = o.sources.iter().flatten();
+                let words: Vec<_> = sources.flat_map(|s| words_of(s, o.src_words)).collect();
+                s.refresh_inputs(&words, Refresh::WhenExecuted);
+            }
+            s.emit(Op::Omron(op));
+            if let (true, Some(dst)) = (immediate, o.dst) {
+                s.refresh_outputs(&words_of(&dst, o.dst_words), Refresh::WhenExecuted);
+            }
+        });
         Ok(())
     }
 

@@ -1,12 +1,16 @@
-//! Program control and regions (omron-cp.md §2.7–§2.9, §3.4): IL/ILC, the jumps, END, the
-//! subroutine region (SBN…RET, SBS), and which lines run at all (W002 after END, W028 between
-//! the subroutine region and END). Checks E001, E022/W022, E023, E024, E029.
+//! Program control and regions of one program unit (omron-cp.md §2.7–§2.9, §3.4): IL/ILC, the
+//! jumps, END, the subroutine region (SBN…RET, SBS), FOR/NEXT/BREAK, and which lines run at all
+//! (W002 after END, W028 between the subroutine region and END). Checks E001, E022/W022, E023,
+//! E024, E026, E027, E029; a pair left open in its POU goes to `tasks` (E025 if its partner is
+//! in another unit). Step areas and block programs are in `regions`.
 
 use crate::circuit::Class;
 use crate::lexer::Line;
 use crate::lower::{Lowerer, PouBuild};
-use crate::mnemonics::Flow;
+use crate::mnemonics::{self, Flow};
+use crate::regions::{OpenBlock, StepArea};
 use crate::resolve::Reported;
+use crate::tasks::{Pair, UnitKind};
 use std::collections::HashMap;
 use stljit_core::ir::{Contact, Loc, Op, Operand, Pou, PouKind};
 use stljit_core::omron::SystemBit;
@@ -31,8 +35,22 @@ enum Region {
 #[derive(Clone, Debug)]
 struct PendingJump {
     number: u32,
+    /// The jump instruction as written (`CJP(510)`).
+    what: String,
     span: Span,
     interlock: Option<u32>,
+    /// The block program it is in (its JME must be in the same one).
+    block: Option<u32>,
+}
+
+/// Where a JME is: what a backward jump to it would have to stay inside.
+#[derive(Clone, Debug)]
+struct JmeSite {
+    span: Span,
+    interlock: Option<u32>,
+    block: Option<u32>,
+    /// The FOR loops around it (their `Op::For` indices).
+    loops: Vec<usize>,
 }
 
 /// Region, interlock and jump state.
@@ -47,17 +65,21 @@ pub(crate) struct Control {
     il_regions: u32,
     /// Labels of jump numbers of the current POU.
     labels: HashMap<u32, LabelId>,
-    /// JME numbers defined in the current POU, with their interlock region.
-    defined: HashMap<u32, Option<u32>>,
+    /// JME numbers defined in the current POU, with where they are.
+    defined: HashMap<u32, JmeSite>,
     jumps: Vec<PendingJump>,
     /// Open JMP0s: their labels, where they are and their interlock region.
     jmp0: Vec<(LabelId, Span, Option<u32>)>,
-    /// Subroutine numbers to their POUs.
-    subs: HashMap<u32, PouId>,
-    /// `SBS` calls to resolve at the end: POU index, op index, number, place.
-    calls: Vec<(usize, usize, u32, Span)>,
     /// The open FOR loops, innermost last.
     loops: Vec<OpenLoop>,
+    /// The open step area.
+    pub(crate) step: Option<StepArea>,
+    /// The open block program.
+    pub(crate) block: Option<OpenBlock>,
+    /// Block programs opened so far (ids).
+    pub(crate) blocks_opened: u32,
+    /// Block program numbers in use, with their BPRG line.
+    pub(crate) block_numbers: HashMap<u32, Span>,
 }
 
 /// A FOR(503) waiting for its NEXT(504).
@@ -94,7 +116,8 @@ impl Lowerer<'_> {
                     l,
                     Code::OmrAfterEnd,
                     format!(
-                        "unreachable — execution of task 0 stops at the first END(001) (line {end})"
+                        "unreachable — execution of {} stops at the first END(001) (line {end})",
+                        self.unit_name()
                     ),
                 );
                 false
@@ -113,45 +136,52 @@ impl Lowerer<'_> {
     }
 
     /// Closes the current POU's regions: open IL (E022), jumps without JME (E023), JMP0
-    /// without JME0 (E024).
+    /// without JME0 (E024), FOR without NEXT (E026) — each E025 instead if its partner is in
+    /// another unit (decided at the end, `tasks`).
     fn close_pou(&mut self) {
         if let Some((span, _)) = self.control.il.take() {
-            self.report_span(
-                Code::OmrInterlock,
+            let msg = format!(
+                "line {}: IL(002) is not closed by ILC(003) in {}",
+                span.line,
+                self.unit_name()
+            );
+            let what = "IL(002)".into();
+            self.dangle(
+                Pair::Interlock,
+                true,
                 span,
-                format!(
-                    "line {}: IL(002) is not closed by ILC(003) in task 0",
-                    span.line
-                ),
+                what,
+                Some((Code::OmrInterlock, msg)),
             );
         }
         for j in std::mem::take(&mut self.control.jumps) {
-            self.report_span(
-                Code::OmrJump,
-                j.span,
-                format!(
-                    "line {}: JME {} not found after this jump",
-                    j.span.line, j.number
-                ),
+            let msg = format!(
+                "line {}: JME {} not found after this jump",
+                j.span.line, j.number
             );
+            let (pair, what) = (Pair::Jump(j.number), format!("{} {}", j.what, j.number));
+            self.dangle(pair, true, j.span, what, Some((Code::OmrJump, msg)));
         }
         for (_, span, _) in std::mem::take(&mut self.control.jmp0) {
-            self.report_span(
-                Code::OmrJmp0,
-                span,
-                format!("line {}: JMP0(515) has no JME0(516)", span.line),
-            );
+            let msg = format!("line {}: JMP0(515) has no JME0(516)", span.line);
+            let what = "JMP0(515)".into();
+            self.dangle(Pair::Jmp0, true, span, what, Some((Code::OmrJmp0, msg)));
         }
         for lp in std::mem::take(&mut self.control.loops) {
-            self.report_span(
-                Code::OmrInRegion,
+            let msg = format!(
+                "line {}: FOR(503) is not closed by NEXT(504) in this program",
+                lp.span.line
+            );
+            let what = "FOR(503)".into();
+            self.dangle(
+                Pair::Loop,
+                true,
                 lp.span,
-                format!(
-                    "line {}: FOR(503) is not closed by NEXT(504) in this program",
-                    lp.span.line
-                ),
+                what,
+                Some((Code::OmrInRegion, msg)),
             );
         }
+        self.close_regions();
         self.control.labels.clear();
         self.control.defined.clear();
         self.circuit.reset();
@@ -169,6 +199,65 @@ impl Lowerer<'_> {
 
     fn interlock_id(&self) -> Option<u32> {
         self.control.il.map(|(_, id)| id)
+    }
+
+    /// Whether an IL(002) is open.
+    pub(crate) fn control_in_interlock(&self) -> bool {
+        self.control.il.is_some()
+    }
+
+    /// Whether the line is in a subroutine (SBN … RET).
+    pub(crate) fn in_subroutine(&self) -> bool {
+        self.control.region == Region::Subroutine
+    }
+
+    /// A jump to a JME already placed (`site`): only with `allow_backward_jumps` (E023), and
+    /// only within the JME's interlock region and block program (E023) and into no FOR loop
+    /// (E026; the jump would reach NEXT with no FOR active).
+    fn backward_jump(&mut self, l: &Line, n: u32, site: &JmeSite) -> Result<(), Reported> {
+        if !self.cx.options.allow_backward_jumps {
+            let msg = format!("JME {n} is before this jump; backward jumps are not allowed");
+            let help = "a backward jump can loop for ever; the front-end option allow_backward_jumps (--allow-backward-jumps) admits it";
+            return Err(self.cx.report_help(
+                Code::OmrJump,
+                &l.head,
+                format!("line {}: {msg}", l.line),
+                help,
+            ));
+        }
+        let open: Vec<usize> = self.control.loops.iter().map(|lp| lp.head).collect();
+        let (code, region) = if site.interlock != self.interlock_id() {
+            (Code::OmrJump, "an IL(002)–ILC(003) region")
+        } else if site.block != self.block_id() {
+            (Code::OmrJump, "a BPRG(096)–BEND(801) block program")
+        } else if !site.loops.iter().all(|h| open.contains(h)) {
+            (Code::OmrInRegion, "a FOR(503)–NEXT(504) loop")
+        } else {
+            return Ok(());
+        };
+        let msg = format!(
+            "jump {n} back to JME at line {} crosses the boundary of {region}",
+            site.span.line
+        );
+        Err(self.at_head(l, code, msg))
+    }
+
+    /// BEND of block `id`: its jumps still waiting for a JME never get one (E023).
+    pub(crate) fn leave_block(&mut self, id: u32) {
+        let (mine, rest): (Vec<_>, Vec<_>) = std::mem::take(&mut self.control.jumps)
+            .into_iter()
+            .partition(|j| j.block == Some(id));
+        self.control.jumps = rest;
+        for j in mine {
+            self.report_span(
+                Code::OmrJump,
+                j.span,
+                format!(
+                    "line {}: JME {} is not in this block program; a jump inside BPRG(096)–BEND(801) pairs with a JME of the same block",
+                    j.span.line, j.number
+                ),
+            );
+        }
     }
 
     /// Lowers a program-control instruction.
@@ -191,7 +280,10 @@ impl Lowerer<'_> {
                 self.operands(l, 0)?;
                 self.class(l, Class::Unconditional);
                 if self.control.il.take().is_none() {
-                    self.at_head(l, Code::OmrInterlock, "ILC(003) has no open IL(002)".into());
+                    let span = self.head_span(l);
+                    let msg = format!("line {}: ILC(003) has no open IL(002)", l.line);
+                    let plain = Some((Code::OmrInterlock, msg));
+                    self.dangle(Pair::Interlock, false, span, "ILC(003)".into(), plain);
                 } else {
                     self.emit(Op::InterlockEnd);
                 }
@@ -200,19 +292,23 @@ impl Lowerer<'_> {
                 let ops = self.operands(l, 1)?;
                 let n = self.cx.number(&ops[0], max_jump, "jump number")?;
                 self.class(l, Class::Output);
-                if self.control.defined.contains_key(&n) {
-                    let msg =
-                        format!("JME {n} is before this jump; backward jumps are not allowed");
-                    return Err(self.at_head(l, Code::OmrJump, msg));
+                if let Some(site) = self.control.defined.get(&n).cloned() {
+                    self.backward_jump(l, n, &site)?;
                 }
                 let label = self.jump_label(n);
                 let span = self.head_span(l);
                 let interlock = self.interlock_id();
-                self.control.jumps.push(PendingJump {
-                    number: n,
-                    span,
-                    interlock,
-                });
+                let what = mnemonics::with_code(&l.mnemonic);
+                let block = self.block_id();
+                if !self.control.defined.contains_key(&n) {
+                    self.control.jumps.push(PendingJump {
+                        number: n,
+                        what,
+                        span,
+                        interlock,
+                        block,
+                    });
+                }
                 // JMP and CJPN jump when the condition is OFF, CJP when it is ON.
                 if flow == Flow::Cjp {
                     self.emit(Op::Jump(label));
@@ -248,17 +344,33 @@ impl Lowerer<'_> {
                     ));
                 }
                 let here = self.interlock_id();
-                self.control.defined.insert(n, here);
+                let site = JmeSite {
+                    span: self.head_span(l),
+                    interlock: here,
+                    block: self.block_id(),
+                    loops: self.control.loops.iter().map(|lp| lp.head).collect(),
+                };
+                self.control.defined.insert(n, site);
+                let span = self.head_span(l);
+                self.dangle(Pair::Jump(n), false, span, format!("JME(005) {n}"), None);
                 let (mine, rest): (Vec<_>, Vec<_>) = std::mem::take(&mut self.control.jumps)
                     .into_iter()
                     .partition(|j| j.number == n);
                 self.control.jumps = rest;
-                for j in mine.iter().filter(|j| j.interlock != here) {
+                let block = self.block_id();
+                for j in &mine {
+                    let region = if j.interlock != here {
+                        "an IL(002)–ILC(003) region"
+                    } else if j.block != block {
+                        "a BPRG(096)–BEND(801) block program"
+                    } else {
+                        continue;
+                    };
                     self.report_span(
                         Code::OmrJump,
                         j.span,
                         format!(
-                            "line {}: jump {n} crosses the boundary of an IL(002)–ILC(003) region",
+                            "line {}: jump {n} crosses the boundary of {region}",
                             j.span.line
                         ),
                     );
@@ -280,6 +392,10 @@ impl Lowerer<'_> {
             Flow::Jme0 => {
                 self.operands(l, 0)?;
                 self.class(l, Class::Unconditional);
+                if self.control.jmp0.is_empty() {
+                    let span = self.head_span(l);
+                    self.dangle(Pair::Jmp0, false, span, "JME0(516)".into(), None);
+                }
                 if self.control.loops.iter().any(|lp| lp.outside_jmp0) {
                     self.at_head(
                         l,
@@ -314,7 +430,7 @@ impl Lowerer<'_> {
                     );
                 }
                 self.close_pou();
-                self.control.pou = 0;
+                self.control.pou = self.unit_body();
                 self.emit(Op::End { conditional: false });
                 self.control.region = Region::AfterEnd(l.line);
             }
@@ -337,15 +453,16 @@ impl Lowerer<'_> {
                     );
                 }
                 self.close_pou();
-                if self.control.subs.contains_key(&n) {
+                if self.project.subs.contains_key(&n) {
                     self.at_head(
                         l,
                         Code::OmrSubroutine,
                         format!("subroutine {n} is defined twice"),
                     );
                 }
-                let id = PouId::new(self.pous.len());
-                self.control.subs.entry(n).or_insert(id);
+                let id = self.pous.len();
+                let span = self.head_span(l);
+                self.project.subs.entry(n).or_insert((id, span));
                 self.pous.push(PouBuild {
                     pou: Pou {
                         name: format!("SBN{n}"),
@@ -354,6 +471,7 @@ impl Lowerer<'_> {
                         locs: Vec::new(),
                         labels: Vec::new(),
                     },
+                    unit: self.project.unit(),
                 });
                 self.control.pou = self.pous.len() - 1;
                 self.control.region = Region::Subroutine;
@@ -370,7 +488,7 @@ impl Lowerer<'_> {
                 }
                 self.emit(Op::Return { conditional: false });
                 self.close_pou();
-                self.control.pou = 0;
+                self.control.pou = self.unit_body();
                 self.control.region = Region::AfterSubroutines;
             }
             Flow::For => {
@@ -422,11 +540,11 @@ impl Lowerer<'_> {
                 self.operands(l, 0)?;
                 self.class(l, Class::Unconditional);
                 let Some(lp) = self.control.loops.pop() else {
-                    return Err(self.at_head(
-                        l,
-                        Code::OmrOutsideRegion,
-                        "NEXT(504) has no FOR(503)".into(),
-                    ));
+                    let span = self.head_span(l);
+                    let msg = format!("line {}: NEXT(504) has no FOR(503)", l.line);
+                    let plain = Some((Code::OmrOutsideRegion, msg));
+                    self.dangle(Pair::Loop, false, span, "NEXT(504)".into(), plain);
+                    return Err(Reported);
                 };
                 let pou = self.control.pou;
                 let at = self.pous[pou].pou.ops.len();
@@ -451,6 +569,10 @@ impl Lowerer<'_> {
                 // The rest of the pass is skipped and the loop ends: a jump past NEXT.
                 self.emit(Op::Jump(exit));
             }
+            Flow::Step => self.step(l)?,
+            Flow::Snxt => self.snxt(l)?,
+            Flow::Bprg => self.bprg(l)?,
+            Flow::Bend => self.bend(l)?,
             Flow::Sbs => {
                 let ops = self.operands(l, 1)?;
                 let n = self.cx.number(&ops[0], max_sub, "subroutine number")?;
@@ -460,7 +582,7 @@ impl Lowerer<'_> {
                 self.edged(options, |s| {
                     let pou = s.control.pou;
                     let at = s.pous[pou].pou.ops.len();
-                    s.control.calls.push((pou, at, n, span));
+                    s.project.calls.push((pou, at, n, span));
                     s.emit(Op::Call(PouId(0)));
                 });
             }
@@ -468,31 +590,26 @@ impl Lowerer<'_> {
         Ok(())
     }
 
-    /// End of the task: E001 without END, open regions, the calls resolved.
-    pub(crate) fn finish(&mut self, last: Span) {
-        if !matches!(self.control.region, Region::AfterEnd(_)) {
-            if self.control.region == Region::Subroutine {
-                self.report_span(
-                    Code::OmrSubroutine,
-                    last,
-                    format!("line {}: SBN(092) is not closed by RET(093)", last.line),
-                );
-            }
-            self.close_pou();
-            self.report_span(Code::OmrNoEnd, last, "task 0: program has no END(001) — the CPU would refuse to run it (\"no END\" program error)".into());
+    /// End of a unit (at `at`: the next directive, or the end of the project): E001 without
+    /// END (a function-block body needs none), an SBN left open.
+    pub(crate) fn finish_unit(&mut self, at: Span) {
+        if matches!(self.control.region, Region::AfterEnd(_)) {
+            return;
         }
-        for (pou, at, n, span) in std::mem::take(&mut self.control.calls) {
-            match self.control.subs.get(&n) {
-                Some(id) => self.pous[pou].pou.ops[at] = Op::Call(*id),
-                None => self.report_span(
-                    Code::OmrOperand,
-                    span,
-                    format!(
-                        "line {}: SBS {n} calls a subroutine that no SBN(092) defines",
-                        span.line
-                    ),
-                ),
-            }
+        if self.control.region == Region::Subroutine {
+            self.report_span(
+                Code::OmrSubroutine,
+                at,
+                format!("line {}: SBN(092) is not closed by RET(093)", at.line),
+            );
+        }
+        self.close_pou();
+        if !matches!(self.unit_kind(), UnitKind::FunctionBlock(_)) {
+            let msg = format!(
+                "{}: program has no END(001) — the CPU would refuse to run it (\"no END\" program error)",
+                self.unit_name()
+            );
+            self.report_span(Code::OmrNoEnd, at, msg);
         }
     }
 }

@@ -60,14 +60,19 @@ pub(crate) struct Line {
     pub(crate) dangling_cio: Option<Tok>,
 }
 
-/// The words that, after `LD`/`AND`/`OR`/`OUT`, form one two-word mnemonic.
-const SECOND_WORDS: [(&str, &str); 6] = [
+/// The words that, after `LD`/`AND`/`OR`/`OUT` (and the block-program `IF`/`WAIT`/`EXIT`/
+/// `LEND`), form one two-word mnemonic.
+const SECOND_WORDS: [(&str, &str); 10] = [
     ("AND", "LD"),
     ("OR", "LD"),
     ("AND", "NOT"),
     ("OR", "NOT"),
     ("LD", "NOT"),
     ("OUT", "NOT"),
+    ("IF", "NOT"),
+    ("WAIT", "NOT"),
+    ("EXIT", "NOT"),
+    ("LEND", "NOT"),
 ];
 
 fn is_blank(c: char) -> bool {

@@ -1,7 +1,9 @@
 //! The Omron CP-series mnemonic (instruction-list) front end of stljit (omron-cp.md).
 //!
-//! [`compile`] takes the files of one task program (UTF-8 or GBK), an optional CX-Programmer
-//! symbol table and an Omron profile (`cp1h`, `cp1e`), and returns the checked
+//! [`compile`] (or [`compile_with`] and the [`Options`] `tc_mode` and `allow_backward_jumps`)
+//! takes the files of one project (UTF-8 or GBK, concatenated; `$TASK` directives
+//! split it into task programs, docs/omron.md "Tasks"), an optional CX-Programmer symbol table
+//! and an Omron profile (`cp1h`, `cp1e`), and returns the checked
 //! [`stljit_core::ir::Program`] with every diagnostic (codes `OMR-E…`/`OMR-W…`, §5). It never
 //! panics and never stops at the first error. [`parse_address`]/[`print_address`] read and
 //! write single addresses in Omron spelling; [`looks_like_omron`]/[`looks_like_s7`] guess a
@@ -12,7 +14,7 @@
 //!
 //! Pipeline: `lexer` (one instruction per line) → `lower` (dispatch over `mnemonics::TABLE`,
 //! the circuit machine of `circuit`, operands through `operand`/`resolve`, timers and data in
-//! `boxes`, regions and jumps in `control`) → IR.
+//! `boxes`, regions and jumps in `control`, program units in `tasks`) → IR.
 //!
 //! # Lowering (the lead's decisions)
 //!
@@ -36,7 +38,8 @@
 //!   Pop`.
 //! * `IL(002)`/`ILC(003)`: `Interlock`/`InterlockEnd`. `JMP(004)`/`CJPN(511)`: `Not; Jump;
 //!   Not`; `CJP(510)`: `Jump`; `JME(005)`: `Label`; `JMP0(515)`: like JMP to a fresh label
-//!   placed at the next `JME0(516)`. Jumps go forward only, within one POU and one IL region.
+//!   placed at the next `JME0(516)`. Jumps go forward only (backward with
+//!   `allow_backward_jumps`), within one POU, one IL region and one block program.
 //! * `END(001)`: `End`; lines after it are W002 and not lowered. `SBN(092) n … RET(093)`: a
 //!   `PouKind::Subroutine(n)` ending in `Return`; `SBS(091) n`: `Call`. The main POU ends at
 //!   the first SBN or END (its `End` op is emitted at the END line).
@@ -51,7 +54,8 @@
 //!   (`core::omron::effective_address`; a bit's is `16 · word + bit`). Indirect operands
 //!   `@Dn`, `*Dn`, `c,IRn`, `DRm,IRn`, `,IRn+`, `,IRn++`, `,-IRn`, `,--IRn` are
 //!   `Operand::Omron` in MOV/CMP/arithmetic, resolved at run time (`DRn` is a word anywhere).
-//! * Timers: `OmronTimer`, counters: `OmronCounter`; numbers `0000`, `T0000` or `&0`, each
+//! * Timers: `OmronTimer`, counters: `OmronCounter` (with `tc_mode = binary` the plain BCD
+//!   kinds become their `X` kinds); numbers `0000`, `T0000` or `&0`, each
 //!   used once per area (E021); BCD set-value constants are checked (E015).
 //! * `MOV`/`MOVL`: `Omron(Move)`; `CMP`/`CMPL`/`CPS`/`CPSL`: `Omron(Compare)`; §3.6:
 //!   `Omron(Arith)`. Comparison contacts (`LD>=S D0 -5`): `Load(P_On); Omron(Compare); Pop;`
@@ -61,34 +65,57 @@
 //!   `P_…` flags are `SystemBit`s, `P_First_Cycle` is A200.11; constants are `Operand::Const`
 //!   in Omron value order (a double constant's low 16 bits are the low word).
 //!
+//! * Tasks: each `$TASK CYCLIC n` program is lowered like a program of its own; the main POU
+//!   is the started cyclic tasks in ascending number, every task's body with its op indices
+//!   and labels moved behind the previous one, `TaskStart` before every task but the first,
+//!   and only the last task's `End` kept (the others fall through into the next task). Only
+//!   the running tasks' subroutines are POUs. Standby tasks, `$TASK UNASSIGNED` programs and
+//!   `$FB` bodies are checked and dropped.
+//! * `STEP(008) B`: `InterlockEnd; Load(B); Interlock; Pop` (the gate is B: the step runs
+//!   while B is ON and is interlocked while it is OFF); inside IL–ILC the first STEP saves the
+//!   interlock's gate in a front-end bit (`Load(P_On); Assign(L bit); Pop`, the L byte after
+//!   the FOR counters) and every STEP ANDs it in. `STEP(008)`: `InterlockEnd`, and inside
+//!   IL–ILC `Load(L bit); Interlock; Pop`. `SNXT(009) B`: `SetRange(current step, 0);
+//!   SetRange(B, 1)`. `BPRG(096) N`: `Not; Jump; Not` to a label at `BEND(801)`.
 //! * `CCS(282)`/`CCL(283)`: `Omron(Flags{save})`; `IORF(097) St E`: its operands checked, no
 //!   op (the model has only the built-in I/O, on which IORF has no effect).
 //!
-//! **Not supported yet** (OMR-E011 "not supported yet"): STEP/SNXT, BPRG/BEND (the spec gives
-//! only their placement rules), indirect operands outside MOV/CMP/arithmetic (contacts, coils, timer set values),
-//! TK operands, strings.
+//! **Not supported yet** (OMR-E011 "not supported yet"): the block-program-only instructions
+//! (IF/ELSE/IEND, WAIT, TIMW, CNTW, BPPS/BPRS …), interrupt tasks, indirect operands outside
+//! MOV/CMP/arithmetic (contacts, coils, timer set values), TK operands, strings.
 //!
-//! **Known deviation:** `!` refreshes one bit, not the whole 16-bit word (§2.5): on a contact
-//! whose bit is in an input word it reads the physical input bit (`Contact::ImmediateInput`),
-//! on OUT/SET/RSET/KEEP to an output word bit it writes the physical output bit too; on other
-//! operands and on data instructions it is accepted and has no effect.
+//! * `!` (immediate refresh of the whole 16-bit word, §2.5/§4): a source operand in a built-in
+//!   input word first has the whole word copied from the physical inputs (two
+//!   `Box(ImmediateRead)`, one per byte), a destination in a built-in output word afterwards
+//!   has the whole image word copied to the physical outputs (two `Box(ImmediateWrite)`).
+//!   Contacts, OUT, OUT NOT and KEEP refresh in every cycle (the boxes on a pushed `P_On`),
+//!   SET, RSET and the data instructions when they execute (on their power flow, inside the
+//!   `@`/`%` pattern). Other operands are not refreshed (no effect, as on expansion I/O).
 
 mod address;
 mod boxes;
+mod capacity;
 mod circuit;
+mod contacts;
 mod control;
 mod detect;
+mod discipline;
 pub mod forms;
+mod immediate;
 mod lexer;
 mod lower;
 pub mod mnemonics;
 mod operand;
+mod options;
 mod print;
+mod regions;
 mod resolve;
 mod symbols;
+mod tasks;
 
 pub use address::{AddressError, parse_address, print_address};
 pub use detect::{looks_like_omron, looks_like_s7};
+pub use options::{Options, TcMode};
 pub use print::{PrintError, print_program};
 pub use stljit_source::{
     Code, Diagnostic, Encoding, Severity, SourceFile, SourceText, Sources, render_human,
@@ -106,12 +133,23 @@ pub type Compilation = stljit_source::Compilation<SymbolTable>;
 /// Depth of the IR logic stack of an Omron program (see the crate doc).
 pub const LOGIC_STACK_DEPTH: u8 = 16;
 
-/// Compiles a task program: every file in `files` (in order, together one task), the optional
-/// symbol table, against the Omron `profile`. All diagnostics of all files are reported.
+/// Compiles a project: every file in `files` (in order, concatenated; its `$TASK` directives
+/// split it into tasks), the optional symbol table, against the Omron `profile`, with the
+/// default [`Options`]. All diagnostics of all files are reported.
 pub fn compile(
     files: &[SourceFile],
     symbols: Option<&SourceFile>,
     profile: ProfileId,
+) -> Compilation {
+    compile_with(files, symbols, profile, Options::default())
+}
+
+/// [`compile`] with the front end's `options`.
+pub fn compile_with(
+    files: &[SourceFile],
+    symbols: Option<&SourceFile>,
+    profile: ProfileId,
+    options: Options,
 ) -> Compilation {
     let (sources, table, diags) = decode_project(files, symbols, SymbolTable::parse);
     let cx = resolve::Cx {
@@ -121,8 +159,10 @@ pub fn compile(
         file: FileId(0),
         line: 0,
         mn: String::new(),
+        options,
     };
-    let mut lw = lower::Lowerer::new(cx);
+    let names = files.iter().map(|f| f.name.clone()).collect();
+    let mut lw = lower::Lowerer::new(cx, names);
     let mut last = Span {
         file: FileId(0),
         line: 1,
@@ -155,12 +195,13 @@ pub fn compile(
     let mut diags = std::mem::take(&mut lw.cx.diags);
     diags.sort_by_key(|d| (d.file, d.line, d.col));
     let ok = diags.iter().all(|d| d.severity != Severity::Error);
+    let edges = std::mem::take(&mut lw.edges);
     let program = ok.then(|| Program {
         profile,
-        pous: lw.pous.into_iter().map(|p| p.pou).collect(),
+        pous: lw.assemble(),
         timers: Vec::new(),
         counters: Vec::new(),
-        edges: lw.edges,
+        edges,
         logic_stack_depth: LOGIC_STACK_DEPTH,
         files: files.iter().map(|f| f.name.clone()).collect(),
     });

@@ -4,47 +4,61 @@
 //! boxes are in `boxes`, program control and regions in `control`. The patterns are the ones
 //! the crate doc lists.
 
+use crate::capacity::Capacity;
 use crate::circuit::{Circuit, Class};
 use crate::control::Control;
+use crate::discipline::FlagBranches;
+use crate::immediate::{Refresh, word_of_bit};
 use crate::lexer::{Line, Options, Tok};
 use crate::mnemonics::{self, Group, Join, Mnemonic};
 use crate::operand::Syn;
 use crate::resolve::{Cx, Reported};
-use stljit_core::ir::{Contact, EdgeDecl, OmronBox, Op, Operand, Pou, PouKind, SrcLoc};
-use stljit_core::omron::{SystemBit, tr_bit};
+use crate::tasks::{Project, UnitKind};
+use stljit_core::ir::{EdgeDecl, OmronBox, Op, Operand, Pou, SrcLoc};
+use stljit_core::omron::tr_bit;
 use stljit_core::{Area, EdgeSlot, LabelId, OpIdx};
+use stljit_runtime::omron_written::flags_changed_by;
 use stljit_source::{Code, clip};
 
 /// A POU being built.
 pub(crate) struct PouBuild {
     /// The finished part.
     pub(crate) pou: Pou,
+    /// The program unit it belongs to (an index into `Project::units`).
+    pub(crate) unit: usize,
 }
 
-/// The lowering state of a whole task.
+/// The lowering state of a whole project.
 pub(crate) struct Lowerer<'a> {
     /// Profile, symbols, diagnostics and the current line.
     pub(crate) cx: Cx<'a>,
-    /// The POUs: main first, then the subroutines in source order.
+    /// The POUs in source order: each unit's main body, and the subroutines.
     pub(crate) pous: Vec<PouBuild>,
+    /// The units, subroutines, calls and the pairs left open.
+    pub(crate) project: Project,
     /// Every edge slot.
     pub(crate) edges: Vec<EdgeDecl>,
     /// The circuit machine of the current POU.
     pub(crate) circuit: Circuit,
-    /// Regions, jumps, interlocks and calls.
+    /// Regions, jumps and interlocks of the current unit.
     pub(crate) control: Control,
     /// Timer and counter numbers in use, with the line of their first use (E021).
     pub(crate) objects: std::collections::HashMap<(Area, u16), u32>,
     /// Source location of the current line.
     pub(crate) loc: SrcLoc,
     /// Bits driven by OUT/OUT NOT/KEEP/DIFU/DIFD and direct words written by data
-    /// instructions, with the line of their first write (W020).
+    /// instructions in the current unit, with the line of their first write (W020).
     pub(crate) written: std::collections::HashMap<Written, u32>,
-    /// Whether an instruction that changes condition flags has been lowered yet (W034).
+    /// Whether an instruction of the current unit that changes condition flags has been
+    /// lowered yet (W034).
     pub(crate) flags_changed: bool,
     /// The execution condition when it is exactly `P_On`/`P_First_Cycle` (true: ON in every
     /// cycle but perhaps the first) or `P_Off` (false), for W031.
     pub(crate) constant_ec: Option<bool>,
+    /// The flag-changing instructions and branch points of the current circuit (W033).
+    pub(crate) flag_branches: FlagBranches,
+    /// The project's user-memory steps so far (E035).
+    pub(crate) capacity: Capacity,
 }
 
 /// A bit or a word one instruction writes (the key of W020's check).
@@ -57,19 +71,13 @@ pub(crate) enum Written {
 }
 
 impl<'a> Lowerer<'a> {
-    /// A lowerer with an empty main POU.
-    pub(crate) fn new(cx: Cx<'a>) -> Self {
+    /// A lowerer for a project whose files are named `files`; the first unit starts at the first
+    /// directive or instruction.
+    pub(crate) fn new(cx: Cx<'a>, files: Vec<String>) -> Self {
         Lowerer {
             cx,
-            pous: vec![PouBuild {
-                pou: Pou {
-                    name: "MAIN".into(),
-                    kind: PouKind::Main,
-                    ops: Vec::new(),
-                    locs: Vec::new(),
-                    labels: Vec::new(),
-                },
-            }],
+            pous: Vec::new(),
+            project: Project::new(files),
             edges: Vec::new(),
             circuit: Circuit::default(),
             control: Control::default(),
@@ -78,7 +86,19 @@ impl<'a> Lowerer<'a> {
             written: Default::default(),
             flags_changed: false,
             constant_ec: None,
+            flag_branches: FlagBranches::default(),
+            capacity: Capacity::default(),
         }
+    }
+
+    /// Forgets the state of the previous unit (a new unit is lowered like a program of its own).
+    pub(crate) fn reset_unit_state(&mut self) {
+        self.circuit.reset();
+        self.control = Control::default();
+        self.written.clear();
+        self.flags_changed = false;
+        self.constant_ec = None;
+        self.flag_branches.new_circuit();
     }
 
     /// Appends `op` to the current POU with the current line's location.
@@ -156,6 +176,9 @@ impl<'a> Lowerer<'a> {
         for (code, message) in findings {
             self.at_head(l, code, message);
         }
+        if new_circuit || class == Class::Unconditional {
+            self.flag_branches.new_circuit();
+        }
         new_circuit
     }
 
@@ -188,7 +211,13 @@ impl<'a> Lowerer<'a> {
     /// Lowers one lexed line.
     pub(crate) fn line(&mut self, l: &Line) {
         self.cx.mn = format!("{}{}", l.options.text(), l.mnemonic);
-        if !self.admit(l) {
+        if l.mnemonic.starts_with('$') {
+            self.directive(l);
+            return;
+        }
+        self.ensure_unit(self.cx.span(&l.head));
+        self.count_steps(l);
+        if !self.admit(l) || !self.allowed_in_unit(l) || !self.allowed_in_region(l) {
             return;
         }
         let Some(m) = self.instruction(l) else {
@@ -211,11 +240,52 @@ impl<'a> Lowerer<'a> {
         if let (Some(falling), Some(on)) = (edge_of_ec, prev) {
             self.never_fires(l, falling, on);
         }
+        let (pou, start) = (self.control.pou, self.pous[self.control.pou].pou.ops.len());
         if !self.options_allowed(l, &m) || self.dispatch(l, &m).is_err() {
             // The error is reported; advance the circuit as the instruction would have, so
             // the lines after it are not blamed for it.
             let _ = self.circuit.step(class_of(m.group), "");
+            return;
         }
+        let what = format!("{}{}", l.options.text(), mnemonics::with_code(&l.mnemonic));
+        if edge_of_ec.is_some() {
+            let found = self.flag_branches.differentiated(&what, l.line);
+            self.cx.diags.extend(found);
+        }
+        if self.control.pou == pou {
+            let ops = std::mem::take(&mut self.pous[pou].pou.ops);
+            self.count_constant_steps(&ops[start..], l);
+            let mask = ops[start..]
+                .iter()
+                .fold(0, |m, op| m | flags_changed_by(op));
+            self.pous[pou].pou.ops = ops;
+            let differentiated = l.options.edge.is_some();
+            self.flag_branches.wrote(what, l.line, mask, differentiated);
+        }
+    }
+
+    /// E039 for an instruction a function-block body may not use (the line is then skipped).
+    fn allowed_in_unit(&mut self, l: &Line) -> bool {
+        if !matches!(self.unit_kind(), UnitKind::FunctionBlock(_)) {
+            return true;
+        }
+        let listed = mnemonics::NOT_IN_FUNCTION_BLOCKS.contains(&l.mnemonic.as_str());
+        if !listed && !l.options.immediate {
+            return true;
+        }
+        let what = format!("{}{}", l.options.text(), mnemonics::with_code(&l.mnemonic));
+        let why = if listed {
+            ""
+        } else {
+            " (no `!` instruction is)"
+        };
+        self.at_head(
+            l,
+            Code::OmrFunctionBlock,
+            format!("{what} cannot be used inside a function block{why}"),
+        );
+        self.circuit.recover();
+        false
     }
 
     /// The supported instruction of the line, with its function code checked (E011).
@@ -227,14 +297,12 @@ impl<'a> Lowerer<'a> {
                 code: Some(c.code),
                 group: Group::Contact(c.join, false),
                 allowed: mnemonics::COMPARE_OPTIONS,
+                steps: mnemonics::COMPARE_STEPS,
             })
         });
         let model = self.cx.profile.model;
         let Some(m) = found else {
-            let msg = match mnemonics::NOT_YET.iter().find(|(n, _)| *n == name) {
-                Some((n, code)) => format!("{n}({code:03}) is not supported yet"),
-                None => format!("{} is not an instruction of {model}", clip(name)),
-            };
+            let msg = format!("{} is not an instruction of {model}", clip(name));
             self.at_head(l, Code::OmrInstruction, msg);
             return None;
         };
@@ -343,161 +411,6 @@ impl<'a> Lowerer<'a> {
         }
     }
 
-    /// `LD`/`AND`/`OR` (and `NOT` forms, `@`/`%`/`!` options), `LD TRn`.
-    fn contact(&mut self, l: &Line, join: Join, negated: bool) -> Result<(), Reported> {
-        let ops = self.operands(l, 1)?;
-        let tok = &ops[0];
-        let syn = self.cx.syn(tok)?;
-        if let Syn::Tr(n) = syn {
-            let n = self.tr_number(tok, n)?;
-            if join != Join::Load || negated || l.options != Options::default() {
-                let (line, mn) = (l.line, self.cx.mn.clone());
-                return Err(self.cx.report(
-                    Code::OmrTr,
-                    tok,
-                    format!("line {line}: TR{n} may only be used with OUT and LD, not {mn}"),
-                ));
-            }
-            self.class(l, Class::LoadTr);
-            if !self.circuit.tr_set(n) {
-                let line = l.line;
-                self.cx.report(
-                    Code::OmrTr,
-                    tok,
-                    format!("line {line}: TR{n} is not set in this circuit"),
-                );
-            }
-            self.emit(Op::Load(Contact::Bit {
-                bit: tr_bit(n),
-                negated: false,
-            }));
-            return Ok(());
-        }
-        let bit = self.cx.bit(tok, false)?;
-        let constant = match syn {
-            Syn::Flag(SystemBit::On) | Syn::FirstCycle => Some(true),
-            Syn::Flag(SystemBit::Off) => Some(false),
-            _ => None,
-        };
-        if let (Some(falling), Some(on)) = (l.options.edge, constant) {
-            self.never_fires(l, falling, on);
-        }
-        if join == Join::Load && !negated && l.options.edge.is_none() {
-            self.constant_ec = constant;
-        }
-        let class = if join == Join::Load {
-            Class::Start
-        } else {
-            Class::Combine
-        };
-        let new_circuit = self.class(l, class);
-        if let Syn::Flag(f) = syn
-            && f.index() < SystemBit::CONDITION_FLAGS.count_ones()
-            && !self.flags_changed
-        {
-            let line = l.line;
-            self.cx.report(
-                Code::OmrFlagNeverSet,
-                tok,
-                format!(
-                    "line {line}: condition flags are cleared at task start; {} is always OFF here",
-                    clip(&tok.text)
-                ),
-            );
-        }
-        if let (true, Syn::Flag(f)) = (new_circuit, syn)
-            && f.index() < SystemBit::CONDITION_FLAGS.count_ones()
-        {
-            let line = l.line;
-            self.cx.report(
-                    Code::OmrFlagAtStart,
-                    tok,
-                    format!("line {line}: {} at circuit start reflects whichever instruction ran last; branch from the instruction's own condition instead", clip(&tok.text)),
-                );
-        }
-        let contact = if l.options.immediate && bit.area == Area::I {
-            Contact::ImmediateInput { bit, negated }
-        } else {
-            Contact::Bit { bit, negated }
-        };
-        match (l.options.edge, join) {
-            (None, Join::Load) => self.emit(Op::Load(contact)),
-            (None, Join::And) => self.emit(Op::And(contact)),
-            (None, Join::Or) => self.emit(Op::Or(contact)),
-            (Some(falling), _) => {
-                self.emit(Op::Load(contact));
-                let e = self.edge(falling);
-                self.emit(e);
-                match join {
-                    Join::Load => {}
-                    Join::And => self.emit(Op::AndBlock),
-                    Join::Or => self.emit(Op::OrBlock),
-                }
-            }
-        }
-        Ok(())
-    }
-
-    /// A comparison contact: the flags from an `Omron(Compare)` run on a pushed `P_On`, then
-    /// the flag of the relation as the contact (U2's default).
-    fn compare_contact(&mut self, l: &Line, c: mnemonics::CompareContact) -> Result<(), Reported> {
-        let ops = self.operands(l, 2)?;
-        let words = if c.double { 2 } else { 1 };
-        let lhs = self.cx.word(&ops[0], words, false);
-        let rhs = self.cx.word(&ops[1], words, false);
-        let (lhs, rhs) = (lhs?, rhs?);
-        self.class(
-            l,
-            if c.join == Join::Load {
-                Class::Start
-            } else {
-                Class::Combine
-            },
-        );
-        let flag = mnemonics::relation_flag(c.op);
-        let on = Contact::Bit {
-            bit: SystemBit::On.bit_loc(),
-            negated: false,
-        };
-        self.emit(Op::Load(on));
-        self.flags_changed = true;
-        self.emit(Op::Omron(OmronBox::Compare {
-            double: c.double,
-            signed: c.signed,
-            lhs,
-            rhs,
-        }));
-        self.emit(Op::Pop);
-        let contact = Contact::Bit {
-            bit: flag.bit_loc(),
-            negated: false,
-        };
-        self.emit(match c.join {
-            Join::Load => Op::Load(contact),
-            Join::And => Op::And(contact),
-            Join::Or => Op::Or(contact),
-        });
-        Ok(())
-    }
-
-    /// A TR number, 0..=15 (E014).
-    fn tr_number(&mut self, tok: &Tok, n: u32) -> Result<u8, Reported> {
-        match u8::try_from(n) {
-            Ok(v) if v < 16 => Ok(v),
-            _ => {
-                let (line, model) = (self.cx.line, self.cx.profile.model);
-                Err(self.cx.report(
-                    Code::OmrRange,
-                    tok,
-                    format!(
-                        "line {line}: {} is outside TR (0–15) on {model}",
-                        clip(&tok.text)
-                    ),
-                ))
-            }
-        }
-    }
-
     /// W020: `what` (written as `tok`) is also written by an earlier output instruction.
     pub(crate) fn note_write(&mut self, tok: &Tok, what: Written) {
         let line = self.cx.line;
@@ -533,6 +446,7 @@ impl<'a> Lowerer<'a> {
                 ));
             }
             self.class(l, Class::Output);
+            self.flag_branches.store_tr(n);
             if !self.circuit.store_tr(n) {
                 let line = l.line;
                 self.cx.report(
@@ -552,7 +466,7 @@ impl<'a> Lowerer<'a> {
         self.class(l, Class::Output);
         let assign = Op::Assign {
             bit,
-            immediate: l.options.immediate && bit.area == Area::Q,
+            immediate: false,
         };
         if negated {
             self.emit(Op::Not);
@@ -561,15 +475,18 @@ impl<'a> Lowerer<'a> {
         } else {
             self.emit(assign);
         }
+        if l.options.immediate {
+            self.refresh_outputs(&[word_of_bit(bit)], Refresh::Always);
+        }
         Ok(())
     }
 
-    fn set_range(&self, start: stljit_core::ir::BitLoc, value: bool, immediate: bool) -> Op {
+    fn set_range(&self, start: stljit_core::ir::BitLoc, value: bool) -> Op {
         Op::SetRange {
             start,
             count: Operand::Const(1),
             value,
-            immediate: immediate && start.area == Area::Q,
+            immediate: false,
         }
     }
 
@@ -578,8 +495,14 @@ impl<'a> Lowerer<'a> {
         let ops = self.operands(l, 1)?;
         let bit = self.cx.bit(&ops[0], true)?;
         self.class(l, Class::Output);
-        let op = self.set_range(bit, value, l.options.immediate);
-        self.edged(l.options, |s| s.emit(op));
+        let op = self.set_range(bit, value);
+        let immediate = l.options.immediate;
+        self.edged(l.options, |s| {
+            s.emit(op);
+            if immediate {
+                s.refresh_outputs(&[word_of_bit(bit)], Refresh::WhenExecuted);
+            }
+        });
         Ok(())
     }
 
@@ -589,11 +512,13 @@ impl<'a> Lowerer<'a> {
         let bit = self.cx.bit(&ops[0], true)?;
         self.note_write(&ops[0], Written::Bit(bit));
         self.class(l, Class::Multi(2));
-        let imm = l.options.immediate;
-        self.emit(self.set_range(bit, false, imm));
+        self.emit(self.set_range(bit, false));
         self.emit(Op::Not);
         self.emit(Op::AndBlock);
-        self.emit(self.set_range(bit, true, imm));
+        self.emit(self.set_range(bit, true));
+        if l.options.immediate {
+            self.refresh_outputs(&[word_of_bit(bit)], Refresh::Always);
+        }
         Ok(())
     }
 
@@ -606,9 +531,9 @@ impl<'a> Lowerer<'a> {
         self.emit(Op::Dup);
         let e = self.edge(falling);
         self.emit(e);
-        self.emit(self.set_range(bit, true, false));
+        self.emit(self.set_range(bit, true));
         self.emit(Op::Not);
-        self.emit(self.set_range(bit, false, false));
+        self.emit(self.set_range(bit, false));
         self.emit(Op::Pop);
         Ok(())
     }
@@ -637,7 +562,15 @@ pub(crate) fn class_of(group: Group) -> Class {
         Group::Timer(k) if k.conditions() > 1 => Class::Multi(u32::from(k.conditions())),
         Group::Counter(k) => Class::Multi(u32::from(k.conditions())),
         Group::Control(
-            Flow::Il | Flow::Jmp | Flow::Cjp | Flow::Cjpn | Flow::Jmp0 | Flow::Sbs | Flow::Break,
+            Flow::Il
+            | Flow::Jmp
+            | Flow::Cjp
+            | Flow::Cjpn
+            | Flow::Jmp0
+            | Flow::Sbs
+            | Flow::Break
+            | Flow::Snxt
+            | Flow::Bprg,
         ) => Class::Output,
         Group::Control(_) => Class::Unconditional,
         _ => Class::Output,

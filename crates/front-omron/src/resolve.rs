@@ -31,6 +31,8 @@ pub(crate) struct Cx<'a> {
     pub(crate) line: u32,
     /// The current mnemonic, as written, for messages.
     pub(crate) mn: String,
+    /// The compilation's options.
+    pub(crate) options: crate::Options,
 }
 
 impl Cx<'_> {

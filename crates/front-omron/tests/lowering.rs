@@ -3,8 +3,8 @@
 //! `2w + 1`; CIO 0–1 are area I, CIO 100–101 area Q).
 
 use stljit_core::ir::{
-    BitLoc, Contact, EdgeDecl, Loc, OmronArith, OmronBox, OmronCounterKind, OmronTimerKind, Op,
-    Operand, PouKind, Program, verify,
+    BitLoc, BoxOp, Contact, EdgeDecl, Loc, OmronArith, OmronBox, OmronCounterKind, OmronTimerKind,
+    Op, Operand, PouKind, Program, verify,
 };
 use stljit_core::omron::{SystemBit, tr_bit};
 use stljit_core::{Area, CounterId, EdgeSlot, LabelId, OpIdx, PouId, ProfileId, TimerId};
@@ -69,6 +69,16 @@ fn assign(b: BitLoc) -> Op {
         immediate: false,
     }
 }
+/// `ImmediateWrite` of Q byte `b` (the image byte to the physical output).
+fn write(b: u32) -> Op {
+    Op::Box(BoxOp::ImmediateWrite {
+        src: Operand::Mem(Loc {
+            area: Area::Q,
+            offset: b,
+        }),
+        output: b,
+    })
+}
 fn dm(w: u32) -> Operand {
     Operand::Mem(Loc {
         area: Area::Dm,
@@ -116,14 +126,27 @@ fn contacts_blocks_and_their_options() {
             EdgeDecl { init: true }
         ]
     );
-    // `!` on an input-word bit reads the physical input; on a W bit it is a plain contact.
-    assert_eq!(
-        main_ops("!LD 0.15\n!AND W3.08\nOUT 100.00")[..2],
-        [
-            Op::Load(Contact::ImmediateInput {
-                bit: i0(15),
-                negated: false
+    // `!` on an input-word bit first copies the whole physical input word into the image
+    // (whatever the condition: on a pushed P_On), then reads the bit; on a W bit it is a plain
+    // contact.
+    let on = c(SystemBit::On.bit_loc());
+    let read = |b: u32| {
+        Op::Box(BoxOp::ImmediateRead {
+            input: b,
+            dst: Operand::Mem(Loc {
+                area: Area::I,
+                offset: b,
             }),
+        })
+    };
+    assert_eq!(
+        main_ops("!LD 1.15\n!AND W3.08\nOUT 100.00")[..6],
+        [
+            Op::Load(on),
+            read(2),
+            read(3),
+            Op::Pop,
+            Op::Load(c(bit(Area::I, 2, 7))),
             Op::And(c(bit(Area::Work, 6, 0))),
         ]
     );
@@ -142,10 +165,50 @@ fn intermediate_and_outputs() {
             Op::Not,
             assign(q0(1)),
             Op::Not,
-            Op::Assign {
-                bit: q0(2),
-                immediate: true
-            },
+            // `!OUT`: the bit, then the whole image word 100 to the physical outputs.
+            assign(q0(2)),
+            Op::Load(c(SystemBit::On.bit_loc())),
+            write(0),
+            write(1),
+            Op::Pop,
+        ]
+    );
+    // `!SET` refreshes when it executes: on its own power flow.
+    assert_eq!(
+        main_ops("LD 0.00\n!SET 101.03")[1..],
+        [set(bit(Area::Q, 3, 3), true), write(2), write(3)]
+    );
+    // `!MOV` from an input word to an output word: the input word before, the output after.
+    assert_eq!(
+        main_ops("LD 0.00\n!MOV(021) 1 100")[1..],
+        [
+            Op::Box(BoxOp::ImmediateRead {
+                input: 2,
+                dst: Operand::Mem(Loc {
+                    area: Area::I,
+                    offset: 2
+                })
+            }),
+            Op::Box(BoxOp::ImmediateRead {
+                input: 3,
+                dst: Operand::Mem(Loc {
+                    area: Area::I,
+                    offset: 3
+                })
+            }),
+            Op::Omron(OmronBox::Move {
+                double: false,
+                src: Operand::Mem(Loc {
+                    area: Area::I,
+                    offset: 2
+                }),
+                dst: Operand::Mem(Loc {
+                    area: Area::Q,
+                    offset: 0
+                })
+            }),
+            write(0),
+            write(1),
         ]
     );
     // SET/RSET: SetRange count 1; @SET: Dup; Edge; SetRange; Pop; %RSET the falling edge.
@@ -406,4 +469,101 @@ fn symbols_stand_for_their_addresses() {
         .unwrap_or_else(|| panic!("{:#?}", out.diagnostics));
     assert_eq!(p.pous[0].ops[..2], [Op::Load(c(i0(0))), assign(q0(0))]);
     assert_eq!(out.symbols.map(|s| s.len()), Some(2));
+}
+
+#[test]
+fn tasks_run_in_ascending_number_with_a_task_start_between() {
+    // Task 1 is written first; its jump label and its subroutine are moved behind task 0's.
+    // Task 2 is in standby and the unassigned program never runs: neither is in the IR.
+    let p = program(
+        "$TASK CYCLIC 1\nLD 0.01\nJMP(004) &1\nJME(005) &1\nLD 0.02\nSBS(091) 7\nSBN(092) 7\nLD 0.03\nOUT 100.01\nRET(093)\nEND(001)\n\
+         $TASK CYCLIC 0\nLD 0.00\nJMP(004) &1\nJME(005) &1\nEND(001)\n\
+         $TASK CYCLIC 2 STANDBY\nLD 0.05\nOUT 100.05\nSBN(092) 8\nRET(093)\nEND(001)\n\
+         $TASK UNASSIGNED\nLD 0.06\nOUT 100.06\nEND(001)\n",
+    );
+    let main = &p.pous[0];
+    assert_eq!(
+        main.ops,
+        [
+            // Task 0; its END falls through into task 1.
+            Op::Load(c(i0(0))),
+            Op::Not,
+            Op::Jump(LabelId(0)),
+            Op::Not,
+            Op::Label(LabelId(0)),
+            Op::TaskStart,
+            // Task 1.
+            Op::Load(c(i0(1))),
+            Op::Not,
+            Op::Jump(LabelId(1)),
+            Op::Not,
+            Op::Label(LabelId(1)),
+            Op::Load(c(i0(2))),
+            Op::Call(PouId(1)),
+            Op::End { conditional: false },
+        ]
+    );
+    assert_eq!(main.labels, [OpIdx(4), OpIdx(10)]);
+    assert_eq!(p.pous.len(), 2, "only the running tasks' subroutines");
+    assert_eq!(p.pous[1].kind, PouKind::Subroutine(7));
+    // The task start has the location of the first instruction of the task it starts.
+    assert_eq!(main.locs[5].line, 2);
+}
+
+#[test]
+fn a_project_without_directives_is_task_0() {
+    let plain = program("LD 0.00\nOUT 100.00\nEND(001)\n");
+    let task0 = program("$TASK CYCLIC 0\nLD 0.00\nOUT 100.00\nEND(001)\n");
+    assert_eq!(plain.pous[0].ops, task0.pous[0].ops);
+    assert!(!plain.pous[0].ops.contains(&Op::TaskStart));
+}
+
+#[test]
+fn step_areas_and_block_programs() {
+    let w = |b: u8| bit(Area::Work, 1, b);
+    let saved = bit(Area::L, 30, 0);
+    let on = c(SystemBit::On.bit_loc());
+    let ops = main_ops(
+        "LD 0.00\nIL(002)\nLD P_On\nSNXT(009) W0.00\nSTEP(008) W0.00\nLD 0.01\nSNXT(009) W0.01\nSTEP(008) W0.01\nSTEP(008)\nILC(003)\nLD 0.02\nBPRG(096) &5\nLD 0.03\nSET 100.00\nBEND(801)",
+    );
+    assert_eq!(
+        ops,
+        [
+            Op::Load(c(i0(0))),
+            Op::Interlock,
+            Op::Load(on),
+            set(w(0), true),
+            // The first STEP inside IL–ILC saves the interlock's gate.
+            Op::Load(on),
+            assign(saved),
+            Op::Pop,
+            Op::InterlockEnd,
+            Op::Load(c(w(0))),
+            Op::And(c(saved)),
+            Op::Interlock,
+            Op::Pop,
+            Op::Load(c(i0(1))),
+            // SNXT: the current step OFF, the next ON.
+            set(w(0), false),
+            set(w(1), true),
+            Op::InterlockEnd,
+            Op::Load(c(w(1))),
+            Op::And(c(saved)),
+            Op::Interlock,
+            Op::Pop,
+            // The end of the area restores the interlock's gate.
+            Op::InterlockEnd,
+            Op::Load(c(saved)),
+            Op::Interlock,
+            Op::Pop,
+            Op::InterlockEnd,
+            Op::Load(c(i0(2))),
+            Op::Not,
+            Op::Jump(LabelId(0)),
+            Op::Not,
+            Op::Load(c(i0(3))),
+            set(q0(0), true),
+            Op::Label(LabelId(0)),
+        ]
+    );
 }

@@ -41,16 +41,30 @@ fn every_section_6_program_compiles_and_verifies() {
 }
 
 #[test]
-fn section_6_8_part_c_warns_about_the_flag_at_circuit_start() {
-    // §6.8 part C writes `LD P_EQ` on purpose; W032 flags exactly that line.
-    let c = compile_str("s6_8", &spec("s6_8"), ProfileId::Cp1h);
+fn section_6_8_warns_exactly_about_its_pitfalls() {
+    // §6.8 writes the seed's pitfalls on purpose (§2.10): part A reads "=" after the MOV that
+    // overwrote the CMP's (W033 at its `AND NOT P_EQ`), part C connects a flag to the bus
+    // (W032 at `LD P_EQ`), part D reads the flag of a differentiated MOV (W033 at the `AND
+    // P_EQ` after `@MOV`). The fixes (parts B, C's second circuit, D's DIFU) draw nothing.
+    let text = spec("s6_8");
+    let c = compile_str("s6_8", &text, ProfileId::Cp1h);
     let w: Vec<_> = c.diagnostics.iter().map(|d| (d.code, d.line)).collect();
-    let line = spec("s6_8")
-        .lines()
-        .position(|l| l.starts_with("LD      P_EQ"))
-        .unwrap() as u32
-        + 1;
-    assert_eq!(w, [(Code::OmrFlagAtStart, line)]);
+    let line = |prefix: &str, nth: usize| {
+        text.lines()
+            .enumerate()
+            .filter(|(_, l)| l.starts_with(prefix))
+            .nth(nth)
+            .map(|(i, _)| i as u32 + 1)
+            .unwrap()
+    };
+    assert_eq!(
+        w,
+        [
+            (Code::OmrFlagOverwritten, line("AND NOT P_EQ", 0)),
+            (Code::OmrFlagAtStart, line("LD      P_EQ", 0)),
+            (Code::OmrFlagOverwritten, line("AND     P_EQ", 3)),
+        ]
+    );
 }
 
 #[test]

@@ -1,8 +1,9 @@
-//! Single addresses for the CLI's stimulus and watch options (`I0.3`, `VW100`, `T37`, a symbol).
+//! Single addresses for the CLI's stimulus and watch options (`I0.3`, `VW100`, `T37`, a symbol
+//! of the project table or of the CPU's system symbols, `Always_On`).
 
 use crate::classes::{BitClass, Cx, Val};
 use crate::lexer::Tok;
-use crate::operand::{Syn, resolve};
+use crate::operand::Syn;
 use crate::symbols::SymbolTable;
 use stljit_core::ir::{BitLoc, Operand};
 use stljit_core::{CpuProfile, FileId, Width};
@@ -23,6 +24,8 @@ pub fn parse_address(
     let mut cx = Cx {
         profile,
         symbols,
+        system: crate::system_symbols::table(profile.id),
+        locals: None,
         diags: Vec::new(),
         file: FileId(0),
         line: 1,
@@ -33,7 +36,7 @@ pub fn parse_address(
         col: 1,
         len: u32::try_from(text.chars().count()).unwrap_or(u32::MAX),
     };
-    let result = match resolve(text, symbols) {
+    let result = match cx.scope().resolve(text).map(|r| r.syn) {
         Ok(Syn::Bit { .. } | Syn::Timer(_) | Syn::Counter(_)) => {
             cx.bit(tok, BitClass::Read).map(Address::Bit)
         }

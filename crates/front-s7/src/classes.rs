@@ -2,7 +2,9 @@
 //! instruction fixes, checking class, width, profile range and write access on the way.
 
 use crate::lexer::Tok;
-use crate::operand::{Const, ResolveError, Syn, resolve};
+use crate::locals::Locals;
+use crate::names::{ResolveError, Scope, Via};
+use crate::operand::{Const, Syn};
 use crate::spelling::{area_prefix, width_letter};
 use crate::symbols::SymbolTable;
 use stljit_core::ir::{BitLoc, Loc, Operand};
@@ -141,8 +143,12 @@ fn width_name(w: Width) -> &'static str {
 pub(crate) struct Cx<'s> {
     /// The CPU profile.
     pub(crate) profile: &'static CpuProfile,
-    /// The symbol table, if any.
+    /// The project symbol table, if any.
     pub(crate) symbols: Option<&'s SymbolTable>,
+    /// The CPU's system symbols.
+    pub(crate) system: &'static SymbolTable,
+    /// The local variables of the block being lowered.
+    pub(crate) locals: Option<std::rc::Rc<Locals>>,
     /// Every diagnostic so far.
     pub(crate) diags: Vec<Diagnostic>,
     /// File of the line being checked.
@@ -191,27 +197,60 @@ impl Cx<'_> {
         Reported
     }
 
-    /// Resolves operand text (address, constant or symbol).
+    /// What names are visible now.
+    pub(crate) fn scope(&self) -> Scope<'_> {
+        Scope {
+            user: self.symbols,
+            system: self.system,
+            locals: self.locals.as_deref(),
+        }
+    }
+
+    /// Resolves operand text (address, constant, local variable or symbol).
     pub(crate) fn syn(&mut self, t: Tok<'_>) -> R<Syn> {
-        match resolve(t.text, self.symbols) {
-            Ok(s) => Ok(s),
+        let result = self.scope().resolve(t.text);
+        match result {
+            Ok(r) => {
+                self.resolved_via(t, r.via);
+                Ok(r.syn)
+            }
             Err(ResolveError::Malformed(why)) => Err(self.report(
                 Code::Malformed,
                 t,
                 format!("malformed operand `{}`", clip(t.text)),
                 Some(why.to_owned()),
             )),
-            Err(ResolveError::UnknownSymbol(name)) => {
-                let help = if name.starts_with('#') {
-                    "local variables (#name) are not supported yet"
-                } else {
-                    "define it in the symbol table (--symbols) or write an address"
+            Err(ResolveError::UnknownSymbol(name)) => Err(self.report(
+                Code::UnknownSymbol,
+                t,
+                format!("unknown symbol `{}`", clip(&name)),
+                Some("define it in the symbol table (--symbols) or write an address".to_owned()),
+            )),
+            Err(ResolveError::UnknownLocal(name)) => {
+                let help = match self.locals.as_deref().map(Locals::names) {
+                    Some(names) if !names.is_empty() => {
+                        format!("this block declares: {}", names.join(", "))
+                    }
+                    _ => "this block declares no local variables (VAR_INPUT … END_VAR)".to_owned(),
                 };
                 Err(self.report(
                     Code::UnknownSymbol,
                     t,
-                    format!("unknown symbol `{}`", clip(&name)),
-                    Some(help.to_owned()),
+                    format!("unknown local variable `{}`", clip(&name)),
+                    Some(help),
+                ))
+            }
+            Err(ResolveError::LocalBit(name, absolute)) => {
+                let help = match absolute {
+                    Some(a) => format!("write the absolute L bit: `{a}`"),
+                    None => "a local variable is addressed as a whole; write an absolute L bit"
+                        .to_owned(),
+                };
+                Err(self.report(
+                    Code::Malformed,
+                    t,
+                    format!("`{}` addresses a bit of a local variable", clip(&name)),
+                    Some(help),
                 ))
             }
             Err(ResolveError::Invalid) => Err(Reported),
@@ -221,7 +260,49 @@ impl Cx<'_> {
                 format!("symbol `{}` names a program block, not memory", clip(&name)),
                 None,
             )),
+            Err(ResolveError::Mismatch {
+                symbol,
+                names,
+                written,
+            }) => Err(self.report(
+                Code::SymbolMismatch,
+                t,
+                format!(
+                    "`{}` names {}, not {}",
+                    clip(&symbol),
+                    crate::operand::show(names),
+                    crate::operand::show(written)
+                ),
+                Some("in `symbol:address` the address must be the one the symbol names".into()),
+            )),
         }
+    }
+
+    /// The warnings a successful resolution may deserve.
+    fn resolved_via(&mut self, t: Tok<'_>, via: Via) {
+        let (code, message, help) = match via {
+            Via::Plain => return,
+            Via::BareLocal { hides } => (
+                Code::UnprefixedLocal,
+                format!("`{}` is taken as the local variable `#{0}`", clip(t.text)),
+                if hides {
+                    "it hides the global symbol of the same name in this block; write `#` to make it clear"
+                } else {
+                    "MicroWIN writes local variables with `#`"
+                },
+            ),
+            Via::Unchecked => (
+                Code::UncheckedSymbol,
+                format!(
+                    "`{}`: the symbol is not defined, so only the address is used",
+                    clip(t.text)
+                ),
+                "give the project's symbol table (--symbols) to have the pair checked",
+            ),
+        };
+        let mut d = Diagnostic::new(code, self.span(t), t.text, message);
+        d.help = Some(help.to_owned());
+        self.diags.push(d);
     }
 
     fn out_of_range(&mut self, t: Tok<'_>, what: String, allowed: String) -> Reported {

@@ -4,7 +4,7 @@
 use crate::classes::{BitClass, R};
 use crate::lexer::{Line, Tok};
 use crate::mnemonics::Flow;
-use crate::operand::unquote;
+use crate::names::unquote;
 use crate::program::{Lowerer, OpenScr, PouState};
 use crate::symbols::{PouRef, SymTarget};
 use stljit_core::ir::{Op, PouKind};
@@ -101,7 +101,9 @@ impl Lowerer<'_> {
                     matches!(ps.kind, PouKind::Interrupt(_)),
                     "an interrupt routine",
                 )?;
-                Op::Return { conditional: false }
+                Op::Return {
+                    conditional: m == "CRETI",
+                }
             }
             Flow::Jump => {
                 let (n, id) = self.label_operand(ps, line)?;
@@ -125,19 +127,12 @@ impl Lowerer<'_> {
                 Op::Label(id)
             }
             Flow::Call => {
-                if line.n_ops > 1 {
-                    return Err(self.cx.report(
-                        Code::SubroutineParams,
-                        line.rest,
-                        "subroutine parameters are not supported yet".to_owned(),
-                        Some(
-                            "call the subroutine without parameters and pass values in V memory"
-                                .into(),
-                        ),
-                    ));
+                let ops = crate::lexer::all_operands(line);
+                if ops.is_empty() {
+                    return self.arity(line, 1, 1);
                 }
-                self.arity(line, 1, 1)?;
-                Op::Call(self.call_target(o[0])?)
+                let callee = self.call_target(ops[0])?;
+                self.call_op(callee, line, &ops[1..])?
             }
             Flow::For => {
                 self.arity(line, 3, 3)?;
@@ -283,7 +278,8 @@ impl Lowerer<'_> {
         }
     }
 
-    /// Resolves a CALL target: a number, `SBRn`, a block name or a symbol naming `SBRn`.
+    /// Resolves a CALL target: a number, `SBRn`, a block name, a symbol naming `SBRn`, or
+    /// `SBR_n`.
     fn call_target(&mut self, t: Tok<'_>) -> R<PouId> {
         let text = unquote(t.text).unwrap_or(t.text);
         let upper = text.to_ascii_uppercase();
@@ -307,7 +303,11 @@ impl Lowerer<'_> {
                 }
                 None => match self.cx.symbols.and_then(|s| s.get(text)) {
                     Some(SymTarget::Pou(PouRef::Subroutine(n))) => Some(u32::from(*n)),
-                    _ => None,
+                    // `SBR_n`: MicroWIN's default symbol of SBRn (s7-200-more §1.4).
+                    _ => upper
+                        .strip_prefix("SBR_")
+                        .filter(|d| !d.is_empty() && d.bytes().all(|c| c.is_ascii_digit()))
+                        .and_then(|d| d.parse::<u32>().ok()),
                 },
             },
         };

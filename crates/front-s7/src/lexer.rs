@@ -110,11 +110,21 @@ pub(crate) fn lex_line(line: &str, number: u32) -> Option<Line<'_>> {
     if out.rest.text.is_empty() {
         return Some(out);
     }
-    // Split the operand text at commas outside quotes.
-    let b = code.as_bytes();
-    let mut quote = 0u8;
-    let mut piece = mn_end;
-    for i in mn_end..=b.len() {
+    comma_pieces(code, mn_end, |start, end| {
+        if out.n_ops < MAX_OPS {
+            out.ops[out.n_ops] = tok(line, ascii, start, end);
+        }
+        out.n_ops += 1;
+    });
+    Some(out)
+}
+
+/// Calls `piece(start, end)` for each comma-separated piece of `text` from byte `from` on, commas
+/// inside `"…"` or `'…'` not counting.
+fn comma_pieces(text: &str, from: usize, mut piece: impl FnMut(usize, usize)) {
+    let b = text.as_bytes();
+    let (mut quote, mut start) = (0u8, from);
+    for i in from..=b.len() {
         let c = b.get(i).copied().unwrap_or(b',');
         if quote != 0 {
             if c == quote {
@@ -128,14 +138,29 @@ pub(crate) fn lex_line(line: &str, number: u32) -> Option<Line<'_>> {
             continue;
         }
         if c == b',' || i == b.len() {
-            if out.n_ops < MAX_OPS {
-                out.ops[out.n_ops] = tok(line, ascii, piece, i);
-            }
-            out.n_ops += 1;
-            piece = i + 1;
+            piece(start, i);
+            start = i + 1;
         }
     }
-    Some(out)
+}
+
+/// Every operand of a line, however many (a `CALL` may pass 16 parameters; [`Line`] keeps only
+/// the first [`MAX_OPS`]): `rest` split at commas outside quotes, with columns.
+pub(crate) fn all_operands<'a>(line: &Line<'a>) -> Vec<Tok<'a>> {
+    let rest = line.rest;
+    if rest.text.is_empty() {
+        return Vec::new();
+    }
+    let ascii = rest.text.is_ascii();
+    let mut out = Vec::with_capacity(line.n_ops);
+    comma_pieces(rest.text, 0, |start, end| {
+        let t = tok(rest.text, ascii, start, end);
+        out.push(Tok {
+            col: rest.col + t.col - 1,
+            ..t
+        });
+    });
+    out
 }
 
 /// Uppercases an ASCII mnemonic into `buf`; `None` when it is too long or not ASCII (then it
@@ -202,6 +227,17 @@ mod tests {
     fn many_operands_counted() {
         let l = lex_line("CALL SBR0, a, b, c, d, e", 1).unwrap();
         assert_eq!(l.n_ops, 6);
+    }
+
+    #[test]
+    fn all_operands_of_a_long_call() {
+        let l = lex_line("\tCALL   SCALE, L60.0, VW0, +3, \"a,b\", VW20 // c", 1).unwrap();
+        let ops = all_operands(&l);
+        let texts: Vec<_> = ops.iter().map(|t| t.text).collect();
+        assert_eq!(texts, ["SCALE", "L60.0", "VW0", "+3", "\"a,b\"", "VW20"]);
+        assert_eq!(ops[0].col, l.ops[0].col);
+        assert_eq!(ops[3].col, l.ops[3].col);
+        assert_eq!(ops[5].col, 39);
     }
 
     #[test]

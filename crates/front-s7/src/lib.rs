@@ -6,22 +6,28 @@
 //! at the first error. [`print_program`] turns a program back into STL text that parses to the
 //! same IR; [`parse_address`] reads the addresses the CLI's stimulus and watch options name.
 //!
-//! Pipeline: `decode` → `structure` (lines into POUs, using `lexer`) → `program` (lowering with
-//! `lower`/`control`, operands through `operand`/`classes`, the `stack` analysis) → IR.
+//! Pipeline: `decode` → `structure` (lines into POUs, using `lexer`; `VAR_…` declarations with
+//! `locals`) → `program` (lowering with `lower`/`control`, operands through
+//! `operand`/`names`/`classes` against the project symbols, the CPU's `system_symbols` and the
+//! block's `locals`, the `stack` analysis) → IR.
 
 mod address;
 mod classes;
 mod control;
 mod lexer;
+pub mod locals;
 mod lower;
 mod mnemonics;
+mod names;
 mod operand;
+mod params;
 mod print;
 mod program;
 pub mod spelling;
 mod stack;
 mod structure;
 mod symbols;
+mod system_symbols;
 
 pub use address::{Address, AddressError, parse_address};
 pub use print::{print_address, print_op, print_program};
@@ -57,6 +63,8 @@ pub fn compile(
         let cx = Cx {
             profile: profile_data,
             symbols: table.as_ref(),
+            system: system_symbols::table(profile),
+            locals: None,
             diags: std::mem::take(&mut diags),
             file: FileId(0),
             line: 0,

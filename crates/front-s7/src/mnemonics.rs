@@ -1,8 +1,10 @@
 //! The S7 mnemonics: [`TABLE`], every supported instruction with the lowering routine it goes
 //! to (`Lowerer::instr` dispatches on it and "did you mean" suggestions iterate it, so the two
-//! cannot drift), and the out-of-scope ones of spec §4.12 that get a "not supported" error
+//! cannot drift), and [`FAMILIES`], the optional instruction families with their mnemonics: one
+//! the CPU lacks gets "not available on this CPU", one not in [`TABLE`] "not supported yet",
 //! instead of "unknown".
 
+use stljit_core::InstrSet;
 use stljit_core::ir::{CounterKind, RealFn, TimerKind};
 
 /// The lowering routine of a mnemonic (`Lowerer::instr`); a routine that serves several
@@ -72,7 +74,7 @@ pub(crate) enum Flow {
     WatchdogReset,
     /// `RET`, `CRET` (conditional).
     Return,
-    /// `RETI`.
+    /// `RETI`, `CRETI` (conditional).
     ReturnFromInterrupt,
     /// `JMP n`.
     Jump,
@@ -290,6 +292,7 @@ pub(crate) const TABLE: &[(&str, Group)] = &[
     ("CRET", Group::Control(Flow::Return)),
     ("RET", Group::Control(Flow::Return)),
     ("RETI", Group::Control(Flow::ReturnFromInterrupt)),
+    ("CRETI", Group::Control(Flow::ReturnFromInterrupt)),
     ("FOR", Group::Control(Flow::For)),
     ("NEXT", Group::Control(Flow::Next)),
     ("LSCR", Group::Control(Flow::ScrBegin)),
@@ -298,14 +301,95 @@ pub(crate) const TABLE: &[(&str, Group)] = &[
     ("SCRE", Group::Control(Flow::ScrEnd)),
 ];
 
-/// Out of scope for version 1 (spec §4.12): parsed and rejected with a clear message.
-pub(crate) const OUT_OF_SCOPE: &[&str] = &[
-    "ATH", "HTA", "ITA", "DTA", "RTA", "ITS", "DTS", "RTS", "STI", "STD", "STR", "SCPY", "SSCPY",
-    "SLEN", "SCAT", "SFND", "CFND", "ATT", "FIFO", "LIFO", "FND=", "FND<>", "FND<", "FND>", "TBL",
-    "TODR", "TODW", "TODRX", "TODWX", "PID", "HDEF", "HSC", "PLS", "XMT", "RCV", "NETR", "NETW",
-    "GPA", "SPA", "GIP", "SIP", "ATCH", "DTCH", "ENI", "DISI", "CRETI", "DIAG_LED", "CEVNT",
-    "TODR", "BITIM", "CITIM", "LDS=", "LDS<>", "AS=", "AS<>", "OS=", "OS<>",
+/// The optional instruction families (s7-200-more Appendix A) and their mnemonics: whether the
+/// selected CPU lacks a family is profile data (`CpuProfile::lacks`). A mnemonic listed
+/// here and not in [`TABLE`] is known but not supported yet; the string compare contacts
+/// (`LDS=`, …) belong to [`InstrSet::Strings`] through [`is_string_compare`] and the table find
+/// (`FND=`, …) to [`InstrSet::Tables`].
+pub(crate) const FAMILIES: &[(InstrSet, &[&str])] = &[
+    (
+        InstrSet::Interrupts,
+        &["ATCH", "DTCH", "ENI", "DISI", "CRETI", "CEVNT"],
+    ),
+    (
+        InstrSet::Tables,
+        &[
+            "ATT", "FIFO", "LIFO", "FND=", "FND<>", "FND<", "FND>", "TBL",
+        ],
+    ),
+    (InstrSet::Ascii, &["ATH", "HTA", "ITA", "DTA", "RTA"]),
+    (
+        InstrSet::Strings,
+        &[
+            "ITS", "DTS", "RTS", "STI", "STD", "STR", "SLEN", "SCPY", "SSCPY", "SCAT", "SFND",
+            "CFND",
+        ],
+    ),
+    (InstrSet::Clock, &["TODR", "TODW", "TODRX", "TODWX"]),
+    (InstrSet::Pid, &["PID"]),
+    (InstrSet::HighSpeedCounters, &["HDEF", "HSC"]),
+    (InstrSet::PulseOutputs, &["PLS"]),
+    (InstrSet::Freeport, &["XMT", "RCV"]),
+    (InstrSet::PortAddress, &["GPA", "SPA"]),
+    (InstrSet::NetReadWrite, &["NETR", "NETW"]),
+    (InstrSet::GetPut, &["GET", "PUT"]),
+    (InstrSet::IpAddress, &["GIP", "SIP"]),
+    (InstrSet::IntervalTimers, &["BITIM", "CITIM"]),
+    (InstrSet::DiagnosticLed, &["DIAG_LED"]),
 ];
+
+/// The family of mnemonic `m` (upper case), if it belongs to one.
+pub(crate) fn family(m: &str) -> Option<InstrSet> {
+    if is_string_compare(m) {
+        return Some(InstrSet::Strings);
+    }
+    FAMILIES
+        .iter()
+        .find(|(_, ms)| ms.contains(&m))
+        .map(|&(set, _)| set)
+}
+
+/// Why a family's instructions are not supported yet (the help of E027), and what to do
+/// meanwhile. Issue 13 of the project tracks each family.
+pub(crate) fn not_yet(set: InstrSet) -> &'static str {
+    match set {
+        InstrSet::Interrupts => {
+            "interrupt events are not simulated yet: interrupt routines are checked but never run"
+        }
+        InstrSet::Tables => "table instructions are not implemented yet (s7-200-more §4)",
+        InstrSet::Ascii => "ASCII conversions are not implemented yet (s7-200-more §5)",
+        InstrSet::Strings => "string instructions are not implemented yet (s7-200-more §5)",
+        InstrSet::Clock => "the real-time clock is not simulated yet (s7-200-more §6)",
+        InstrSet::Pid => "PID loops are not implemented yet (s7-200-more §7)",
+        InstrSet::HighSpeedCounters => "high-speed counters are not simulated yet (s7-200-more §8)",
+        InstrSet::PulseOutputs => "pulse outputs are not simulated yet (s7-200-more §9)",
+        InstrSet::Freeport
+        | InstrSet::PortAddress
+        | InstrSet::NetReadWrite
+        | InstrSet::GetPut
+        | InstrSet::IpAddress => "communication is not simulated yet (s7-200-more §10)",
+        InstrSet::IntervalTimers | InstrSet::DiagnosticLed => {
+            "this instruction is not implemented yet"
+        }
+    }
+}
+
+/// What to use instead of a family the CPU does not have (the help of E037).
+pub(crate) fn instead(set: InstrSet) -> &'static str {
+    match set {
+        InstrSet::NetReadWrite => {
+            "the S7-200 SMART has no PPI network read/write; use GET/PUT (Ethernet S7 communication)"
+        }
+        InstrSet::GetPut => {
+            "GET/PUT are the S7-200 SMART's Ethernet instructions; the classic CPUs use NETR/NETW"
+        }
+        InstrSet::IpAddress => "only the S7-200 SMART has an Ethernet port",
+        InstrSet::PulseOutputs => {
+            "no A5 document describes pulse outputs; choose --cpu s7-200 or --cpu smart"
+        }
+        _ => "choose the --cpu that has it",
+    }
+}
 
 /// `LDS=`, `AS<>`, ...: string compares (not the LDS stack instruction).
 pub(crate) fn is_string_compare(m: &str) -> bool {
@@ -470,10 +554,16 @@ mod tests {
                 TABLE[..i].iter().all(|&(k, _)| k != m),
                 "{m} is listed twice"
             );
-            assert!(
-                !OUT_OF_SCOPE.contains(&m) && !is_string_compare(m),
-                "{m} is out of scope"
-            );
+            assert!(!is_string_compare(m), "{m} is a string compare");
+        }
+        for (i, (set, ms)) in FAMILIES.iter().enumerate() {
+            for m in *ms {
+                assert_eq!(family(m), Some(*set), "{m} is listed in two families");
+                assert!(
+                    FAMILIES[..i].iter().all(|(_, o)| !o.contains(m)),
+                    "{m} is listed twice"
+                );
+            }
         }
     }
 

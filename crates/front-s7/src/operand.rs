@@ -1,7 +1,6 @@
 //! Operand syntax (spec §1.2): addresses, constants, `&` address-of and `*` pointers, parsed into
 //! a width-free [`Syn`] before the instruction decides what the operand means.
 
-use crate::symbols::{SymTarget, SymbolTable};
 use stljit_core::{Area, Width};
 
 /// A constant as written.
@@ -60,6 +59,42 @@ pub(crate) enum Syn {
         /// Byte offset, or the timer/counter number.
         n: u32,
     },
+}
+
+/// Spells an operand as STL writes it (`I0.3`, `VW10`, `SMB34`, `T37`), for messages.
+pub(crate) fn show(syn: Syn) -> String {
+    use crate::spelling::{area_prefix, width_letter};
+    match syn {
+        Syn::Bit { area, byte, bit } => format!("{}{byte}.{bit}", area_prefix(area)),
+        Syn::Mem {
+            area: area @ (Area::AI | Area::AQ),
+            offset,
+            ..
+        } => format!("{}W{offset}", area_prefix(area)),
+        Syn::Mem {
+            area,
+            width,
+            offset,
+        } => format!("{}{}{offset}", area_prefix(area), width_letter(width)),
+        Syn::Timer(n) => format!("T{n}"),
+        Syn::Counter(n) => format!("C{n}"),
+        Syn::Acc(n) => format!("AC{n}"),
+        Syn::Hc(n) => format!("HC{n}"),
+        Syn::Const(Const::Int(i)) => i.to_string(),
+        Syn::Const(Const::Bits(b)) => format!("16#{b:X}"),
+        Syn::Const(Const::Real(f)) => format!("{f:?}"),
+        Syn::Indirect { area: Area::AC, n } => format!("*AC{n}"),
+        Syn::Indirect { area, n } => format!("*{}D{n}", area_prefix(area)),
+        Syn::AddressOf {
+            area: Area::TimerValue,
+            n,
+        } => format!("&T{n}"),
+        Syn::AddressOf {
+            area: Area::CounterValue,
+            n,
+        } => format!("&C{n}"),
+        Syn::AddressOf { area, n } => format!("&{}B{n}", area_prefix(area)),
+    }
 }
 
 impl Syn {
@@ -312,56 +347,6 @@ pub(crate) fn indirect(inner: Syn) -> Result<Syn, SynError> {
     }
 }
 
-/// Why an operand could not be resolved.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub(crate) enum ResolveError {
-    /// Looks like an address or constant but is malformed.
-    Malformed(&'static str),
-    /// Neither an address nor a known symbol.
-    UnknownSymbol(String),
-    /// A symbol that names a POU where a memory operand is needed.
-    PouSymbol(String),
-    /// A symbol whose definition was rejected (already reported).
-    Invalid,
-}
-
-/// Strips the quotes of a `"quoted symbol"`.
-pub(crate) fn unquote(t: &str) -> Option<&str> {
-    t.strip_prefix('"')?.strip_suffix('"')
-}
-
-fn lookup(name: &str, symbols: Option<&SymbolTable>) -> Result<Syn, ResolveError> {
-    match symbols.and_then(|s| s.get(name)) {
-        Some(SymTarget::Operand(syn)) => Ok(*syn),
-        Some(SymTarget::Pou(_)) => Err(ResolveError::PouSymbol(name.to_owned())),
-        Some(SymTarget::Invalid) => Err(ResolveError::Invalid),
-        None => Err(ResolveError::UnknownSymbol(name.to_owned())),
-    }
-}
-
-/// Resolves operand text: address or constant syntax first, then the symbol table (quoted names
-/// always go to the symbol table; `&name` and `*name` resolve the name first).
-pub(crate) fn resolve(t: &str, symbols: Option<&SymbolTable>) -> Result<Syn, ResolveError> {
-    if let Some(name) = unquote(t) {
-        return lookup(name, symbols);
-    }
-    for (sigil, wrap) in [('&', address_of as fn(Syn) -> _), ('*', indirect)] {
-        if let Some(inner) = t.strip_prefix(sigil) {
-            let syn = resolve(inner.trim_start(), symbols)?;
-            return wrap(syn).map_err(|e| match e {
-                SynError::Malformed(m) => ResolveError::Malformed(m),
-                SynError::NotAddress => ResolveError::Malformed("bad operand"),
-            });
-        }
-    }
-    match parse_syn(t) {
-        Ok(s) => Ok(s),
-        Err(SynError::NotAddress) => lookup(t, symbols),
-        // A symbol may look like a broken address (`M1_Run`); prefer the symbol when it exists.
-        Err(SynError::Malformed(m)) => lookup(t, symbols).map_err(|_| ResolveError::Malformed(m)),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -485,13 +470,5 @@ mod tests {
         assert!(matches!(parse_syn("VB10X"), Err(SynError::Malformed(_))));
         assert_eq!(parse_syn("Motor"), Err(SynError::NotAddress));
         assert_eq!(parse_syn("启动"), Err(SynError::NotAddress));
-        assert_eq!(
-            resolve("Motor", None),
-            Err(ResolveError::UnknownSymbol("Motor".into()))
-        );
-        assert_eq!(
-            resolve("\"Start Button\"", None),
-            Err(ResolveError::UnknownSymbol("Start Button".into()))
-        );
     }
 }

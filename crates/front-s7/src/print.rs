@@ -2,11 +2,13 @@
 //! back to the same IR, up to source locations; fuzz reproducers and the round-trip fuzz target
 //! rely on that.
 
+use crate::locals::Section;
 use crate::spelling::{area_prefix, counter_mnemonic, timer_mnemonic, width_letter};
 use std::fmt::Write as _;
+use stljit_core::PouId;
 use stljit_core::ir::{
-    Address, ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, Conversion, LogicOp, Op, Operand,
-    Pou, PouKind, Program, RealFn,
+    Address, ArgDir, ArgValue, ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, Conversion,
+    LogicOp, Op, Operand, Pou, PouKind, Program, RealFn,
 };
 use stljit_core::{Area, Width};
 
@@ -306,17 +308,22 @@ pub fn print_op(program: &Program, pou: &Pou, op: &Op) -> String {
         Op::Box(x) => box_op(x),
         Op::Jump(l) => format!("JMP {}", l.0),
         Op::Label(l) => format!("LBL {}", l.0),
-        Op::Call(id) => match program.pous.get(id.index()).map(|p| p.kind) {
-            Some(PouKind::Subroutine(n)) => format!("CALL SBR{n}"),
-            _ => format!(
-                "CALL {}",
-                program
-                    .pous
-                    .get(id.index())
-                    .map_or("?", |p| p.name.as_str())
-            ),
+        Op::Call(id) => format!("CALL {}", call_target(program, *id)),
+        Op::CallArgs(c) => {
+            let mut text = format!("CALL {}", call_target(program, c.callee));
+            for a in &c.args {
+                text.push_str(", ");
+                text.push_str(&match a.value {
+                    ArgValue::Bit { actual, .. } => bit(actual),
+                    ArgValue::Value { width, actual, .. } => val(actual, width, false),
+                });
+            }
+            text
+        }
+        Op::Return { conditional: true } => match pou.kind {
+            PouKind::Interrupt(_) => "CRETI".into(),
+            _ => "CRET".into(),
         },
-        Op::Return { conditional: true } => "CRET".into(),
         Op::Return { conditional: false } => match pou.kind {
             PouKind::Interrupt(_) => "RETI".into(),
             _ => "RET".into(),
@@ -336,22 +343,76 @@ pub fn print_op(program: &Program, pou: &Pou, op: &Op) -> String {
         // The verifier rejects these on S7 profiles, so no S7 program holds one.
         Op::Interlock
         | Op::InterlockEnd
+        | Op::TaskStart
         | Op::OmronTimer { .. }
         | Op::OmronCounter { .. }
         | Op::Omron(_) => format!("// not S7: {op:?}"),
     }
 }
 
+fn call_target(program: &Program, id: PouId) -> String {
+    match program.pous.get(id.index()).map(|p| p.kind) {
+        Some(PouKind::Subroutine(n)) => format!("SBR{n}"),
+        _ => program
+            .pous
+            .get(id.index())
+            .map_or("?", |p| p.name.as_str())
+            .to_owned(),
+    }
+}
+
+/// The `VAR_…` sections of subroutine `id`, rebuilt from the first call with parameters that
+/// targets it (the IR keeps no declarations): in the calls' argument order, which is table
+/// order, so the front end allocates the same L addresses; BOOL, BYTE, WORD or DWORD by width.
+fn declarations(program: &Program, id: PouId) -> String {
+    let call = program
+        .pous
+        .iter()
+        .flat_map(|p| &p.ops)
+        .find_map(|op| match op {
+            Op::CallArgs(c) if c.callee == id => Some(c),
+            _ => None,
+        });
+    let mut out = String::new();
+    let Some(call) = call else { return out };
+    for dir in ArgDir::ALL {
+        let section = match dir {
+            ArgDir::In => Section::In,
+            ArgDir::InOut => Section::InOut,
+            ArgDir::Out => Section::Out,
+        };
+        let mut body = String::new();
+        for (i, a) in call.args.iter().enumerate().filter(|(_, a)| a.dir == *dir) {
+            let ty = match a.value {
+                ArgValue::Bit { .. } => "BOOL",
+                ArgValue::Value {
+                    width: Width::Byte, ..
+                } => "BYTE",
+                ArgValue::Value {
+                    width: Width::Word, ..
+                } => "WORD",
+                ArgValue::Value { .. } => "DWORD",
+            };
+            let _ = writeln!(body, "arg{i}:{ty};");
+        }
+        if !body.is_empty() {
+            let _ = write!(out, "{}\n{body}END_VAR\n", section.keyword());
+        }
+    }
+    out
+}
+
 /// Prints a whole program in MicroWIN block layout.
 pub fn print_program(program: &Program) -> String {
     let mut out = String::new();
-    for pou in &program.pous {
+    for (i, pou) in program.pous.iter().enumerate() {
         let (kw, id) = match pou.kind {
             PouKind::Main => ("ORGANIZATION_BLOCK", "OB1".to_owned()),
             PouKind::Subroutine(n) => ("SUBROUTINE_BLOCK", format!("SBR{n}")),
             PouKind::Interrupt(n) => ("INTERRUPT_BLOCK", format!("INT{n}")),
         };
-        let _ = writeln!(out, "{kw} {}:{id}\nBEGIN", pou.name);
+        let vars = declarations(program, PouId::new(i));
+        let _ = writeln!(out, "{kw} {}:{id}\n{vars}BEGIN", pou.name);
         for op in &pou.ops {
             let _ = writeln!(out, "\t{}", print_op(program, pou, op));
         }

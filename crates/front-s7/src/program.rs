@@ -4,10 +4,13 @@
 
 use crate::classes::Cx;
 use crate::lexer::{Line, Tok, upper};
+use crate::locals::Locals;
+use crate::mnemonics;
 use crate::spelling::{counter_mnemonic, timer_mnemonic};
 use crate::stack::StackCheck;
 use crate::structure::PouSrc;
 use std::collections::HashMap;
+use std::rc::Rc;
 use stljit_core::ir::{
     BitLoc, CounterDecl, CounterKind, EdgeDecl, Op, Pou, PouKind, Program, SrcLoc, TimerDecl,
     TimerKind, loop_entered_by,
@@ -86,6 +89,13 @@ pub(crate) struct Lowerer<'s> {
     pub(crate) scr_bits: HashMap<BitLoc, (PouId, Span)>,
     /// The op being lowered's mnemonic token.
     pub(crate) mnemonic: Tok<'s>,
+    /// Every POU's local variable table, by POU index (a CALL checks its actuals against the
+    /// callee's).
+    pub(crate) locals: Vec<Rc<Locals>>,
+    /// Every POU's name and where it is declared, by POU index (for CALL messages).
+    pub(crate) pou_names: Vec<String>,
+    /// See `pou_names`.
+    pub(crate) pou_spans: Vec<Span>,
 }
 
 impl<'s> Lowerer<'s> {
@@ -107,30 +117,52 @@ impl<'s> Lowerer<'s> {
     fn lower_line(&mut self, ps: &mut PouState, line: &Line<'s>) {
         self.cx.line = line.line;
         self.mnemonic = line.mnemonic;
+        let before = ps.ops.len();
+        self.lower_checked(ps, line);
+        if ps.ops.len() == before {
+            ps.stack.lost_line();
+        }
+    }
+
+    /// Lowers one line after the availability check; errors are reported, not returned.
+    fn lower_checked(&mut self, ps: &mut PouState, line: &Line<'s>) {
         let mut buf = [0u8; 16];
         let Some(m) = upper(line.mnemonic.text, &mut buf) else {
             self.unknown(line.mnemonic);
             return;
         };
+        if let Some(set) = mnemonics::family(m)
+            && !self.cx.profile.has(set)
+        {
+            self.cx.report(
+                Code::NotAvailable,
+                line.mnemonic,
+                format!(
+                    "`{m}` is not available on the {}: it has no {}",
+                    self.cx.profile.model,
+                    set.describe()
+                ),
+                Some(mnemonics::instead(set).to_owned()),
+            );
+            return;
+        }
         // Errors are already reported; lowering simply moves on to the next line.
         let _ = self.instr(ps, m, line);
     }
 
-    /// Reports an unknown or out-of-scope mnemonic.
+    /// Reports an unknown mnemonic, or a known one that is not supported yet.
     pub(crate) fn unknown(&mut self, t: Tok<'_>) {
         let up = t.text.to_ascii_uppercase();
-        if crate::mnemonics::OUT_OF_SCOPE.contains(&up.as_str())
-            || crate::mnemonics::is_string_compare(&up)
-        {
+        if let Some(set) = mnemonics::family(&up) {
             self.cx.report(
                 Code::Unsupported,
                 t,
-                format!("`{}` is not supported in this version", clip(t.text)),
-                Some("see spec §4.12 for the instructions left out of version 1".into()),
+                format!("`{}` is not supported yet", clip(t.text)),
+                Some(mnemonics::not_yet(set).into()),
             );
             return;
         }
-        let help = crate::mnemonics::closest(&up).map(|s| format!("did you mean `{s}`?"));
+        let help = mnemonics::closest(&up).map(|s| format!("did you mean `{s}`?"));
         self.cx.report(
             Code::UnknownMnemonic,
             t,
@@ -220,6 +252,7 @@ impl<'s> Lowerer<'s> {
             stack: StackCheck::new(start, 9),
         };
         self.cx.file = src.file;
+        self.cx.locals = self.locals.get(id.index()).cloned();
         for line in &src.lines {
             self.lower_line(&mut ps, line);
         }
@@ -272,6 +305,10 @@ pub(crate) fn lower<'s>(
         names.entry(p.name.clone()).or_insert((id, p.kind));
     }
     cx.file = srcs.first().map_or(cx.file, |p| p.file);
+    let locals = srcs
+        .iter()
+        .map(|p| Rc::new(Locals::build(p.decls.clone(), p.kind, &mut cx.diags)))
+        .collect();
     let mut lw = Lowerer {
         cx,
         subs,
@@ -281,6 +318,9 @@ pub(crate) fn lower<'s>(
         edges: 0,
         scr_bits: HashMap::new(),
         mnemonic: Tok::default(),
+        locals,
+        pou_names: srcs.iter().map(|p| p.name.clone()).collect(),
+        pou_spans: srcs.iter().map(|p| p.decl).collect(),
     };
     let mut states = Vec::with_capacity(srcs.len());
     let mut pous = Vec::with_capacity(srcs.len());

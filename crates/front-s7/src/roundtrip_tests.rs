@@ -1,4 +1,5 @@
-//! Round trip: every spec §7 program and the all-instructions fixture, printed with
+//! Round trip: every spec §7 program, the all-instructions fixture and a MicroWIN export with
+//! subroutine parameters, printed with
 //! [`crate::print_program`] and parsed again, give the same IR up to source locations.
 
 use crate::{compile_str, print_program};
@@ -33,7 +34,8 @@ const PROGRAMS: &[(&str, &str)] = fixtures!(
     "spec/X4.stl",
     "spec/X5.stl",
     "spec/X6.stl",
-    "ok/all_instructions.stl"
+    "ok/all_instructions.stl",
+    "ok/microwin_params.awl"
 );
 
 /// The program without source locations and file names.

@@ -48,6 +48,13 @@ impl StackCheck {
         }
     }
 
+    /// A line that produced no op (unknown, not supported or erroneous): what it did to the stack
+    /// is unknown, so no warning follows until the next rung starts.
+    pub(crate) fn lost_line(&mut self) {
+        self.depth = None;
+        self.after_output = true;
+    }
+
     /// Accounts for `op` at `span` (the mnemonic); `text` is the mnemonic as written.
     pub(crate) fn step(&mut self, op: &Op, span: Span, text: &str, diags: &mut Vec<Diagnostic>) {
         let push = |s: &mut Self, new_rung: bool, diags: &mut Vec<Diagnostic>| {

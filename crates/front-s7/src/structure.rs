@@ -1,9 +1,12 @@
 //! Program structure: groups the lexed lines of every file into POUs. Two layouts are accepted
 //! (spec §4.13): the linear one (main … MEND, `SBR n` … RET, `INT n` …) and MicroWIN's export
 //! blocks (`ORGANIZATION_BLOCK`, `SUBROUTINE_BLOCK`, `INTERRUPT_BLOCK` with `TITLE=`, `VAR_…`
-//! sections, `BEGIN` and `END_…_BLOCK`).
+//! sections, `BEGIN` and `END_…_BLOCK`). The declarations of the `VAR_…` sections are read here
+//! (`locals::parse_decl`) and kept with their POU; a linear `SBR n`/`INT n` may be followed by
+//! such sections too [design].
 
 use crate::lexer::{Line, Tok, lex_line};
+use crate::locals::{Decl, Section, parse_decl};
 use stljit_core::ir::PouKind;
 use stljit_core::{CpuProfile, FileId};
 use stljit_source::Code;
@@ -22,6 +25,8 @@ pub(crate) struct PouSrc<'a> {
     pub(crate) decl: Span,
     /// Its instruction lines.
     pub(crate) lines: Vec<Line<'a>>,
+    /// Its local variable declarations (`VAR_…` sections), in textual order.
+    pub(crate) decls: Vec<Decl>,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -106,8 +111,17 @@ impl<'a> Builder<'a, '_> {
             file,
             decl,
             lines: Vec::new(),
+            decls: Vec::new(),
         });
         self.pous.len() - 1
+    }
+
+    /// The main program of linear text in `file` (added at `s` unless the file has one).
+    fn main_for(&mut self, file: FileId, s: Span, text: &str) -> usize {
+        match self.pous.iter().position(|p| p.kind == PouKind::Main) {
+            Some(i) if self.pous[i].file == file => i,
+            _ => self.add("MAIN".into(), PouKind::Main, file, s, text),
+        }
     }
 
     /// Parses `Motor_Logic:SBR0` / `MAIN:OB1` / `SBR0` after a block keyword.
@@ -243,6 +257,7 @@ pub(crate) fn structure<'a>(
                 file: files.first().map_or(FileId(0), |f| f.0),
                 decl: Span::default(),
                 lines: Vec::new(),
+                decls: Vec::new(),
             },
         ),
     }
@@ -252,7 +267,10 @@ pub(crate) fn structure<'a>(
 fn structure_file<'a>(b: &mut Builder<'a, '_>, file: FileId, text: &'a str) {
     // The open block and whether its BEGIN was seen; the linear POU lines go to.
     let mut block: Option<(BlockKind, usize, Span)> = None;
-    let mut in_var: Option<Span> = None;
+    // Inside a `DATA_BLOCK` (skipped, reported once at its header).
+    let mut in_data = false;
+    // The open `VAR_…` section: where it opened, its section and the POU it declares for.
+    let mut in_var: Option<(Span, Section, usize)> = None;
     let mut linear: Option<usize> = None;
     let mut used_blocks = false;
     let mut warned_outside = false;
@@ -270,15 +288,41 @@ fn structure_file<'a>(b: &mut Builder<'a, '_>, file: FileId, text: &'a str) {
         if upper_prefix("NETWORK") && m.text[7..].bytes().all(|c| c.is_ascii_digit()) {
             continue;
         }
-        if in_var.is_some() {
+        if let Some((_, section, target)) = in_var {
             if is(&m, "END_VAR") {
                 in_var = None;
+            } else {
+                match parse_decl(raw, number, file, section) {
+                    Ok(Some(d)) => b.pous[target].decls.push(d),
+                    Ok(None) => {}
+                    Err(d) => b.diags.push(d),
+                }
             }
             continue;
         }
         if upper_prefix("TITLE")
             && (m.text[5..].starts_with('=') || line.rest.text.starts_with('='))
         {
+            continue;
+        }
+        if in_data {
+            in_data = !is(&m, "END_DATA_BLOCK");
+            continue;
+        }
+        if is(&m, "DATA_BLOCK") {
+            // MicroWIN exports the data block (V-memory initial values) in the same file; they
+            // are not loaded yet, which must not pass silently.
+            b.diags.push(
+                Diagnostic::new(
+                    Code::Unsupported,
+                    s,
+                    m.text,
+                    "`DATA_BLOCK` is not supported yet: its V-memory initial values would be lost",
+                )
+                .help("set the initial values in the first scan (LD SM0.1 / MOV…) meanwhile"),
+            );
+            used_blocks = true;
+            in_data = true;
             continue;
         }
         let kind = [
@@ -332,11 +376,28 @@ fn structure_file<'a>(b: &mut Builder<'a, '_>, file: FileId, text: &'a str) {
             }
             continue;
         }
-        if ["VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR", "VAR_TEMP"]
-            .iter()
-            .any(|k| is(&m, k))
-        {
-            in_var = Some(s);
+        if let Some(section) = Section::from_keyword(m.text) {
+            // Declarations belong to the open block, or to the linear POU they follow; they
+            // precede its first instruction (s7-200-more §1.1).
+            let target = match (block, linear) {
+                (Some((_, idx, _)), _) | (None, Some(idx)) => idx,
+                (None, None) => b.main_for(file, s, m.text),
+            };
+            if !b.pous[target].lines.is_empty() {
+                b.diags.push(
+                    Diagnostic::new(
+                        Code::LocalDecl,
+                        s,
+                        m.text,
+                        format!("`{}` after the block's first instruction", m.text),
+                    )
+                    .help("local variable sections come between the block header and BEGIN"),
+                );
+            }
+            if linear.is_none() && block.is_none() {
+                linear = Some(target);
+            }
+            in_var = Some((s, section, target));
             continue;
         }
         if is(&m, "END_VAR") {
@@ -377,10 +438,7 @@ fn structure_file<'a>(b: &mut Builder<'a, '_>, file: FileId, text: &'a str) {
                     Some("put it between BEGIN and END_…_BLOCK"),
                 );
             }
-            let idx = match b.pous.iter().position(|p| p.kind == PouKind::Main) {
-                Some(i) if b.pous[i].file == file => i,
-                _ => b.add("MAIN".into(), PouKind::Main, file, s, m.text),
-            };
+            let idx = b.main_for(file, s, m.text);
             linear = Some(idx);
             idx
         };
@@ -394,7 +452,7 @@ fn structure_file<'a>(b: &mut Builder<'a, '_>, file: FileId, text: &'a str) {
             Some(open.end_keyword()),
         );
     }
-    if let Some(at) = in_var {
+    if let Some((at, _, _)) = in_var {
         b.error(at, "", "VAR section is not closed".into(), Some("END_VAR"));
     }
 }

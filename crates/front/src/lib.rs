@@ -51,9 +51,18 @@ pub type Compilation = stljit_source::Compilation<Symbols>;
 /// Why an address named outside a program (stimulus, watch list) was rejected.
 pub use stljit_source::AddressError;
 
+/// The front ends' options; the default is each spec's default behaviour.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Options {
+    /// The Omron front end's (`tc_mode`, `allow_backward_jumps`); the S7 front end has none.
+    pub omron: stljit_front_omron::Options,
+}
+
+pub use stljit_front_omron::TcMode;
+
 /// The dialects' profiles (Omron's models are the CP ones).
 const OMRON_PROFILES: [ProfileId; 2] = [ProfileId::Cp1h, ProfileId::Cp1e];
-const S7_PROFILES: [ProfileId; 2] = [ProfileId::A5, ProfileId::S7_200];
+const S7_PROFILES: [ProfileId; 3] = [ProfileId::A5, ProfileId::S7_200, ProfileId::Smart];
 
 impl Dialect {
     /// Every dialect.
@@ -102,19 +111,32 @@ impl Dialect {
     }
 
     /// Compiles a project: every file in `files` (together one program) and the optional symbol
-    /// table, against `profile`. Never panics; every diagnostic of every file is reported.
+    /// table, against `profile`, with the default [`Options`]. Never panics; every diagnostic of
+    /// every file is reported.
     pub fn compile(
         self,
         files: &[SourceFile],
         symbols: Option<&SourceFile>,
         profile: ProfileId,
     ) -> Compilation {
+        self.compile_with(files, symbols, profile, Options::default())
+    }
+
+    /// [`Dialect::compile`] with the front ends' `options` (each dialect reads its own).
+    pub fn compile_with(
+        self,
+        files: &[SourceFile],
+        symbols: Option<&SourceFile>,
+        profile: ProfileId,
+        options: Options,
+    ) -> Compilation {
         match self {
             Dialect::S7 => {
                 stljit_front_s7::compile(files, symbols, profile).map_symbols(Symbols::S7)
             }
             Dialect::Omron => {
-                stljit_front_omron::compile(files, symbols, profile).map_symbols(Symbols::Omron)
+                stljit_front_omron::compile_with(files, symbols, profile, options.omron)
+                    .map_symbols(Symbols::Omron)
             }
         }
     }

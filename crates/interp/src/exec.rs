@@ -22,7 +22,7 @@ enum Step {
 
 /// How a POU ended.
 #[derive(PartialEq, Eq)]
-enum Exit {
+pub(crate) enum Exit {
     Normal,
     EndScan,
     Fatal,
@@ -83,8 +83,13 @@ impl<'a> Machine<'a> {
         mem::set_sched_u8(self.img, self.layout, Sched::ENO, u8::from(v));
     }
 
+    /// Deepest CALL nesting allowed below the main program.
+    pub(crate) fn max_depth(&self) -> u32 {
+        self.max_depth
+    }
+
     /// A non-fatal error: recorded, ENO = 0 (spec §2.5, §3.5).
-    fn error(&mut self, code: ErrorCode, pou: usize, pc: usize) {
+    pub(crate) fn error(&mut self, code: ErrorCode, pou: usize, pc: usize) {
         scan::record_error(self.img, self.layout, code, pou as u32, pc as u32);
         self.set_eno(false);
     }
@@ -99,7 +104,7 @@ impl<'a> Machine<'a> {
     }
 
     /// Runs POU `pou` at call depth `depth` (its L frame) with initial stack `st`.
-    fn run_pou(&mut self, pou: usize, depth: u32, mut st: u16) -> Exit {
+    pub(crate) fn run_pou(&mut self, pou: usize, depth: u32, mut st: u16) -> Exit {
         let prog = self.prog;
         let Some(ops) = prog.pous.get(pou).map(|p| &p.ops) else {
             return Exit::Normal;
@@ -296,6 +301,12 @@ impl<'a> Machine<'a> {
                 // The caller's stack is `*st`, untouched by the callee (spec §3.2 CALL).
             }
             Op::Call(_) => {}
+            // The caller's stack is untouched here too; ENO follows s7-200-more §1.5.
+            Op::CallArgs(call) => {
+                if self.call_args(call, pf, depth, (pou, pc)).is_err() {
+                    return Step::Fatal;
+                }
+            }
             Op::Return { conditional } | Op::End { conditional } => {
                 if !*conditional || pf {
                     return Step::Return;
@@ -328,6 +339,7 @@ impl<'a> Machine<'a> {
             Op::ScrCondEnd { .. } => {}
             Op::ScrEnd | Op::InterlockEnd => self.set_gate(true),
             Op::Interlock => self.set_gate(pf),
+            Op::TaskStart => scan::task_start(self.img, self.layout),
             Op::OmronTimer { .. } | Op::OmronCounter { .. } | Op::Omron(_) => {
                 self.omron(op, frame, *st, pf);
             }

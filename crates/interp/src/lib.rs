@@ -8,6 +8,7 @@
 //! recorded run-time error, never a panic.
 
 mod boxes;
+mod call;
 mod exec;
 mod omron;
 mod operand;
@@ -30,6 +31,8 @@ pub struct Interpreter {
     max_call_depth: u32,
     /// The semantic switches (`Rules::IN_FORCE` unless a test chose others).
     rules: Rules,
+    /// What the scan prologue touches for this program.
+    plan: scan::ScanPlan,
 }
 
 impl Interpreter {
@@ -42,6 +45,7 @@ impl Interpreter {
             stack_mask: ((1u32 << program.logic_stack_depth) - 1) as u16,
             max_call_depth: u32::from(program.profile.profile().max_call_depth),
             rules: Rules::in_force(program.profile.profile().family),
+            plan: scan::ScanPlan::of(program),
         })
     }
 
@@ -65,7 +69,7 @@ impl Engine for Interpreter {
 
     fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
         let (img, layout) = image.split_mut();
-        scan::run(img, layout, t_ms, |img, layout| {
+        scan::run(img, layout, &self.plan, t_ms, |img, layout| {
             let mut m = exec::Machine::new(self, img, layout);
             m.run_main()
         })

@@ -4,10 +4,10 @@
 //! labels, FOR bodies and the ops after NEXT, SCRE (the target of CSCRE), and every op after a
 //! branch. Between two leaders the lowering keeps the logic stack and image bytes in SSA values.
 //!
-//! **Gate.** Power flow is `S0 AND gate`; outside SCR segments and interlocks the gate is 1, and
-//! knowing that at compile time removes a load and an AND from every coil. A forward dataflow
-//! over each POU computes, per op, whether the gate is 1 on every path reaching it, from each
-//! op's `gate_effect` (core's facts: LSCR and IL set it, SCRE and ILC open it). A POU is entered only by
+//! **Gate.** Power flow is `S0 AND gate`; outside SCR segments and Omron interlocks the gate is
+//! 1, and knowing that at compile time removes a load and an AND from every coil. A forward
+//! dataflow over each POU (each op's effect is core's `Op::gate_effect`) computes, per op,
+//! whether the gate is 1 on every path reaching it. A POU is entered only by
 //! a CALL that ran, i.e. with PF = 1 and hence gate = 1; a CALL leaves the gate at 1 when the
 //! callee provably returns with gate 1 (computed as a greatest fixpoint over all POUs, which is
 //! sound because call nesting is bounded).
@@ -184,11 +184,15 @@ fn gate_flow(pou: &Pou, exits_one: &[bool]) -> (Vec<bool>, bool) {
             continue;
         }
         let Some(inp) = state[i] else { continue };
-        let out = match (&pou.ops[i], pou.ops[i].gate_effect()) {
-            (Op::Call(p), _) => inp && exits_one.get(p.index()).copied().unwrap_or(false),
-            (_, GateEffect::Sets) => false,
-            (_, GateEffect::Opens) => true,
-            (_, GateEffect::Keeps) => inp,
+        let op = &pou.ops[i];
+        let out = match op.gate_effect() {
+            GateEffect::Keeps => inp,
+            GateEffect::Opens => true,
+            GateEffect::Sets => false,
+            GateEffect::Callee => match op.callee() {
+                Some(p) => inp && exits_one.get(p.index()).copied().unwrap_or(false),
+                None => false,
+            },
         };
         if pou.ops[i].may_exit() && !out {
             exit_ok = false;

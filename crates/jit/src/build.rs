@@ -8,10 +8,10 @@ use crate::helpers::{Helper, HelperIds};
 use crate::lower::cache::StoreLog;
 use crate::lower::state::{BlockState, FnState};
 use crate::lower::value::Stack;
-use crate::lower::{Env, Lower};
+use crate::lower::{Baked, Env, Lower};
 use crate::{JitError, JitOptions, OptLevel};
 use cranelift_codegen::ir::{
-    AbiParam, Function, InstBuilder, MemFlagsData, Signature, UserFuncName, Value,
+    AbiParam, Function, InstBuilder, Signature, UserFuncName, Value,
     condcodes::IntCC,
     types::{I32, I64},
 };
@@ -113,6 +113,8 @@ pub(crate) enum Part {
     Dispatch,
     /// Chunk `k` of a split POU.
     Chunk(usize),
+    /// The native many-scans loop (`run_scans`, `crate::scan_loop`); its POU index is unused.
+    ScanLoop,
 }
 
 /// Declares and defines every function. `dump` receives each function's CLIF before it is
@@ -123,8 +125,7 @@ pub(crate) fn build(
     opts: &JitOptions,
     rules: Rules,
     layout: &Layout,
-    layout_ptr: i64,
-    op_counter: Option<i64>,
+    baked: Baked,
     define: bool,
     dump: &mut dyn FnMut(&Function, usize, Part),
 ) -> Result<Built, JitError> {
@@ -166,11 +167,10 @@ pub(crate) fn build(
     let env = Env {
         prog,
         layout,
-        layout_ptr,
+        baked,
         pou_funcs: pou_funcs.clone(),
         helpers: &helpers,
         info,
-        op_counter,
         plans,
         hot_ops: opts.hot_ops,
         rules,
@@ -219,7 +219,16 @@ pub(crate) fn build(
         }
     }
     ctx.func = Function::with_name_signature(UserFuncName::user(0, u32::MAX), run_signature(cc));
-    build_run(&env, &mut module, &mut ctx, &mut fbc, pou_funcs[0]);
+    let scan_plan = stljit_runtime::scan::ScanPlan::of(prog);
+    crate::scan_loop::build_run(
+        &env,
+        &scan_plan,
+        &mut module,
+        &mut ctx,
+        &mut fbc,
+        pou_funcs[0],
+    );
+    dump(&ctx.func, 0, Part::ScanLoop);
     define_fn(&mut module, &mut ctx, run_id)?;
     Ok(Built { module, run_id })
 }
@@ -390,70 +399,6 @@ fn build_dispatch(
             }
         }
     }
-    b.seal_all_blocks();
-    let fc = module.isa().frontend_config();
-    b.finalize(fc);
-}
-
-/// The many-scans loop: `for i in 0..n { begin; main; end }`, stopping at the first scan whose
-/// status is not Ok; writes the number of scans run to `done_out`.
-fn build_run(
-    env: &Env<'_>,
-    module: &mut JITModule,
-    ctx: &mut Context,
-    fbc: &mut FunctionBuilderContext,
-    main: FuncId,
-) {
-    let mut b = FunctionBuilder::new(&mut ctx.func, fbc);
-    let entry = b.create_block();
-    b.append_block_params_for_function_params(entry);
-    b.switch_to_block(entry);
-    let p = b.block_params(entry).to_vec();
-    let (image, t0, dt, n, done) = (p[0], p[1], p[2], p[3], p[4]);
-    let begin = module.declare_func_in_func(env.helpers.id(Helper::ScanBegin), b.func);
-    let end = module.declare_func_in_func(env.helpers.id(Helper::ScanEnd), b.func);
-    let mainf = module.declare_func_in_func(main, b.func);
-    let layout = b.ins().iconst(I64, env.layout_ptr);
-    let head = b.create_block();
-    let i = b.append_block_param(head, I64);
-    let body = b.create_block();
-    let fin = b.create_block();
-    let (fin_i, fin_st) = (
-        b.append_block_param(fin, I64),
-        b.append_block_param(fin, I32),
-    );
-    let zero64 = b.ins().iconst(I64, 0);
-    b.ins().jump(head, &[zero64.into()]);
-
-    b.switch_to_block(head);
-    let more = b.ins().icmp(IntCC::UnsignedLessThan, i, n);
-    let ok = b.ins().iconst(I32, 0);
-    b.ins().brif(more, body, &[], fin, &[i.into(), ok.into()]);
-
-    b.switch_to_block(body);
-    let it = b.ins().imul(i, dt);
-    let t = b.ins().iadd(t0, it);
-    let i1 = b.ins().iadd_imm_s(i, 1);
-    let c = b.ins().call(begin, &[image, layout, t]);
-    let runs = b.inst_results(c)[0];
-    let run = b.create_block();
-    let stopped = b.ins().iconst(I32, 1);
-    b.ins()
-        .brif(runs, run, &[], fin, &[i1.into(), stopped.into()]);
-
-    b.switch_to_block(run);
-    let zero32 = b.ins().iconst(I32, 0);
-    let c = b.ins().call(mainf, &[image, zero32]);
-    let s = b.inst_results(c)[0];
-    let c = b.ins().call(end, &[image, layout, s]);
-    let st = b.inst_results(c)[0];
-    b.ins()
-        .brif(st, fin, &[i1.into(), st.into()], head, &[i1.into()]);
-
-    b.switch_to_block(fin);
-    b.ins()
-        .store(MemFlagsData::new().with_notrap(), fin_i, done, 0);
-    b.ins().return_(&[fin_st]);
     b.seal_all_blocks();
     let fc = module.isa().frontend_config();
     b.finalize(fc);

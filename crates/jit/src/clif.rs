@@ -79,17 +79,23 @@ fn annotated_clif(
         let Some(p) = program.pous.get(pou) else {
             return Ok(());
         };
-        let part = match part {
-            Part::Whole => String::new(),
-            Part::Dispatch => " dispatcher".to_string(),
-            Part::Chunk(k) => format!(" chunk {k}"),
-        };
-        let _ = writeln!(out, "; POU {pou}: {} ({:?}){part}", p.name, p.kind);
         let mut ctx = cranelift_codegen::Context::for_function(func.clone());
         if optimized {
             let mut cp = cranelift_codegen::control::ControlPlane::default();
             ctx.optimize(isa, &mut cp).map_err(|e| format!("{e:?}"))?;
         }
+        let part = match part {
+            Part::Whole => String::new(),
+            Part::Dispatch => " dispatcher".to_string(),
+            Part::Chunk(k) => format!(" chunk {k}"),
+            Part::ScanLoop => {
+                let _ = writeln!(out, "; the scan loop (run_scans)");
+                decorate_function(&mut PlainWriter, out, &ctx.func).map_err(|e| e.to_string())?;
+                out.push('\n');
+                return Ok(());
+            }
+        };
+        let _ = writeln!(out, "; POU {pou}: {} ({:?}){part}", p.name, p.kind);
         let mut wr = Annotated {
             prog: program,
             pou: p,
@@ -137,14 +143,13 @@ fn render(
             failure = Some(e);
         }
     };
-    // The layout address is only baked into shim calls; a dump never runs, so 0 is fine.
+    // The baked addresses only reach shim calls; a dump never runs, so 0 is fine.
     let built = build::build(
         program,
         opts,
         stljit_runtime::rules::Rules::IN_FORCE,
         &layout,
-        0,
-        None,
+        crate::lower::Baked::default(),
         false,
         &mut sink,
     )?;

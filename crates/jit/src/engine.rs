@@ -5,26 +5,28 @@
 #![allow(unsafe_code)]
 
 use crate::build::{self, Built};
+use crate::lower::Baked;
 use crate::{JitError, JitOptions};
 use cranelift_jit::JITModule;
-use cranelift_module::Module;
 use std::sync::atomic::{AtomicU64, Ordering};
+use stljit_core::ScanStatus;
 use stljit_core::ir::Program;
 use stljit_core::layout::Layout;
-use stljit_core::{PouId, ScanStatus};
 use stljit_runtime::rules::Rules;
-use stljit_runtime::{Engine, Image, scan};
+use stljit_runtime::scan::ScanPlan;
+use stljit_runtime::{Engine, Image};
 
-type PouFn = unsafe extern "C" fn(*mut u8, i32) -> i32;
 type RunFn = unsafe extern "C" fn(*mut u8, u64, u64, u64, *mut u64) -> i32;
 
 /// A program compiled to native code. Implements [`Engine`]; all state lives in the [`Image`].
 pub struct JitProgram {
     module: Option<JITModule>,
-    main: PouFn,
     run: RunFn,
     /// Boxed so its address, baked into the code for the runtime shims, never moves.
     layout: Box<Layout>,
+    /// What the scan prologue touches; boxed for the same reason, and only ever read by the
+    /// runtime's `scan::begin` through the address baked into the code.
+    _plan: Box<ScanPlan>,
     op_count: usize,
     /// The executed-op counter of an instrumented build ([`JitProgram::compile_counting`]).
     counter: Option<Box<AtomicU64>>,
@@ -74,48 +76,37 @@ impl JitProgram {
         rules: Rules,
     ) -> Result<JitProgram, JitError> {
         let layout = Box::new(Layout::of(program.profile));
-        let layout_ptr = &*layout as *const Layout as i64;
+        let plan = Box::new(ScanPlan::of(program));
         // An atomic so that the code's plain stores through its address are legal interior
         // mutation; it is only read between scans.
         let counter = count.then(|| Box::new(AtomicU64::new(0)));
-        let counter_ptr = counter.as_deref().map(|c| c.as_ptr() as i64);
+        let baked = Baked {
+            layout: &*layout as *const Layout as i64,
+            scan_plan: &*plan as *const ScanPlan as i64,
+            op_counter: counter.as_deref().map(|c| c.as_ptr() as i64),
+        };
         let Built { mut module, run_id } = build::build(
             program,
             opts,
             rules,
             &layout,
-            layout_ptr,
-            counter_ptr,
+            baked,
             true,
             &mut |_, _, _| {},
         )?;
         module
             .finalize_definitions()
             .map_err(|e| JitError::Codegen(format!("{e:?}")))?;
-        let main_id = module
-            .get_name("pou0")
-            .and_then(|n| match n {
-                cranelift_module::FuncOrDataId::Func(f) => Some(f),
-                cranelift_module::FuncOrDataId::Data(_) => None,
-            })
-            .ok_or_else(|| JitError::Codegen("main function missing".into()))?;
-        let main_ptr = module.get_finalized_function(main_id);
         let run_ptr = module.get_finalized_function(run_id);
-        // SAFETY: both addresses are finalized functions of `module` compiled with the
-        // signatures `build::pou_signature` / `build::run_signature` in the host's default
-        // calling convention, which is the C ABI these types name. `module` (and with it the
-        // code) lives as long as `self`.
-        let (main, run) = unsafe {
-            (
-                std::mem::transmute::<*const u8, PouFn>(main_ptr),
-                std::mem::transmute::<*const u8, RunFn>(run_ptr),
-            )
-        };
+        // SAFETY: the address is a finalized function of `module` compiled with the signature
+        // `build::run_signature` in the host's default calling convention, which is the C ABI
+        // this type names. `module` (and with it the code) lives as long as `self`.
+        let run = unsafe { std::mem::transmute::<*const u8, RunFn>(run_ptr) };
         Ok(JitProgram {
             module: Some(module),
-            main,
             run,
             layout,
+            _plan: plan,
             op_count: program.op_count(),
             counter,
         })
@@ -129,14 +120,21 @@ impl JitProgram {
     /// Whether `image` has the layout this program was compiled for (anything else is refused:
     /// the code addresses the image at constant offsets).
     fn fits(&self, image: &Image) -> bool {
-        *image.layout() == *self.layout && image.bytes().len() == self.layout.size as usize
+        // An image's layout is `Layout::of` its profile (the only constructor), so the profile
+        // names it: comparing it instead of the whole table keeps this check off the per-scan
+        // cost.
+        debug_assert!(
+            image.layout().profile != self.layout.profile || *image.layout() == *self.layout
+        );
+        image.layout().profile == self.layout.profile
+            && image.bytes().len() == self.layout.size as usize
     }
 
-    /// Runs up to `n` scans at times `t0_ms + i * scan_ms` in one native call, stopping after
-    /// the first scan that does not return [`ScanStatus::Ok`]. Returns the number of scans run
-    /// (including that last one) and the last status (`Ok` when all `n` ran, or `n` is 0).
-    /// Equivalent to calling [`Engine::scan`] in a loop.
-    pub fn run_scans(
+    /// [`Engine::run_scans`] in one native call (the compiled N-scan loop). Never inlined, so
+    /// that a profiler can count everything a scan costs from here (`valgrind --tool=callgrind
+    /// --toggle-collect='*native_scans*'`, `docs/performance.md`) without the driver.
+    #[inline(never)]
+    fn native_scans(
         &mut self,
         image: &mut Image,
         t0_ms: u64,
@@ -158,30 +156,6 @@ impl JitProgram {
             ScanStatus::try_from(st as u8).unwrap_or(ScanStatus::Fatal),
         )
     }
-
-    fn body(&self, bytes: &mut [u8]) -> ScanStatus {
-        let st = enter_main(self.main, bytes);
-        if st == 0 {
-            ScanStatus::Ok
-        } else {
-            ScanStatus::Fatal
-        }
-    }
-
-    /// The POU a native function belongs to, for diagnostics.
-    pub fn main_pou(&self) -> PouId {
-        PouId(0)
-    }
-}
-
-/// Runs the compiled main program once. Never inlined, so that a profiler can count exactly
-/// the program's own work (`valgrind --tool=callgrind --toggle-collect=*enter_main*`, see
-/// `docs/performance.md`), without the scan's begin/end or the driver.
-#[inline(never)]
-fn enter_main(main: PouFn, bytes: &mut [u8]) -> i32 {
-    // SAFETY: as in `run_scans`; the caller passes the whole image of the program's layout
-    // (checked by `fits`).
-    unsafe { main(bytes.as_mut_ptr(), 0) }
 }
 
 impl Engine for JitProgram {
@@ -190,11 +164,19 @@ impl Engine for JitProgram {
     }
 
     fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
-        if !self.fits(image) {
-            return ScanStatus::Fatal;
-        }
-        let (bytes, layout) = image.split_mut();
-        scan::run(bytes, layout, t_ms, |b, _| self.body(b))
+        // One turn of the native loop: its inline prologue and epilogue are the cheapest way
+        // through a scan (`scan_loop`), and the same bytes as `scan::run` around the body.
+        self.native_scans(image, t_ms, 0, 1).1
+    }
+
+    fn run_scans(
+        &mut self,
+        image: &mut Image,
+        t0_ms: u64,
+        scan_ms: u64,
+        n: u64,
+    ) -> (u64, ScanStatus) {
+        self.native_scans(image, t0_ms, scan_ms, n)
     }
 }
 

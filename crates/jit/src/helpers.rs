@@ -13,7 +13,7 @@ use cranelift_codegen::ir::{
 };
 use cranelift_codegen::isa::CallConv;
 use cranelift_module::{FuncId, Linkage, Module};
-use stljit_core::ir::{CounterKind, TimerKind};
+use stljit_core::ir::{CounterKind, OmronCounterKind, OmronTimerKind, TimerKind};
 use stljit_runtime::ffi;
 
 /// The arguments a helper takes before its own.
@@ -87,13 +87,26 @@ helpers! {
     CtudFast => "stljit_rt_ctud_fast", ffi::stljit_rt_ctud_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
     CounterReset => "stljit_rt_counter_reset", ffi::stljit_rt_counter_reset, ImageLayout, [I32, I32] -> I32;
     Pointer => "stljit_rt_pointer", ffi::stljit_rt_pointer, ImageLayout, [I32, I32, I32] -> I64;
-    ScanBegin => "stljit_rt_scan_begin", ffi::stljit_rt_scan_begin, ImageLayout, [I64] -> I32;
+    ScanBegin => "stljit_rt_scan_begin", ffi::stljit_rt_scan_begin, ImageLayout, [I64, I64] -> I32;
     ScanEnd => "stljit_rt_scan_end", ffi::stljit_rt_scan_end, ImageLayout, [I32] -> I32;
+    TaskStart => "stljit_rt_task_start", ffi::stljit_rt_task_start, ImageLayout, [] -> I32;
     /// `stljit_rt_value(op, sub, out, in1) -> u64` packed outcome (`ffi::ValueOp`).
     Value => "stljit_rt_value", ffi::stljit_rt_value, Nothing, [I32, I32, I32, I32] -> I64;
-    /// `stljit_rt_omron_{timer,counter}_fast(value, flag, state[, now], ctl, sv)`: pointers.
-    OmronTimerFast => "stljit_rt_omron_timer_fast", ffi::stljit_rt_omron_timer_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
-    OmronCounterFast => "stljit_rt_omron_counter_fast", ffi::stljit_rt_omron_counter_fast, Nothing, [I64, I64, I64, I32, I32] -> I32;
+    /// `stljit_rt_omron_<kind>_fast(value, flag, state, now, ctl, sv)`: pointers; one shim
+    /// per Omron timer kind.
+    OmronTimFast => "stljit_rt_omron_tim_fast", ffi::stljit_rt_omron_tim_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
+    OmronTimXFast => "stljit_rt_omron_timx_fast", ffi::stljit_rt_omron_timx_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
+    OmronTimHFast => "stljit_rt_omron_timh_fast", ffi::stljit_rt_omron_timh_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
+    OmronTimHXFast => "stljit_rt_omron_timhx_fast", ffi::stljit_rt_omron_timhx_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
+    OmronTmhhFast => "stljit_rt_omron_tmhh_fast", ffi::stljit_rt_omron_tmhh_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
+    OmronTmhhXFast => "stljit_rt_omron_tmhhx_fast", ffi::stljit_rt_omron_tmhhx_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
+    OmronTtimFast => "stljit_rt_omron_ttim_fast", ffi::stljit_rt_omron_ttim_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
+    OmronTtimXFast => "stljit_rt_omron_ttimx_fast", ffi::stljit_rt_omron_ttimx_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
+    /// `stljit_rt_omron_<kind>_fast(value, flag, state, ctl, sv)`: one per counter kind.
+    OmronCntFast => "stljit_rt_omron_cnt_fast", ffi::stljit_rt_omron_cnt_fast, Nothing, [I64, I64, I64, I32, I32] -> I32;
+    OmronCntXFast => "stljit_rt_omron_cntx_fast", ffi::stljit_rt_omron_cntx_fast, Nothing, [I64, I64, I64, I32, I32] -> I32;
+    OmronCntrFast => "stljit_rt_omron_cntr_fast", ffi::stljit_rt_omron_cntr_fast, Nothing, [I64, I64, I64, I32, I32] -> I32;
+    OmronCntrXFast => "stljit_rt_omron_cntrx_fast", ffi::stljit_rt_omron_cntrx_fast, Nothing, [I64, I64, I64, I32, I32] -> I32;
     /// `stljit_rt_omron_arith(op, a, b, cy) -> u64`: pure, no image.
     OmronArith => "stljit_rt_omron_arith", ffi::stljit_rt_omron_arith, Nothing, [I32, I32, I32, I32] -> I64;
     /// `stljit_rt_omron_box_refs(code, lhs_ref, lhs_val, rhs_ref, rhs_val, dst_ref, dst_off, words)`.
@@ -132,6 +145,32 @@ impl Helper {
             CounterKind::Up => Helper::CtuFast,
             CounterKind::Down => Helper::CtdFast,
             CounterKind::UpDown => Helper::CtudFast,
+        }
+    }
+
+    /// The fast shim of an Omron timer kind.
+    pub(crate) fn omron_timer_fast(kind: OmronTimerKind) -> Helper {
+        use OmronTimerKind::*;
+        match kind {
+            Tim => Helper::OmronTimFast,
+            TimX => Helper::OmronTimXFast,
+            TimH => Helper::OmronTimHFast,
+            TimHX => Helper::OmronTimHXFast,
+            Tmhh => Helper::OmronTmhhFast,
+            TmhhX => Helper::OmronTmhhXFast,
+            Ttim => Helper::OmronTtimFast,
+            TtimX => Helper::OmronTtimXFast,
+        }
+    }
+
+    /// The fast shim of an Omron counter kind.
+    pub(crate) fn omron_counter_fast(kind: OmronCounterKind) -> Helper {
+        use OmronCounterKind::*;
+        match kind {
+            Cnt => Helper::OmronCntFast,
+            CntX => Helper::OmronCntXFast,
+            Cntr => Helper::OmronCntrFast,
+            CntrX => Helper::OmronCntrXFast,
         }
     }
 

@@ -17,6 +17,7 @@ mod clif;
 mod engine;
 mod helpers;
 mod lower;
+mod scan_loop;
 
 pub use clif::{asm_text, clif_text, optimized_clif_text};
 pub use engine::JitProgram;

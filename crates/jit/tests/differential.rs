@@ -237,3 +237,77 @@ fn run_scans_equals_the_interpreter_scan_by_scan() {
         "no program stopped early: the early exit is untested"
     );
 }
+
+/// The native loop in stretches, as the simulation driver calls it between stimulus rows:
+/// stretches of 1–6 scans with a random scan time each, the stimulus of the stretch's first
+/// scan applied before it (inputs, AI, HMI writes), and a stretch that starts before the
+/// previous one's time (time running backwards), against the interpreter scan by scan. The
+/// inline prologue/epilogue (`scan_loop`) and the runtime's `scan::begin`/`end` must leave the
+/// same bytes whichever path each scan takes (first scan, STOP, fatal, clock timers).
+#[test]
+fn run_scans_in_stretches_equals_scan_by_scan() {
+    use stljit_core::ScanStatus;
+    use stljit_diff::oracle::{apply_stimulus, start_image};
+    use stljit_runtime::Engine;
+    let cfg = GenConfig {
+        scans: 40,
+        ..GenConfig::default()
+    };
+    let run = RunOptions::default();
+    let mut stretches = 0u64;
+    for seed in 0..SEEDS / 2 {
+        let case = case_from_seed(seed ^ 0x5EED, &cfg);
+        let mut interp =
+            stljit_interp::Interpreter::new(&case.program).expect("interpreter accepts it");
+        let opt = if seed % 2 == 0 {
+            stljit_jit::OptLevel::Speed
+        } else {
+            stljit_jit::OptLevel::None
+        };
+        let mut jit =
+            stljit_jit::JitProgram::compile(&case.program, &stljit_jit::JitOptions::at(opt))
+                .expect("JIT compiles");
+        let (mut want, mut got) = (
+            start_image(&case.program, &run),
+            start_image(&case.program, &run),
+        );
+        let (mut k, mut t, mut rng) = (0usize, 0u64, seed.wrapping_mul(0x9E37_79B9) | 1);
+        let mut next = || {
+            rng ^= rng << 13;
+            rng ^= rng >> 7;
+            rng ^= rng << 17;
+            rng
+        };
+        while k < case.stimulus.scans.len() {
+            let len = 1 + (next() % 6) as usize;
+            let dt = 1 + next() % 200;
+            // Now and then a stretch starts 50 ms before the last scan's time.
+            let t0 = if next() % 11 == 0 {
+                t.saturating_sub(50)
+            } else {
+                t
+            };
+            apply_stimulus(&mut want, &case.stimulus.scans[k]);
+            apply_stimulus(&mut got, &case.stimulus.scans[k]);
+            let mut status = ScanStatus::Ok;
+            let mut done = 0;
+            while done < len as u64 && status == ScanStatus::Ok {
+                status = interp.scan(&mut want, t0 + done * dt);
+                done += 1;
+            }
+            let (jdone, jstatus) = jit.run_scans(&mut got, t0, dt, len as u64);
+            assert_eq!((jdone, jstatus), (done, status), "seed {seed}, scan {k}");
+            assert!(
+                got.bytes() == want.bytes(),
+                "seed {seed}: images differ after the stretch starting at scan {k}"
+            );
+            stretches += 1;
+            if status != ScanStatus::Ok {
+                break;
+            }
+            k += len;
+            t = t0 + (len as u64 - 1) * dt;
+        }
+    }
+    assert!(stretches > SEEDS, "{stretches} stretches");
+}

@@ -92,6 +92,84 @@ fn timers_counters_and_interlock() {
     }
 }
 
+/// Every timer kind with constant set values (valid, non-BCD, zero, the largest), execution
+/// conditions shared between timers so that starts, running executions and resets meet in
+/// every order, and PVs rewritten by MOV: the resets and starts compiled code stores inline
+/// must leave the interpreter's bytes, hidden time state included.
+#[test]
+fn timers_with_constant_set_values() {
+    let mut body = String::new();
+    let kinds = [
+        "Tim", "TimX", "TimH", "TimHX", "Tmhh", "TmhhX", "Ttim", "TtimX",
+    ];
+    let svs = ["const(0x3)", "const(0x1A)", "const(0)", "const(0x9999)"];
+    let mut n = 0;
+    for kind in kinds {
+        for sv in svs {
+            body.push_str(&format!("load bit I.1.{}\n", n % 8));
+            if kind.starts_with("Ttim") {
+                body.push_str(&format!("load bit I.1.{}\n", (n + 3) % 8));
+            }
+            body.push_str(&format!(
+                "omron_timer kind={kind} timer=T{n} set_value={sv}\n"
+            ));
+            n += 1;
+        }
+    }
+    for (bit, t) in [(1, 1), (6, 6), (3, 13), (5, 20)] {
+        body.push_str(&format!(
+            "load bit I.0.{bit}\nomron move double=0 src=I.0 dst=TimerValue.{}\n",
+            2 * t
+        ));
+    }
+    body.push_str("load bit Flags.0.0\nassign bit=Q.1.0 immediate=0\n");
+    let p = program(&body, 0);
+    for seed in 0..8 {
+        check(&p, &stimulus(seed, 80));
+    }
+}
+
+/// Every counter kind with constant set values (valid, non-BCD, zero), the inputs shared
+/// between counters so that count edges, held inputs and resets meet in every order, and PVs
+/// rewritten by MOV (some non-BCD): the paths compiled code stores inline (a reset, a quiet
+/// execution) and the counts it calls for must leave the interpreter's bytes.
+#[test]
+fn counters_with_constant_set_values() {
+    let mut body = String::new();
+    let kinds = ["Cnt", "CntX", "Cntr", "CntrX"];
+    let svs = ["const(0x3)", "const(0x1A)", "const(0)", "const(0x9999)"];
+    let mut n = 0;
+    for kind in kinds {
+        for sv in svs {
+            let ring = kind.starts_with("Cntr");
+            let inputs: &[u32] = if ring {
+                &[n % 8, (n + 3) % 8, (n + 5) % 8]
+            } else {
+                &[n % 8, (n + 6) % 8]
+            };
+            for i in inputs {
+                body.push_str(&format!("load bit I.1.{i}\n"));
+            }
+            body.push_str(&format!(
+                "omron_counter kind={kind} counter=C{n} set_value={sv}\n"
+            ));
+            n += 1;
+        }
+    }
+    // Rewrite a few PVs from the inputs (a count then meets whatever pattern they have).
+    for (bit, c) in [(1, 1), (6, 6), (3, 11)] {
+        body.push_str(&format!(
+            "load bit I.0.{bit}\nomron move double=0 src=I.0 dst=CounterValue.{}\n",
+            2 * c
+        ));
+    }
+    body.push_str("load bit Flags.0.0\nassign bit=Q.1.0 immediate=0\n");
+    let p = program(&body, 0);
+    for seed in 0..8 {
+        check(&p, &stimulus(seed, 80));
+    }
+}
+
 #[test]
 fn data_boxes_and_every_arithmetic_op() {
     let mut body = String::from(

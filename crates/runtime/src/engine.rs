@@ -18,6 +18,28 @@ pub trait Engine {
     /// [`crate::scan::end`]. The harness writes inputs into the image's physical input copy
     /// before the call and reads outputs and memory after it.
     fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus;
+
+    /// Runs up to `n` scans at times `t0_ms + i · scan_ms`, stopping after the first scan that
+    /// does not return [`ScanStatus::Ok`]. Returns the number of scans run (that last one
+    /// included) and the last status (`Ok` when all ran or `n` is 0). Exactly `scan` in a
+    /// loop (times wrap past 2^64 ms, as the native loop's do); an engine overrides it where it
+    /// can run the stretch faster (the JIT's native loop).
+    fn run_scans(
+        &mut self,
+        image: &mut Image,
+        t0_ms: u64,
+        scan_ms: u64,
+        n: u64,
+    ) -> (u64, ScanStatus) {
+        for i in 0..n {
+            let t = t0_ms.wrapping_add(i.wrapping_mul(scan_ms));
+            let status = self.scan(image, t);
+            if status != ScanStatus::Ok {
+                return (i + 1, status);
+            }
+        }
+        (n, ScanStatus::Ok)
+    }
 }
 
 impl<E: Engine + ?Sized> Engine for Box<E> {
@@ -28,6 +50,10 @@ impl<E: Engine + ?Sized> Engine for Box<E> {
     fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
         (**self).scan(image, t_ms)
     }
+
+    fn run_scans(&mut self, image: &mut Image, t0: u64, dt: u64, n: u64) -> (u64, ScanStatus) {
+        (**self).run_scans(image, t0, dt, n)
+    }
 }
 
 impl<E: Engine + ?Sized> Engine for &mut E {
@@ -37,5 +63,9 @@ impl<E: Engine + ?Sized> Engine for &mut E {
 
     fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
         (**self).scan(image, t_ms)
+    }
+
+    fn run_scans(&mut self, image: &mut Image, t0: u64, dt: u64, n: u64) -> (u64, ScanStatus) {
+        (**self).run_scans(image, t0, dt, n)
     }
 }

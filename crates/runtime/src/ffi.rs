@@ -15,8 +15,9 @@
 //!
 //! | Shim | Rust counterpart | Returns |
 //! |---|---|---|
-//! | `stljit_rt_scan_begin(img, l, t_ms: u64)` | [`scan::begin`] | 1 run the program, 0 in STOP |
+//! | `stljit_rt_scan_begin(img, l, plan, t_ms: u64)` | [`scan::begin`] | 1 run the program, 0 in STOP |
 //! | `stljit_rt_scan_end(img, l, status: u32)` | [`scan::end`] | final `ScanStatus` as u32 |
+//! | `stljit_rt_task_start(img, l)` | [`scan::task_start`] | status |
 //! | `stljit_rt_timer(img, l, n, kind, input, gate, preset: i32)` | [`timer::execute`] | status |
 //! | `stljit_rt_timer_reset(img, l, first, count)` | [`timer::reset_range`] | status |
 //! | `stljit_rt_counter(img, l, n, kind, stack, gate, preset: i32)` | [`counter::execute`] | status |
@@ -37,15 +38,25 @@
 //! | `stljit_rt_omron_box(img, l, code, a, b, dst)` | [`crate::omron_image::run_box`] | status |
 //! | `stljit_rt_omron_box_refs(img, l, code, lhs_ref, lhs_val, rhs_ref, rhs_val, dst_ref, dst_off, words)` | [`crate::omron_image::run_box_refs`] | status |
 //! | `stljit_rt_omron_arith(op, a, b, cy)` | [`crate::omron::arith::execute`] | u64: result, flag writes |
-//! | `stljit_rt_omron_timer_fast(value, flag, state, now, ctl, sv)` | [`crate::omron_image::timer_step`] | packed flag writes |
-//! | `stljit_rt_omron_counter_fast(value, flag, state, ctl, sv)` | [`crate::omron_image::counter_step`] | packed flag writes |
+//! | `stljit_rt_omron_tim_fast(value, flag, state, now, ctl, sv)` | [`crate::omron_image::timer_step`] | packed flag writes |
+//! | `stljit_rt_omron_timx_fast(value, flag, state, now, ctl, sv)` | [`crate::omron_image::timer_step`] | packed flag writes |
+//! | `stljit_rt_omron_timh_fast(value, flag, state, now, ctl, sv)` | [`crate::omron_image::timer_step`] | packed flag writes |
+//! | `stljit_rt_omron_timhx_fast(value, flag, state, now, ctl, sv)` | [`crate::omron_image::timer_step`] | packed flag writes |
+//! | `stljit_rt_omron_tmhh_fast(value, flag, state, now, ctl, sv)` | [`crate::omron_image::timer_step`] | packed flag writes |
+//! | `stljit_rt_omron_tmhhx_fast(value, flag, state, now, ctl, sv)` | [`crate::omron_image::timer_step`] | packed flag writes |
+//! | `stljit_rt_omron_ttim_fast(value, flag, state, now, ctl, sv)` | [`crate::omron_image::timer_step`] | packed flag writes |
+//! | `stljit_rt_omron_ttimx_fast(value, flag, state, now, ctl, sv)` | [`crate::omron_image::timer_step`] | packed flag writes |
+//! | `stljit_rt_omron_cnt_fast(value, flag, state, ctl, sv)` | [`crate::omron_image::counter_step`] | packed flag writes |
+//! | `stljit_rt_omron_cntx_fast(value, flag, state, ctl, sv)` | [`crate::omron_image::counter_step`] | packed flag writes |
+//! | `stljit_rt_omron_cntr_fast(value, flag, state, ctl, sv)` | [`crate::omron_image::counter_step`] | packed flag writes |
+//! | `stljit_rt_omron_cntrx_fast(value, flag, state, ctl, sv)` | [`crate::omron_image::counter_step`] | packed flag writes |
 //!
 //! Enum arguments (`area`, and inside [`ValueOp`]'s encoding `op`, `func`, `conv`) are
 //! [`FfiCode`]s: the position in the enum's declaration order (`ArithOp`: Add 0, Sub 1, Mul 2,
 //! Div 3; `Area`: its position in `Area::ALL`).
 //!
-//! Two kinds of shim break the first convention on purpose. The six `_fast` shims
-//! (`ffi/fast.rs`) take pointers to the few bytes one timer or counter execution touches,
+//! Two kinds of shim break the first convention on purpose. The `_fast` shims (`ffi/fast.rs`
+//! and, for the Omron kinds, `ffi/omron.rs`; one per kind) take pointers to the few bytes one timer or counter execution touches,
 //! computed by the JIT from the layout at compile time, and they cannot panic, so they skip the
 //! layout, the slice and `catch_unwind`. The value shim (`ffi/value.rs`) takes no image at all:
 //! it returns the value and the SMB1 masks of one box computation for compiled code to apply.
@@ -232,17 +243,44 @@ fn kind_of<K: Copy>(all: &[K], code_of: fn(K) -> u8, code: u32) -> Option<K> {
     all.iter().copied().find(|&k| u32::from(code_of(k)) == code)
 }
 
-/// [`scan::begin`]: 1 when the program must run, 0 when the PLC is in STOP.
+/// [`scan::begin`] with the program's [`scan::ScanPlan`]: 1 when the program must run, 0 when
+/// the PLC is in STOP (or `plan` is null).
 ///
 /// # Safety
-/// See the module conventions: `image` points to `layout.size` exclusively borrowed bytes.
+/// See the module conventions: `image` points to `layout.size` exclusively borrowed bytes;
+/// `plan` is null or points to a live plan.
 pub unsafe extern "C" fn stljit_rt_scan_begin(
     image: *mut u8,
     layout: *const Layout,
+    plan: *const scan::ScanPlan,
     t_ms: u64,
 ) -> u32 {
+    // SAFETY: the caller's contract: `plan` is null or live, and only read.
+    let Some(plan) = (unsafe { plan.as_ref() }) else {
+        return 0;
+    };
     // SAFETY: forwarded caller contract.
-    unsafe { with_image(image, layout, |b, l| u32::from(scan::begin(b, l, t_ms))).unwrap_or(0) }
+    unsafe {
+        with_image(image, layout, |b, l| {
+            u32::from(scan::begin(b, l, plan, t_ms))
+        })
+        .unwrap_or(0)
+    }
+}
+
+/// [`scan::task_start`]: the resets before an Omron cyclic task after the first.
+///
+/// # Safety
+/// See the module conventions.
+pub unsafe extern "C" fn stljit_rt_task_start(image: *mut u8, layout: *const Layout) -> u32 {
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        with_image(image, layout, |b, l| {
+            scan::task_start(b, l);
+            RT_OK
+        })
+        .unwrap_or_else(|e| e)
+    }
 }
 
 /// [`scan::end`] with the body's status (0 ok, 2 fatal); returns the final status.

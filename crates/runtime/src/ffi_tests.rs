@@ -11,11 +11,12 @@ fn img() -> Image {
 #[test]
 fn scan_and_timer_through_the_shims() {
     let mut im = img();
+    let plan = scan::ScanPlan::every_timer(im.layout());
     let (b, l) = im.split_mut();
     let (p, lp) = (b.as_mut_ptr(), l as *const Layout);
     // SAFETY: p/lp come from a live image borrowed for the whole block.
     unsafe {
-        assert_eq!(stljit_rt_scan_begin(p, lp, 0), 1);
+        assert_eq!(stljit_rt_scan_begin(p, lp, &plan, 0), 1);
         assert_eq!(stljit_rt_timer(p, lp, 37, 1, 1, 1, -5), RT_OK);
         assert_eq!(stljit_rt_timer(p, lp, 64, 1, 1, 1, 5), 0x0091);
         assert_eq!(stljit_rt_timer(p, lp, 1, 9, 1, 1, 5), RT_BAD_ARGUMENT);
@@ -45,7 +46,12 @@ fn null_pointers_are_rejected() {
             stljit_rt_timer(std::ptr::null_mut(), &l, 1, 1, 1, 1, 1),
             RT_BAD_ARGUMENT
         );
-        assert_eq!(stljit_rt_scan_begin(std::ptr::null_mut(), &l, 0), 0);
+        let plan = scan::ScanPlan::every_timer(&l);
+        assert_eq!(stljit_rt_scan_begin(std::ptr::null_mut(), &l, &plan, 0), 0);
+        assert_eq!(
+            stljit_rt_scan_begin(std::ptr::null_mut(), &l, std::ptr::null(), 0),
+            0
+        );
         assert_eq!(
             stljit_rt_pointer_end(std::ptr::null_mut(), std::ptr::null(), 0x0600_0000),
             0

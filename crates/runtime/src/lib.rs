@@ -4,7 +4,8 @@
 //! [`block`], [`compare`], [`convert`], with the SMB1 rules in [`flags`]), the semantic switches
 //! and the gate policy ([`rules`]) and the [`Engine`] trait. The Omron CP rules (BCD,
 //! condition flags, moves, comparisons, arithmetic, timers and counters) are pure functions
-//! over plain values in [`omron`], which the engines wire to the image.
+//! over plain values in [`omron`], which the engines wire to the image ([`omron_image`]); which
+//! flags each Omron op can change is read off those rules by [`omron_written`].
 //!
 //! Everything is a function on the image bytes (`&mut [u8]` plus its [`Layout`]), so the
 //! interpreter calls it directly and the Cranelift JIT calls the same code through the
@@ -26,6 +27,7 @@ pub mod image;
 pub mod mem;
 pub mod omron;
 pub mod omron_image;
+pub mod omron_written;
 pub mod pointer;
 pub mod rules;
 pub mod scan;

@@ -86,9 +86,47 @@ pub fn timer_step(
     writes
 }
 
+/// Which logic-stack level feeds each input of an Omron counter (spec §3.3): CNT counts on
+/// `S1` and resets on `S0`; CNTR increments on `S2`, decrements on `S1`, resets on `S0`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CounterLevels {
+    /// The count (CNT) or increment (CNTR) input.
+    pub count: usize,
+    /// CNTR's decrement input.
+    pub dec: Option<usize>,
+    /// The reset input.
+    pub reset: usize,
+}
+
+impl CounterLevels {
+    /// The levels of `kind`.
+    pub fn of(kind: OmronCounterKind) -> CounterLevels {
+        if kind.ring() {
+            CounterLevels {
+                count: 2,
+                dec: Some(1),
+                reset: 0,
+            }
+        } else {
+            CounterLevels {
+                count: 1,
+                dec: None,
+                reset: 0,
+            }
+        }
+    }
+
+    /// The inputs in [`OmronCounter::step`]'s order ([`crate::omron::counter::COUNT`], `DEC`,
+    /// `RESET`) read off the logic stack `stack` (bit i = `S_i`).
+    pub fn inputs(self, stack: u16) -> [bool; 3] {
+        let s = |i: usize| stack >> i & 1 != 0;
+        [s(self.count), self.dec.is_some_and(s), s(self.reset)]
+    }
+}
+
 /// Executes Omron counter instruction `kind` on one counter's bytes with the logic stack
-/// `stack` (CNT: count `S1`, reset `S0`; CNTR: increment `S2`, decrement `S1`, reset `S0`)
-/// under `gate`, set value `sv`; returns the condition-flag writes.
+/// `stack` (levels as [`CounterLevels`] says) under `gate`, set value `sv`; returns the
+/// condition-flag writes.
 pub fn counter_step(
     (value, flag, state): (
         &mut [u8; 2],
@@ -106,12 +144,7 @@ pub fn counter_step(
         prev_count: state[CounterState::PREV_UP as usize] != 0,
         prev_dec: state[CounterState::PREV_DOWN as usize] != 0,
     };
-    let s = |i: u16| stack & (1 << i) != 0;
-    let inputs = if kind.ring() {
-        [s(2), s(1), s(0)]
-    } else {
-        [s(1), false, s(0)]
-    };
+    let inputs = CounterLevels::of(kind).inputs(stack);
     let writes = counter.step(kind, inputs, sv, gate);
     *value = counter.pv.to_be_bytes();
     *flag = u8::from(counter.flag);
@@ -150,35 +183,122 @@ pub fn timer_reset_outcome(kind: OmronTimerKind, sv: u16) -> Option<([u8; 2], u8
     (outcome(idle)? == a).then_some(a)
 }
 
-/// What an Omron counter with the constant set value `sv` does when all its inputs are OFF
-/// under an open gate, if that does not depend on its state: PV and flag are kept, each private
-/// state byte is either set to a constant (`Some`) or kept (`None`), and the flag writes.
-/// Compiled code uses it to skip the call when no input is ON; like [`timer_reset_outcome`]
-/// it is `counter_step` itself, run on two different states.
-pub fn counter_idle_outcome(
-    kind: OmronCounterKind,
-    sv: u16,
-) -> Option<([Option<u8>; COUNTER_STATE_SIZE as usize], FlagWrites)> {
-    let run = |start: CounterBytes| {
-        let mut c = start;
-        let w = counter_step((&mut c.0, &mut c.1, &mut c.2), kind, 0, Gate::Open, sv);
-        (c, w)
-    };
-    let busy: CounterBytes = ([0x12, 0x34], 1, [1; COUNTER_STATE_SIZE as usize]);
-    let idle: CounterBytes = ([0, 0], 0, [0; COUNTER_STATE_SIZE as usize]);
-    let ((a, wa), (b, wb)) = (run(busy), run(idle));
-    if wa != wb || (a.0, a.1) != (busy.0, busy.1) || (b.0, b.1) != (idle.0, idle.1) {
+/// What a TIM-family timer with the constant set value `sv` does when its execution condition
+/// is ON under an open gate and it is not running (a start, §2.12), if that does not depend on
+/// its previous PV and flag: the PV word, the completion flag and the flag writes it stores;
+/// `running` becomes 1, the unconverted milliseconds 0 and the time of the last execution the
+/// scan's time (`TimerState::LAST`, the native-endian `T_NOW`). Like [`timer_reset_outcome`]
+/// it is `timer_step` itself, run on several states at two times.
+pub fn timer_start_outcome(kind: OmronTimerKind, sv: u16) -> Option<([u8; 2], u8, FlagWrites)> {
+    if kind.totalizing() {
         return None;
     }
-    let mut bytes = [None; COUNTER_STATE_SIZE as usize];
-    for (i, slot) in bytes.iter_mut().enumerate() {
-        if a.2[i] == b.2[i] {
-            *slot = Some(a.2[i]);
-        } else if a.2[i] != busy.2[i] || b.2[i] != idle.2[i] {
-            return None;
+    let (run, rem, last) = (
+        TimerState::RUN as usize,
+        TimerState::TOF as usize,
+        TimerState::LAST as usize,
+    );
+    let mut seen = Seen::Nothing;
+    for (pv, flag, fill) in [
+        ([0x12, 0x34], 1, 0xA5),
+        ([0, 0], 0, 0),
+        ([0xAB, 0xCD], 1, 0x3C),
+    ] {
+        for t in [1_000u64, 0x0123_4567_89AB] {
+            let mut state = [fill; TIMER_STATE_SIZE as usize];
+            state[run] = 0;
+            let mut b: TimerBytes = (pv, flag, state);
+            let w = timer_step((&mut b.0, &mut b.1, &mut b.2), t, kind, 1, Gate::Open, sv);
+            let mut want = state;
+            want[run] = 1;
+            want[rem] = 0;
+            want[last..last + 8].copy_from_slice(&t.to_ne_bytes());
+            seen = seen.and((b.2 == want).then_some((b.0, b.1, w)));
         }
     }
-    Some((bytes, wa))
+    seen.always()
+}
+
+/// What an Omron counter with a constant set value does under an open gate on the two paths
+/// whose outcome does not depend on its PV and flag. On both, the count-input memories take the
+/// inputs (`PREV_UP` := the count input; CNTR: `PREV_DOWN` := the decrement input; the rest of
+/// the private state is kept).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CounterFixed {
+    /// Reset input ON: the PV and completion flag bytes stored and the flag writes (`None`:
+    /// they depend on the state, e.g. a non-BCD SV makes the reset do nothing).
+    pub reset: Option<([u8; 2], u8, FlagWrites)>,
+    /// Reset OFF and no count edge (no count input ON whose memory is OFF): PV and flag kept;
+    /// the flag writes.
+    pub quiet: Option<FlagWrites>,
+}
+
+/// The [`CounterFixed`] outcomes of counter `kind` with the constant set value `sv`. Compiled
+/// code stores them inline and calls the runtime only for a count; they are `counter_step`
+/// itself, run on every input and memory combination from several PV/flag states, and a path
+/// whose outcome differs between states (or whose memories are not the inputs) is `None`.
+pub fn counter_fixed(kind: OmronCounterKind, sv: u16) -> CounterFixed {
+    let levels = CounterLevels::of(kind);
+    let (up, down) = (
+        CounterState::PREV_UP as usize,
+        CounterState::PREV_DOWN as usize,
+    );
+    let states: [([u8; 2], u8); 3] = [([0x12, 0x34], 1), ([0, 0], 0), ([0xAB, 0xCD], 0)];
+    let mut reset = Seen::Nothing;
+    let mut quiet = Seen::Nothing;
+    for stack in 0..8u16 {
+        let [count, dec, rst] = levels.inputs(stack);
+        for prev in 0..4u8 {
+            for &(pv, flag) in &states {
+                let mut state = [0x5A; COUNTER_STATE_SIZE as usize];
+                state[up] = prev & 1;
+                state[down] = prev >> 1;
+                let mut c: CounterBytes = (pv, flag, state);
+                let w = counter_step((&mut c.0, &mut c.1, &mut c.2), kind, stack, Gate::Open, sv);
+                let mut memories = state;
+                memories[up] = u8::from(count);
+                if levels.dec.is_some() {
+                    memories[down] = u8::from(dec);
+                }
+                let recorded = c.2 == memories;
+                let counts = (count && state[up] == 0) || (dec && state[down] == 0);
+                if rst {
+                    reset = reset.and(recorded.then_some((c.0, c.1, w)));
+                } else if !counts {
+                    quiet = quiet.and((recorded && (c.0, c.1) == (pv, flag)).then_some(w));
+                }
+            }
+        }
+    }
+    CounterFixed {
+        reset: reset.always(),
+        quiet: quiet.always(),
+    }
+}
+
+/// The outcomes one path of [`counter_fixed`] had so far.
+enum Seen<T> {
+    Nothing,
+    Always(T),
+    Varies,
+}
+
+impl<T: PartialEq> Seen<T> {
+    /// With one more outcome (`None`: one that does not qualify).
+    fn and(self, v: Option<T>) -> Seen<T> {
+        match (self, v) {
+            (Seen::Nothing, Some(v)) => Seen::Always(v),
+            (Seen::Always(a), Some(b)) if a == b => Seen::Always(a),
+            _ => Seen::Varies,
+        }
+    }
+
+    fn always(self) -> Option<T> {
+        match self {
+            Seen::Always(v) => Some(v),
+            Seen::Nothing | Seen::Varies => None,
+        }
+    }
 }
 
 /// Copies `N` image bytes from `at` (zeros past the end, which the callers' range checks rule
@@ -546,17 +666,49 @@ mod tests {
     }
 
     #[test]
-    fn an_idle_counter_only_records_its_inputs() {
-        // §3.3: no reset and no count edge: PV and flag kept, the input memories take 0, ER OFF.
-        let up = CounterState::PREV_UP as usize;
-        let down = CounterState::PREV_DOWN as usize;
-        let (bytes, w) = counter_idle_outcome(OmronCounterKind::Cnt, 0x0005).unwrap();
-        assert_eq!(bytes[up], Some(0));
-        assert_eq!(w, FlagWrites::OK);
-        let (bytes, _) = counter_idle_outcome(OmronCounterKind::CntrX, 4).unwrap();
-        assert_eq!((bytes[up], bytes[down]), (Some(0), Some(0)));
-        // A non-BCD SV: ER ON, the edge memories are still updated (§3.3 design).
-        let (_, w) = counter_idle_outcome(OmronCounterKind::Cnt, 0x00A0).unwrap();
-        assert_eq!(w, FlagWrites::ERROR);
+    fn a_timer_start_is_state_free_only_with_a_valid_set_value() {
+        // §2.12: EC ON, not running → PV := SV, flag := (SV = 0), running, rem 0, last := t.
+        let start = |kind, sv| timer_start_outcome(kind, sv);
+        assert_eq!(
+            start(OmronTimerKind::Tim, 0x0030),
+            Some(([0x00, 0x30], 0, FlagWrites::OK))
+        );
+        assert_eq!(
+            start(OmronTimerKind::TimHX, 0),
+            Some(([0, 0], 1, FlagWrites::OK))
+        );
+        // A non-BCD SV: ER and nothing changes, so the outcome is the state's.
+        assert_eq!(start(OmronTimerKind::Tmhh, 0x00A0), None);
+        assert_eq!(start(OmronTimerKind::TtimX, 5), None);
+    }
+
+    #[test]
+    fn a_counter_reset_and_a_quiet_execution_are_state_free() {
+        // §3.3: reset ON → PV := SV (CNT) or 0 (CNTR), flag OFF, ER OFF; no reset and no count
+        // edge → PV and flag kept, ER OFF; on both the input memories take the inputs.
+        let f = counter_fixed(OmronCounterKind::Cnt, 0x0005);
+        assert_eq!(f.reset, Some(([0x00, 0x05], 0, FlagWrites::OK)));
+        assert_eq!(f.quiet, Some(FlagWrites::OK));
+        let f = counter_fixed(OmronCounterKind::CntrX, 4);
+        assert_eq!(f.reset, Some(([0, 0], 0, FlagWrites::OK)));
+        assert_eq!(f.quiet, Some(FlagWrites::OK));
+        // A non-BCD SV: ER ON and the execution does nothing (§1.9), so a reset keeps PV and
+        // flag (state-dependent); a quiet execution is ER with the memories still updated.
+        let f = counter_fixed(OmronCounterKind::Cnt, 0x00A0);
+        assert_eq!(f.reset, None);
+        assert_eq!(f.quiet, Some(FlagWrites::ERROR));
+    }
+
+    #[test]
+    fn counter_levels_follow_the_spec() {
+        // CNT: count S1, reset S0; CNTR: increment S2, decrement S1, reset S0.
+        assert_eq!(
+            CounterLevels::of(OmronCounterKind::Cnt).inputs(0b010),
+            [true, false, false]
+        );
+        assert_eq!(
+            CounterLevels::of(OmronCounterKind::CntrX).inputs(0b011),
+            [false, true, true]
+        );
     }
 }

@@ -13,92 +13,253 @@
 //!   deltas saturate at 0 and `T_PREV` records the previous time as is.
 //! * **Watchdog.** Every loop-budget event increments `LOOP_COUNT`; the event that makes it
 //!   exceed `LOOP_LIMIT` is fatal (so a limit of N allows exactly N back-edges per scan).
+//!
+//! What the prologue and epilogue touch is proportional to the program, not to the profile: a
+//! [`ScanPlan`] computed once per program lists the timers the clock refreshes (only the 1-ms
+//! and 10-ms timers the program declares can change at a scan start), and the I/O images are
+//! copied as whole blocks. A program-agnostic caller uses [`ScanPlan::every_timer`], which
+//! visits every timer as the rule is written; both plans give the same bytes for any image a
+//! program's cold start produced, because only declared timers have a kind (`Image::cold_start`).
 
 use crate::mem;
 use crate::timer;
-use stljit_core::ir::Loc;
-use stljit_core::layout::{Layout, Sched, TimerState};
+use stljit_core::ir::{Loc, Program};
+use stljit_core::layout::{Layout, SCHED_SIZE, Sched, TimerState};
 use stljit_core::omron::{self, SystemBit};
+use stljit_core::profile::Resolution;
 use stljit_core::{Area, ErrorCode, Family, FatalCode, ScanStatus};
 
-/// Steps 1–4 of a scan plus the resets of step 5. Returns `false` (and does only the STOP rule
-/// of the module doc) when the image is in STOP; the program must then not run.
-pub fn begin(img: &mut [u8], layout: &Layout, t_ms: u64) -> bool {
-    if mem::sched_u8(img, layout, Sched::MODE) != 0 {
-        let out = layout.phys_out;
-        for i in 0..layout.area_size(Area::Q) {
-            mem::set_u8(img, out + i, 0);
+/// The time-step fields besides `T_PREV`/`T_NOW` (spec §2.1 step 1): `(field, div)`, each
+/// `t / div − t_prev / div` saturated to `u32`, 0 in the first scan.
+pub const DELTAS: [(u32, u64); 3] = [(Sched::D1, 1), (Sched::D10, 10), (Sched::D100, 100)];
+
+/// The gate (SCR enable, Omron interlock and step) at the start of every task: open.
+pub const GATE_OPEN: (u32, u8) = (Sched::SCR_ENABLE, 1);
+
+/// The one-byte resets of step 5, `(field, value)`; the `u32` `LOOP_COUNT` is reset to 0 too.
+pub const RESETS: [(u32, u8); 3] = [(Sched::ENO, 0), GATE_OPEN, (Sched::STOP_REQ, 0)];
+
+/// SMB0 (spec §2.3): the bits always ON (SM0.0, SM0.7).
+pub const SMB0_ALWAYS: u8 = 0x81;
+/// SMB0's clock bits `(bit, period in ms)`: ON in the first half of each period (SM0.4, SM0.5),
+/// that is while `t / (period / 2)` is even.
+pub const SMB0_CLOCKS: [(u8, u64); 2] = [(4, 60_000), (5, 1000)];
+/// SMB0's scan-parity bit (SM0.6): ON on even scan numbers.
+pub const SMB0_EVEN_SCAN: u8 = 6;
+/// SMB0's first-scan bits (SM0.1, SM0.3); SM0.2 ([`SMB0_LOST`]) also when retentive data was
+/// lost.
+pub const SMB0_FIRST: u8 = 0b1010;
+/// SM0.2: retentive data lost, in the first scan only.
+pub const SMB0_LOST: u8 = 0b100;
+
+/// SMB0 for a scan at `t_ms` with number `scan_no`.
+fn smb0(t_ms: u64, scan_no: u64, first: bool, lost: bool) -> u8 {
+    let mut v = SMB0_ALWAYS;
+    if first {
+        v |= SMB0_FIRST | if lost { SMB0_LOST } else { 0 };
+    }
+    for (bit, period) in SMB0_CLOCKS {
+        v |= u8::from((t_ms / (period / 2)).is_multiple_of(2)) << bit;
+    }
+    v | u8::from(scan_no.is_multiple_of(2)) << SMB0_EVEN_SCAN
+}
+
+/// What one program's scan prologue touches (module doc): computed once, read every scan.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ScanPlan {
+    /// The profile's family (which system bits step 3 writes).
+    family: Family,
+    /// The timers step 4 refreshes from the clock, in ascending number.
+    clock_timers: Box<[u16]>,
+}
+
+impl ScanPlan {
+    /// The plan of `program`: its 1-ms and 10-ms timers, where the profile's family refreshes
+    /// timers from the clock (S7; Omron timers update only when they execute).
+    pub fn of(program: &Program) -> ScanPlan {
+        let profile = program.profile.profile();
+        let mut clock_timers: Vec<u16> = if profile.family.clock_refreshed_timers() {
+            program
+                .timers
+                .iter()
+                .filter(|t| t.id.0 < profile.timers)
+                .filter(|t| matches!(t.resolution, Resolution::Ms1 | Resolution::Ms10))
+                .map(|t| t.id.0)
+                .collect()
+        } else {
+            Vec::new()
+        };
+        clock_timers.sort_unstable();
+        clock_timers.dedup();
+        ScanPlan {
+            family: profile.family,
+            clock_timers: clock_timers.into(),
+        }
+    }
+
+    /// The timers step 4 refreshes from the clock.
+    pub fn clock_timers(&self) -> &[u16] {
+        &self.clock_timers
+    }
+
+    /// The profile family the plan is for.
+    pub fn family(&self) -> Family {
+        self.family
+    }
+
+    /// Every timer of `layout`'s profile: the rule as written, for callers that run an image
+    /// without its program (tests, tools).
+    pub fn every_timer(layout: &Layout) -> ScanPlan {
+        let family = layout.profile.profile().family;
+        let n = if family.clock_refreshed_timers() {
+            layout.area_size(Area::TimerBit).min(u32::from(u16::MAX)) as u16
+        } else {
+            0
+        };
+        ScanPlan {
+            family,
+            clock_timers: (0..n).collect(),
+        }
+    }
+}
+
+/// The scheduler block of an image (`Sched`), bounds-checked once: every field is at a
+/// constant offset inside the fixed-size array, so the accessors' own checks fold away.
+struct SchedBlock<'a>(&'a mut [u8; SCHED_SIZE as usize]);
+
+impl<'a> SchedBlock<'a> {
+    /// The block of `img`, or `None` if the image is too short for its layout (never for an
+    /// image of that layout).
+    fn of(img: &'a mut [u8], layout: &Layout) -> Option<SchedBlock<'a>> {
+        let at = layout.sched as usize;
+        let bytes = img.get_mut(at..at.checked_add(SCHED_SIZE as usize)?)?;
+        bytes.try_into().ok().map(SchedBlock)
+    }
+
+    fn u8(&self, field: u32) -> u8 {
+        mem::get_u8(self.0, field)
+    }
+
+    fn set_u8(&mut self, field: u32, v: u8) {
+        mem::set_u8(self.0, field, v);
+    }
+
+    fn u64(&self, field: u32) -> u64 {
+        mem::get_u64_ne(self.0, field)
+    }
+
+    fn set_u64(&mut self, field: u32, v: u64) {
+        mem::set_u64_ne(self.0, field, v);
+    }
+
+    fn set_u32(&mut self, field: u32, v: u32) {
+        mem::set_u32_ne(self.0, field, v);
+    }
+}
+
+/// Copies `len` image bytes from `src` to `dst` as one block (nothing when either range is
+/// outside the image; the layout's ranges never are).
+fn copy_block(img: &mut [u8], src: u32, dst: u32, len: u32) {
+    let (src, dst, len) = (src as usize, dst as usize, len as usize);
+    if src.saturating_add(len) <= img.len() && dst.saturating_add(len) <= img.len() {
+        img.copy_within(src..src + len, dst);
+    }
+}
+
+/// Steps 1–4 of a scan plus the resets of step 5, for the program whose plan is `plan`.
+/// Returns `false` (and does only the STOP rule of the module doc) when the image is in STOP;
+/// the program must then not run.
+pub fn begin(img: &mut [u8], layout: &Layout, plan: &ScanPlan, t_ms: u64) -> bool {
+    let Some(mut sched) = SchedBlock::of(img, layout) else {
+        return false;
+    };
+    if sched.u8(Sched::MODE) != 0 {
+        let out = layout.phys_out as usize;
+        let len = layout.area_size(Area::Q) as usize;
+        if let Some(q) = img.get_mut(out..out.saturating_add(len)) {
+            q.fill(0);
         }
         return false;
     }
-    let first = mem::sched_u8(img, layout, Sched::FIRST_SCAN) != 0;
+    let first = sched.u8(Sched::FIRST_SCAN) != 0;
 
     // Step 1: time. Scan 0 has t_prev = 0 and no deltas (spec §2.1).
-    let (t_prev, d1, d10, d100) = if first {
-        (0, 0, 0, 0)
-    } else {
-        let prev = mem::get_u64_ne(img, layout.sched(Sched::T_NOW));
-        let delta = |div: u64| {
-            let d = (t_ms / div).saturating_sub(prev / div);
-            u32::try_from(d).unwrap_or(u32::MAX)
+    let t_prev = if first { 0 } else { sched.u64(Sched::T_NOW) };
+    for (field, div) in DELTAS {
+        let d = if first {
+            0
+        } else {
+            (t_ms / div).saturating_sub(t_prev / div)
         };
-        (prev, delta(1), delta(10), delta(100))
-    };
-    mem::set_u64_ne(img, layout.sched(Sched::T_PREV), t_prev);
-    mem::set_u64_ne(img, layout.sched(Sched::T_NOW), t_ms);
-    mem::set_sched_u32(img, layout, Sched::D1, d1);
-    mem::set_sched_u32(img, layout, Sched::D10, d10);
-    mem::set_sched_u32(img, layout, Sched::D100, d100);
+        sched.set_u32(field, u32::try_from(d).unwrap_or(u32::MAX));
+    }
+    sched.set_u64(Sched::T_PREV, t_prev);
+    sched.set_u64(Sched::T_NOW, t_ms);
+    // Step 5 resets (nothing below reads them).
+    for (field, v) in RESETS {
+        sched.set_u8(field, v);
+    }
+    sched.set_u32(Sched::LOOP_COUNT, 0);
+    let scan_no = sched.u64(Sched::SCAN_NO);
+    let lost = sched.u8(Sched::RETENTIVE_LOST) != 0;
 
     // Step 2: the I image is overwritten from the physical inputs (AI is latched by the harness
     // writing the AI area directly).
-    let (src, dst) = (layout.phys_in, layout.base(Area::I));
-    for i in 0..layout.area_size(Area::I) {
-        let b = mem::get_u8(img, src + i);
-        mem::set_u8(img, dst + i, b);
-    }
+    copy_block(
+        img,
+        layout.phys_in,
+        layout.base(Area::I),
+        layout.area_size(Area::I),
+    );
 
-    let profile = layout.profile.profile();
-    match profile.family {
+    match plan.family {
         Family::S7 => {
             // Step 3: SMB0 (spec §2.3). SMB1 keeps its bits.
-            let scan_no = mem::get_u64_ne(img, layout.sched(Sched::SCAN_NO));
-            let lost = mem::sched_u8(img, layout, Sched::RETENTIVE_LOST) != 0;
-            let smb0 = 1
-                | u8::from(first) << 1
-                | u8::from(first && lost) << 2
-                | u8::from(first) << 3
-                | u8::from(t_ms % 60_000 < 30_000) << 4
-                | u8::from(t_ms % 1000 < 500) << 5
-                | u8::from(scan_no.is_multiple_of(2)) << 6
-                | 1 << 7;
-            mem::set_u8(img, layout.base(Area::SM), smb0);
+            let v = smb0(t_ms, scan_no, first, lost);
+            mem::set_u8(img, layout.base(Area::SM), v);
         }
-        Family::Omron => omron_system_bits(img, layout, t_ms, first),
+        Family::Omron => {
+            omron_system_bits(img, layout, t_ms, first);
+            clear_condition_flags(img, layout);
+        }
     }
 
     // Step 4: clock-driven refresh of the 1-ms and 10-ms timers in use.
-    if profile.family.clock_refreshed_timers() {
-        let timers = layout.area_size(Area::TimerBit);
-        for n in 0..timers {
-            let n = n as u16;
-            if mem::get_u8(img, layout.timer_state(n) + TimerState::KIND) != 0 {
-                timer::refresh(img, layout, n);
-            }
+    for &n in plan.clock_timers.iter() {
+        if mem::get_u8(img, layout.timer_state(n) + TimerState::KIND) != 0 {
+            timer::refresh(img, layout, n);
         }
     }
-
-    // Step 5 resets.
-    mem::set_sched_u8(img, layout, Sched::ENO, 0);
-    mem::set_sched_u8(img, layout, Sched::SCR_ENABLE, 1);
-    mem::set_sched_u8(img, layout, Sched::STOP_REQ, 0);
-    mem::set_sched_u32(img, layout, Sched::LOOP_COUNT, 0);
     true
 }
 
-/// The Omron system bits at the start of the (single cyclic) task, omron-cp.md §2.2 step 3 and
-/// §2.3: every condition flag cleared, `P_On` = 1, `P_Off` = 0, the clock pulses from `t_ms`
-/// (50 % duty, ON half first, §2.12) and `A200.11` (`P_First_Cycle`) ON in the first cycle only.
+/// What is reset at the start of every task (omron-cp.md §2.3): the instruction conditions
+/// are released (the gate, which an S7 SCR segment or an Omron interlock or step closes, is
+/// [`GATE_OPEN`]) and the condition flags cleared. [`begin`] does both for the scan's first task
+/// (the gate among its [`RESETS`]); `Op::TaskStart` runs this before every later cyclic task
+/// of an Omron program.
+pub fn task_start(img: &mut [u8], layout: &Layout) {
+    let (gate, open) = GATE_OPEN;
+    mem::set_sched_u8(img, layout, gate, open);
+    clear_condition_flags(img, layout);
+}
+
+/// The Omron condition flags (§1.8 rule 2: cleared at every task start) OFF; the system bits
+/// sharing their bytes are kept. Nothing on a profile without the `Flags` area.
+fn clear_condition_flags(img: &mut [u8], layout: &Layout) {
+    if layout.area_size(Area::Flags) >= 2 {
+        let at = layout.base(Area::Flags);
+        let word = u16::from_le_bytes([mem::get_u8(img, at), mem::get_u8(img, at + 1)]);
+        let [lo, hi] = (word & !SystemBit::CONDITION_FLAGS).to_le_bytes();
+        mem::set_u8(img, at, lo);
+        mem::set_u8(img, at + 1, hi);
+    }
+}
+
+/// The Omron system bits of the cycle, omron-cp.md §2.2 step 3: `P_On` = 1, `P_Off` = 0, the
+/// clock pulses from `t_ms` (50 % duty, ON half first, §2.12) and `A200.11`
+/// (`P_First_Cycle`) ON in the first cycle only. The condition flags that share their bytes
+/// are kept here; `clear_condition_flags` clears them.
 fn omron_system_bits(img: &mut [u8], layout: &Layout, t_ms: u64, first: bool) {
     let mut bits: u32 = 1 << SystemBit::On.index();
     for (pulse, period) in SystemBit::PULSES {
@@ -107,8 +268,15 @@ fn omron_system_bits(img: &mut [u8], layout: &Layout, t_ms: u64, first: bool) {
         }
     }
     let base = layout.base(Area::Flags);
-    for (i, b) in bits.to_le_bytes().into_iter().enumerate() {
-        mem::set_u8(img, base + i as u32, b);
+    let flags = u32::from(SystemBit::CONDITION_FLAGS);
+    for (i, (b, keep)) in bits
+        .to_le_bytes()
+        .into_iter()
+        .zip(flags.to_le_bytes())
+        .enumerate()
+    {
+        let at = base + i as u32;
+        mem::set_u8(img, at, (mem::get_u8(img, at) & keep) | b);
     }
     let (word, bit) = omron::FIRST_CYCLE;
     let at = omron::bit_of_word(
@@ -130,25 +298,29 @@ fn omron_system_bits(img: &mut [u8], layout: &Layout, t_ms: u64, first: bool) {
 /// request or a fatal error puts the PLC in STOP. Returns the scan's final status (`Stopped` when
 /// a STOP executed).
 pub fn end(img: &mut [u8], layout: &Layout, status: ScanStatus) -> ScanStatus {
-    let status = if status == ScanStatus::Fatal {
-        mem::set_sched_u8(img, layout, Sched::MODE, 1);
-        ScanStatus::Fatal
-    } else {
-        let (src, dst) = (layout.base(Area::Q), layout.phys_out);
-        for i in 0..layout.area_size(Area::Q) {
-            let b = mem::get_u8(img, src + i);
-            mem::set_u8(img, dst + i, b);
-        }
-        if mem::sched_u8(img, layout, Sched::STOP_REQ) != 0 || status == ScanStatus::Stopped {
-            mem::set_sched_u8(img, layout, Sched::MODE, 1);
-            ScanStatus::Stopped
-        } else {
-            ScanStatus::Ok
-        }
+    if status != ScanStatus::Fatal {
+        copy_block(
+            img,
+            layout.base(Area::Q),
+            layout.phys_out,
+            layout.area_size(Area::Q),
+        );
+    }
+    let Some(mut sched) = SchedBlock::of(img, layout) else {
+        return ScanStatus::Fatal;
     };
-    mem::set_sched_u8(img, layout, Sched::FIRST_SCAN, 0);
-    let k = mem::get_u64_ne(img, layout.sched(Sched::SCAN_NO));
-    mem::set_u64_ne(img, layout.sched(Sched::SCAN_NO), k.wrapping_add(1));
+    let status = if status == ScanStatus::Fatal {
+        sched.set_u8(Sched::MODE, 1);
+        ScanStatus::Fatal
+    } else if sched.u8(Sched::STOP_REQ) != 0 || status == ScanStatus::Stopped {
+        sched.set_u8(Sched::MODE, 1);
+        ScanStatus::Stopped
+    } else {
+        ScanStatus::Ok
+    };
+    sched.set_u8(Sched::FIRST_SCAN, 0);
+    let k = sched.u64(Sched::SCAN_NO);
+    sched.set_u64(Sched::SCAN_NO, k.wrapping_add(1));
     status
 }
 
@@ -156,10 +328,11 @@ pub fn end(img: &mut [u8], layout: &Layout, status: ScanStatus) -> ScanStatus {
 pub fn run(
     img: &mut [u8],
     layout: &Layout,
+    plan: &ScanPlan,
     t_ms: u64,
     body: impl FnOnce(&mut [u8], &Layout) -> ScanStatus,
 ) -> ScanStatus {
-    if !begin(img, layout, t_ms) {
+    if !begin(img, layout, plan, t_ms) {
         return ScanStatus::Stopped;
     }
     let status = body(img, layout);
@@ -207,8 +380,9 @@ mod tests {
     }
 
     fn scan(img: &mut Image, t: u64) -> ScanStatus {
+        let plan = ScanPlan::every_timer(img.layout());
         let (b, l) = img.split_mut();
-        run(b, l, t, |_, _| ScanStatus::Ok)
+        run(b, l, &plan, t, |_, _| ScanStatus::Ok)
     }
 
     #[test]
@@ -217,8 +391,9 @@ mod tests {
         let want = [(1, 1, 1), (1, 0, 0), (0, 1, 0), (0, 0, 0), (1, 1, 0)];
         let mut img = Image::blank(ProfileId::A5);
         for (k, w) in want.into_iter().enumerate() {
+            let plan = ScanPlan::every_timer(img.layout());
             let (b, l) = img.split_mut();
-            assert!(begin(b, l, 250 * k as u64));
+            assert!(begin(b, l, &plan, 250 * k as u64));
             let s = smb0(&img);
             assert_eq!((s >> 5 & 1, s >> 6 & 1, s >> 1 & 1), w, "scan {k}");
             assert_eq!(s & 0x81, 0x81, "SM0.0 and SM0.7 always on");
@@ -231,8 +406,9 @@ mod tests {
     fn sm0_2_only_in_first_scan_when_declared() {
         let mut img = Image::blank(ProfileId::A5);
         img.set_retentive_lost(true);
+        let plan = ScanPlan::every_timer(img.layout());
         let (b, l) = img.split_mut();
-        assert!(begin(b, l, 0));
+        assert!(begin(b, l, &plan, 0));
         assert_eq!(smb0(&img) >> 2 & 1, 1);
         let (b, l) = img.split_mut();
         end(b, l, ScanStatus::Ok);
@@ -270,9 +446,10 @@ mod tests {
         let mut img = Image::blank(ProfileId::A5);
         img.set_inputs(&[0xA5, 1]);
         let q = img.layout().base(Area::Q) as usize;
+        let plan = ScanPlan::every_timer(img.layout());
         let st = {
             let (b, l) = img.split_mut();
-            run(b, l, 0, |b, l| {
+            run(b, l, &plan, 0, |b, l| {
                 assert_eq!(b[l.base(Area::I) as usize], 0xA5);
                 b[q] = 0x3C;
                 mem::set_sched_u8(b, l, Sched::STOP_REQ, 1);
@@ -295,9 +472,10 @@ mod tests {
     fn fatal_skips_output_copy() {
         let mut img = Image::blank(ProfileId::A5);
         let q = img.layout().base(Area::Q) as usize;
+        let plan = ScanPlan::every_timer(img.layout());
         let st = {
             let (b, l) = img.split_mut();
-            run(b, l, 0, |b, l| {
+            run(b, l, &plan, 0, |b, l| {
                 b[q] = 1;
                 record_fatal(b, l, FatalCode::Watchdog, 0, 7);
                 ScanStatus::Fatal
@@ -308,6 +486,22 @@ mod tests {
         assert!(img.is_stopped());
         assert_eq!(img.fatal(), FatalCode::Watchdog as u16);
         assert_eq!(img.error_site(), (0, 7));
+    }
+
+    #[test]
+    fn a_task_start_clears_the_condition_flags_and_opens_the_gate() {
+        // omron-cp.md §2.3: every condition flag is cleared; P_On and the pulses stay.
+        let mut img = Image::blank(ProfileId::Cp1h);
+        scan(&mut img, 0);
+        let (b, l) = img.split_mut();
+        let at = l.base(Area::Flags) as usize;
+        let on = 1u16 << SystemBit::On.index();
+        let [lo, hi] = (on | SystemBit::CONDITION_FLAGS).to_le_bytes();
+        (b[at], b[at + 1]) = (lo, hi);
+        mem::set_sched_u8(b, l, Sched::SCR_ENABLE, 0);
+        task_start(b, l);
+        assert_eq!(u16::from_le_bytes([b[at], b[at + 1]]), on);
+        assert_eq!(mem::sched_u8(b, l, Sched::SCR_ENABLE), 1);
     }
 
     #[test]

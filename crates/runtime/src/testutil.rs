@@ -39,8 +39,9 @@ impl Rig {
     pub(crate) fn scan(&mut self, body: impl FnOnce(&mut [u8], &Layout)) {
         let t = self.k * self.period;
         self.k += 1;
+        let plan = scan::ScanPlan::every_timer(self.img.layout());
         let (b, l) = self.img.split_mut();
-        scan::run(b, l, t, |b, l| {
+        scan::run(b, l, &plan, t, |b, l| {
             body(b, l);
             ScanStatus::Ok
         });

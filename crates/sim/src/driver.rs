@@ -15,6 +15,10 @@ use stljit_core::{FatalCode, ScanStatus};
 use stljit_runtime::engine::Engine;
 use stljit_runtime::image::Image;
 
+/// The most scans one engine call runs when no observer needs every scan: a few milliseconds of
+/// wall time, so that a cancel flag and a progress bar stay responsive.
+const MAX_STRETCH: u64 = 1 << 16;
+
 /// How long to run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Until {
@@ -38,16 +42,29 @@ pub struct ScanEvent<'a> {
     pub status: ScanStatus,
 }
 
-/// Receives every scan of a run (trace writers, test recorders).
+/// Receives the scans of a run (trace writers, test recorders).
 pub trait Observer {
-    /// Called after each scan; an error ends the run with [`SimError::Observer`].
+    /// Called after each scan (or, when [`Observer::needs_every_scan`] is false, after each
+    /// stretch of scans the engine ran at once, with the stretch's last scan); an error ends the
+    /// run with [`SimError::Observer`].
     fn observe(&mut self, event: &ScanEvent<'_>) -> io::Result<()>;
+
+    /// Whether the observer must see the image after every scan. When no observer of a run
+    /// does, the simulation runs the scans between two stimulus rows in one engine call (the
+    /// JIT's native loop) and reports only each stretch's end.
+    fn needs_every_scan(&self) -> bool {
+        true
+    }
 }
 
 /// Observes nothing.
 impl Observer for () {
     fn observe(&mut self, _: &ScanEvent<'_>) -> io::Result<()> {
         Ok(())
+    }
+
+    fn needs_every_scan(&self) -> bool {
+        false
     }
 }
 
@@ -57,11 +74,19 @@ impl<A: Observer, B: Observer> Observer for (A, B) {
         self.0.observe(event)?;
         self.1.observe(event)
     }
+
+    fn needs_every_scan(&self) -> bool {
+        self.0.needs_every_scan() || self.1.needs_every_scan()
+    }
 }
 
 impl<O: Observer + ?Sized> Observer for &mut O {
     fn observe(&mut self, event: &ScanEvent<'_>) -> io::Result<()> {
         (**self).observe(event)
+    }
+
+    fn needs_every_scan(&self) -> bool {
+        (**self).needs_every_scan()
     }
 }
 
@@ -216,7 +241,7 @@ impl<'a> Simulation<'a> {
         self
     }
 
-    /// Calls `f` after every scan.
+    /// Calls `f` after every scan, or every stretch of scans run at once.
     pub fn with_progress(mut self, f: &'a mut dyn FnMut(Progress)) -> Self {
         self.progress = Some(f);
         self
@@ -268,7 +293,9 @@ impl<'a> Simulation<'a> {
         }
         let rows = stimulus.rows();
         let mut next_row = 0;
-        for done in 0..total {
+        let every_scan = observer.needs_every_scan();
+        let mut done = 0;
+        while done < total {
             if self.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
                 report.outcome = Outcome::Cancelled;
                 break;
@@ -289,25 +316,47 @@ impl<'a> Simulation<'a> {
                 }
                 next_row += 1;
             }
-            let t_ms = self.time_of(k);
-            let status = self.engine.scan(&mut self.image, t_ms);
-            self.next_scan = k + 1;
-            report.scans = done + 1;
-            report.next_scan = k + 1;
+            // One scan, or every scan up to the next stimulus row in one engine call (bounded,
+            // so that cancellation and progress stay responsive).
+            let stretch = if every_scan {
+                1
+            } else {
+                let next_due = rows
+                    .get(next_row)
+                    .map_or(u64::MAX, |row| stimulus.due_scan(row, self.scan_ms));
+                (total - done)
+                    .min(next_due.saturating_sub(k).max(1))
+                    .min(MAX_STRETCH)
+            };
+            let t0 = self.time_of(k);
+            let (ran, status) = if stretch == 1 {
+                (1, self.engine.scan(&mut self.image, t0))
+            } else {
+                self.engine
+                    .run_scans(&mut self.image, t0, self.scan_ms, stretch)
+            };
+            if ran == 0 {
+                report.outcome = Outcome::Fatal {
+                    code: self.image.fatal(),
+                };
+                break;
+            }
+            let last = k + ran - 1;
+            let t_ms = self.time_of(last);
+            done += ran;
+            self.next_scan = last + 1;
+            report.scans = done;
+            report.next_scan = last + 1;
             report.t_ms = t_ms;
             let event = ScanEvent {
-                scan: k,
+                scan: last,
                 t_ms,
                 image: &self.image,
                 status,
             };
             observer.observe(&event).map_err(SimError::Observer)?;
             if let Some(p) = self.progress.as_mut() {
-                p(Progress {
-                    done: done + 1,
-                    total,
-                    t_ms,
-                });
+                p(Progress { done, total, t_ms });
             }
             match status {
                 ScanStatus::Ok => {}

@@ -18,8 +18,9 @@ impl Engine for Toy {
     }
 
     fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
+        let plan = scan::ScanPlan::every_timer(image.layout());
         let (b, l) = image.split_mut();
-        scan::run(b, l, t_ms, |b, l| {
+        scan::run(b, l, &plan, t_ms, |b, l| {
             let ib0 = mem::get_u8(b, l.base(Area::I));
             if ib0 & 0x40 != 0 {
                 scan::record_fatal(b, l, FatalCode::Watchdog, 0, 0);

@@ -106,10 +106,10 @@ codes! {
     OddAnalog = "E025", Error, "AIW/AQW addresses must be even";
     /// LDS out of range.
     LdsRange = "E026", Error, "LDS takes a stack level 0..8";
-    /// Out-of-scope instruction.
-    Unsupported = "E027", Error, "the instruction is not supported in this version";
-    /// Subroutine parameters.
-    SubroutineParams = "E028", Error, "subroutine parameters are not supported yet";
+    /// Known instruction, not supported yet.
+    Unsupported = "E027", Error, "the instruction is known but not supported yet";
+    /// CALL with the wrong number of parameters.
+    CallParamCount = "E028", Error, "a CALL passes a different number of parameters than the subroutine declares";
     /// Block structure.
     Structure = "E029", Error, "the block structure (OB/SBR/INT blocks, SBR/INT markers) is malformed";
     /// Undecodable input.
@@ -118,10 +118,26 @@ codes! {
     ScrBitShared = "E031", Error, "one S bit is used as an SCR segment flag in two blocks";
     /// Jump into a FOR body.
     JumpIntoLoop = "E032", Error, "a JMP enters a FOR loop's body from outside the loop";
+    /// Instruction the selected CPU does not have.
+    NotAvailable = "E033", Error, "the instruction is not available on the selected CPU";
+    /// Actual parameter that does not fit its declared parameter.
+    CallParamKind = "E034", Error, "a CALL's actual parameter does not fit the declared parameter (type, width, direction)";
+    /// Malformed local variable declaration.
+    LocalDecl = "E035", Error, "a local variable declaration (VAR_INPUT … END_VAR) is malformed or not allowed here";
+    /// Local variable table beyond the CPU's limits.
+    LocalLimit = "E036", Error, "the local variables exceed 64 bytes of L memory or 16 parameters";
+    /// `Symbol:Address` whose symbol names another address.
+    SymbolMismatch = "E037", Error, "in a `symbol:address` operand the symbol names a different address";
     /// Contact or stack operation consuming an unloaded level.
     StackUnderflow = "W001", Warning, "a contact or ALD/OLD/LPP/LRD consumes a stack level that nothing loaded";
     /// Too many live stack levels.
     StackOverflow = "W002", Warning, "more than nine stack levels are live; the bottom one is lost";
+    /// Locals reaching into L60–L63.
+    LadLocals = "W003", Warning, "the local variables use L60-L63, which LAD/FBD-generated code also uses";
+    /// A local variable named without `#`.
+    UnprefixedLocal = "W004", Warning, "a name without `#` is taken as the block's local variable";
+    /// `Symbol:Address` with a symbol no table defines.
+    UncheckedSymbol = "W005", Warning, "in a `symbol:address` operand the symbol is not defined; the address is used";
 
     // ---- Omron CP dialect (omron-cp.md §5; the spec's numbers with the `OMR-` prefix) --------
     /// A task program without END.
@@ -165,31 +181,44 @@ codes! {
     /// The same bit or word written by two output instructions.
     OmrDuplicateCoil = "OMR-W020", Warning, "the same bit (OUT, OUT NOT, KEEP, DIFU, DIFD) or word (a data instruction's destination) is written by two instructions";
     /// Timer/counter number used twice.
-    OmrNumberTwice = "OMR-E021", Error, "a timer or counter number is used by two instructions";
+    OmrNumberTwice = "OMR-E021", Error, "a timer, counter or block-program number is used by two instructions";
     /// IL/ILC pairing.
     OmrInterlock = "OMR-E022", Error, "IL(002) and ILC(003) do not pair up (unclosed, unopened or nested)";
     /// Several ILs share one ILC.
     OmrSharedIlc = "OMR-W022", Warning, "several IL(002) share one ILC(003)";
     /// Jump pairing.
-    OmrJump = "OMR-E023", Error, "a jump has no JME after it, a JME is defined twice, or a jump crosses an IL region";
+    OmrJump = "OMR-E023", Error, "a jump has no JME after it, a JME is defined twice, or a jump crosses an IL region or a block program";
     /// JMP0 without JME0.
     OmrJmp0 = "OMR-E024", Error, "JMP0(515) has no JME0(516)";
+    /// A paired instruction split between tasks.
+    OmrSplitPair = "OMR-E025", Error, "the two instructions of a pair (IL/ILC, JMP/JME, SBS/SBN, FOR/NEXT, JMP0/JME0, BPRG/BEND) are in different tasks";
     /// A FOR–NEXT region broken.
-    OmrInRegion = "OMR-E026", Error, "an instruction is not allowed inside its region (a FOR–NEXT loop too deep, unclosed, or entered by a jump)";
+    OmrInRegion = "OMR-E026", Error, "an instruction is not allowed inside its region (step area, block program, subroutine, FOR–NEXT), or a region is not closed";
     /// An instruction allowed only inside a region.
-    OmrOutsideRegion = "OMR-E027", Error, "NEXT(504) or BREAK(514) outside a FOR(503)–NEXT(504) loop";
+    OmrOutsideRegion = "OMR-E027", Error, "an instruction allowed only inside a region is outside it (NEXT/BREAK outside FOR–NEXT, IF/ELSE/IEND/BPPS/BPRS … outside BPRG–BEND)";
     /// Code between the subroutine region and END.
     OmrAfterSubroutines = "OMR-W028", Warning, "code between the subroutine region and END never runs";
     /// Subroutine placement.
-    OmrSubroutine = "OMR-E029", Error, "a subroutine region is misplaced, nested, unclosed or defined twice";
+    OmrSubroutine = "OMR-E029", Error, "a subroutine region is misplaced (in a step area or block program, nested), unclosed or defined twice";
     /// An edge instruction fed only by a constant.
     OmrNeverFires = "OMR-W031", Warning, "a rising-edge instruction fed only by P_On or P_First_Cycle, or a falling-edge one fed only by P_Off, never executes";
     /// A circuit starting with a condition flag.
     OmrFlagAtStart = "OMR-W032", Warning, "a circuit starts with a condition flag";
+    /// A condition flag read after another instruction overwrote it, or by a differentiated
+    /// instruction.
+    OmrFlagOverwritten = "OMR-W033", Warning, "a condition flag is read after an intervening instruction changed it, or its reading depends on a differentiated instruction";
     /// A condition flag read before anything could set it.
     OmrFlagNeverSet = "OMR-W034", Warning, "a condition flag is read before any instruction of the task can have changed it (flags are cleared at task start)";
+    /// The program does not fit the model's user memory.
+    OmrCapacity = "OMR-E035", Error, "the program needs more steps than the model's user memory (UM) holds";
+    /// The task structure.
+    OmrTask = "OMR-E036", Error, "no cyclic task starts at RUN, or a task number is given to two programs";
+    /// A program assigned to no task.
+    OmrUnassigned = "OMR-W037", Warning, "a program is assigned to no task and never runs";
     /// A DM bit on a model without DM bit addressing.
     OmrDmBit = "OMR-E038", Error, "bit access to D words is not supported on the selected model";
+    /// An instruction a function-block body may not use.
+    OmrFunctionBlock = "OMR-E039", Error, "the instruction is not allowed inside a function-block body";
     /// More than 8 pending blocks.
     OmrDeepBlocks = "OMR-W040", Warning, "more than 8 logic blocks are pending";
     /// More than 13 pending blocks.

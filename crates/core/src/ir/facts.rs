@@ -1,9 +1,11 @@
 //! The structural facts of every op, stated once: where control goes next ([`Op::successors`]),
 //! what it does to the logic stack ([`Op::stack_effect`]) and to the gate ([`Op::gate_effect`]),
-//! and which FOR loop a jump would enter ([`loop_entered_by`]). The verifier, the JIT's analyses and the front ends' stack checks read
+//! which FOR loop a jump would enter ([`loop_entered_by`]) and which subroutine it calls
+//! ([`Op::callee`]). The verifier, the JIT's analyses and the front ends' stack checks read
 //! these instead of matching on ops themselves, so a new op states its facts here and nowhere else.
 
 use super::{CounterKind, Op, Pou};
+use crate::index::PouId;
 
 /// Where control can go after an op: the next op, and one branch target (an op index, where
 /// `ops.len()` is the POU's end).
@@ -102,60 +104,21 @@ impl StackEffect {
     }
 }
 
-/// What an op does to the gate of `PF = S0 AND gate` (the SCR and interlock gate byte).
+/// What an op does to the gate (the SCR enable / Omron interlock byte that power flow is ANDed
+/// with).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum GateEffect {
-    /// Leaves it as it is (a `CALL` leaves whatever its callee leaves).
+    /// Leaves it as it is.
     Keeps,
-    /// Sets it to 1 (`SCRE`, `ILC`).
+    /// Sets it to 1 (`SCRE`, `ILC`, a task start).
     Opens,
-    /// Sets it to a value known only at run time (`LSCR`: the S bit; `IL`: the power flow).
+    /// Sets it to a value known only at run time (`LSCR`, `IL`).
     Sets,
+    /// Whatever the callee leaves it at (`CALL`; the JIT's analysis follows the callee).
+    Callee,
 }
 
 impl Op {
-    /// The op's effect on the gate.
-    pub fn gate_effect(&self) -> GateEffect {
-        match self {
-            Op::ScrBegin { .. } | Op::Interlock => GateEffect::Sets,
-            Op::ScrEnd | Op::InterlockEnd => GateEffect::Opens,
-            Op::Load(_)
-            | Op::And(_)
-            | Op::Or(_)
-            | Op::Not
-            | Op::AndBlock
-            | Op::OrBlock
-            | Op::Dup
-            | Op::ReadSecond
-            | Op::Pop
-            | Op::Pick(_)
-            | Op::AndEno
-            | Op::Edge { .. }
-            | Op::Assign { .. }
-            | Op::SetRange { .. }
-            | Op::ResetTimers { .. }
-            | Op::ResetCounters { .. }
-            | Op::Timer { .. }
-            | Op::Counter { .. }
-            | Op::Box(_)
-            | Op::Jump(_)
-            | Op::Label(_)
-            | Op::Call(_)
-            | Op::Return { .. }
-            | Op::End { .. }
-            | Op::Stop
-            | Op::Wdr
-            | Op::Nop
-            | Op::For { .. }
-            | Op::Next { .. }
-            | Op::ScrTransition { .. }
-            | Op::ScrCondEnd { .. }
-            | Op::OmronTimer { .. }
-            | Op::OmronCounter { .. }
-            | Op::Omron(_) => GateEffect::Keeps,
-        }
-    }
-
     /// Where control may go after this op of `pou`. A target outside the POU (only in a program
     /// the verifier rejects) is clamped to its end.
     pub fn successors(&self, pou: &Pou) -> Successors {
@@ -181,6 +144,25 @@ impl Op {
     /// Whether the op may leave its POU (`RET`, `CRET`, `END`, `MEND`).
     pub fn may_exit(&self) -> bool {
         matches!(self, Op::Return { .. } | Op::End { .. })
+    }
+
+    /// The subroutine the op calls (`CALL`, with or without parameters).
+    pub fn callee(&self) -> Option<PouId> {
+        match self {
+            Op::Call(p) => Some(*p),
+            Op::CallArgs(c) => Some(c.callee),
+            _ => None,
+        }
+    }
+
+    /// The op's effect on the gate.
+    pub fn gate_effect(&self) -> GateEffect {
+        match self {
+            Op::ScrBegin { .. } | Op::Interlock => GateEffect::Sets,
+            Op::ScrEnd | Op::InterlockEnd | Op::TaskStart => GateEffect::Opens,
+            Op::Call(_) | Op::CallArgs(_) => GateEffect::Callee,
+            _ => GateEffect::Keeps,
+        }
     }
 
     /// The op's effect on the logic stack.
@@ -230,6 +212,7 @@ impl Op {
             | Op::Box(_)
             | Op::Jump(_)
             | Op::Call(_)
+            | Op::CallArgs(_)
             | Op::Stop
             | Op::Wdr
             | Op::For { .. }
@@ -244,7 +227,9 @@ impl Op {
                     StackEffect::NONE
                 }
             }
-            Op::Label(_) | Op::Nop | Op::ScrEnd | Op::InterlockEnd => StackEffect::NONE,
+            Op::Label(_) | Op::Nop | Op::ScrEnd | Op::InterlockEnd | Op::TaskStart => {
+                StackEffect::NONE
+            }
         }
     }
 }

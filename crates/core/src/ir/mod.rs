@@ -2,7 +2,8 @@
 //!
 //! A [`Program`] is a list of POUs (main program first, then subroutines), each a flat list of
 //! [`Op`]s with a parallel list of source locations. Control flow is explicit and resolved: jumps
-//! name a [`LabelId`] whose position is in [`Pou::labels`], calls name a [`PouId`], FOR/NEXT and SCR
+//! name a [`LabelId`] whose position is in [`Pou::labels`], calls name a [`PouId`] (a call with
+//! parameters also names each formal in the callee's L frame, [`CallArgs`]), FOR/NEXT and SCR
 //! ops name their partner's [`OpIdx`]. Every operand is resolved to an [`Area`] and a byte offset
 //! (checked against the profile at compile time) or to a constant or a pointer read at run time.
 //!
@@ -15,6 +16,7 @@
 //! **Power flow** `PF = S0 AND gate`, where the gate is 1 outside gated regions (SCR segments).
 //! Consumers (coils, boxes, timers, jumps, ...) read `PF`; no consumer pops the stack.
 
+mod call;
 mod facts;
 mod omron;
 mod op;
@@ -24,6 +26,7 @@ mod test_ops;
 mod uses;
 mod verify;
 
+pub use call::{Arg, ArgDir, ArgValue, CallArgs};
 pub use facts::{GateEffect, StackEffect, Successors, enclosing_loop, loop_entered_by};
 pub use omron::{
     BoxOperands, IndexOffset, IndexStep, OmronArith, OmronBox, OmronCounterKind, OmronRef,

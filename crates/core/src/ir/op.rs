@@ -1,5 +1,6 @@
 //! The instructions: [`Op`] and the box operations [`BoxOp`] with their small enums.
 
+use super::call::CallArgs;
 use super::operand::{BitLoc, Contact, Operand};
 use super::{CounterKind, OmronBox, OmronCounterKind, OmronTimerKind, TimerKind};
 use crate::area::Width;
@@ -106,6 +107,9 @@ pub enum Op {
     Label(LabelId),
     /// If PF: call a subroutine (nesting beyond the profile's limit is error 0x0008).
     Call(PouId),
+    /// If PF: call a subroutine with parameters, copied into its L frame before and back after
+    /// the call; ENO = 1 after the call, 0 without PF (s7-200-more §1.5, see [`CallArgs`]).
+    CallArgs(Box<CallArgs>),
     /// Return from a subroutine: `CRET` when `conditional` (on PF), `RET` otherwise.
     Return {
         /// CRET.
@@ -164,6 +168,9 @@ pub enum Op {
     Interlock,
     /// `ILC(003)`: gate := 1.
     InterlockEnd,
+    /// The start of an Omron cyclic task after the first of the scan: the condition flags are
+    /// cleared and the gate opens (`runtime::scan::task_start`, omron-cp.md §2.3).
+    TaskStart,
     /// An Omron timer: TIM family `EC = S0`; TTIM timer input `S1`, reset `S0`. The gate's
     /// policy (interlock) is applied by the runtime.
     OmronTimer {

@@ -215,7 +215,9 @@ fn omron_uses(b: &OmronBox) -> Uses {
 }
 
 impl Op {
-    /// Every value operand of the op with its width and access, in operand order.
+    /// Every value operand of the op with its width and access, in operand order (a call's
+    /// parameters, which may be up to 16, are in [`super::Arg::actual_use`] and
+    /// [`super::Arg::formal_use`]).
     pub fn operand_uses(&self) -> Uses {
         use Width::{Byte, Word};
         match self {
@@ -247,6 +249,7 @@ impl Op {
             | Op::Jump(_)
             | Op::Label(_)
             | Op::Call(_)
+            | Op::CallArgs(_)
             | Op::Return { .. }
             | Op::End { .. }
             | Op::Stop
@@ -258,7 +261,8 @@ impl Op {
             | Op::ScrCondEnd { .. }
             | Op::ScrEnd
             | Op::Interlock
-            | Op::InterlockEnd => Uses::of(&[]),
+            | Op::InterlockEnd
+            | Op::TaskStart => Uses::of(&[]),
         }
     }
 
@@ -278,6 +282,12 @@ impl Op {
             Op::Box(BoxOp::ShiftRegister { data, start, .. }) => {
                 vec![(*data, Access::Read), (*start, Access::ReadWrite)]
             }
+            Op::CallArgs(c) => c
+                .args
+                .iter()
+                .filter_map(|a| a.bit_uses())
+                .flatten()
+                .collect(),
             _ => vec![],
         }
     }

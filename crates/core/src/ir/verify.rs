@@ -6,7 +6,7 @@
 //! The rules: there is a main POU; the logic stack has 1 to [`MAX_STACK_DEPTH`] levels; every
 //! POU has one source location per op and fewer than 2^31 ops; every label position holds its
 //! `LBL`; jumps name known labels and never enter a FOR body from outside; calls name a
-//! subroutine (never the main program); FOR and NEXT name each other and nest properly; CSCRE
+//! subroutine (never the main program) and a call's formal parameters lie in L memory; FOR and NEXT name each other and nest properly; CSCRE
 //! names a SCRE; edge slots exist, and the program has no more of them than its profile allows;
 //! every direct location an op names ([`Op::operand_uses`], [`Op::bit_uses`]) lies inside its
 //! area of the profile's layout, no op writes a constant, and every timer and counter an op runs
@@ -14,7 +14,7 @@
 
 use super::facts::loop_entered_by;
 use super::uses::Access;
-use super::{IndexOffset, OmronRef, Op, Operand, Pou, Program};
+use super::{BoxOp, IndexOffset, OmronRef, Op, Operand, Pou, Program};
 use crate::area::{Area, Width};
 use crate::layout::Layout;
 use crate::profile::Family;
@@ -81,6 +81,8 @@ pub enum OpRule {
     },
     /// A call names no POU, or the main program.
     BadCall,
+    /// A call's formal parameter is not a location of area `L`.
+    FormalNotLocal,
     /// FOR does not name a NEXT that names it back, after it.
     ForWithoutNext,
     /// NEXT does not name a FOR that names it back, before it.
@@ -144,6 +146,9 @@ impl fmt::Display for VerifyError {
                         write!(f, "jump into the body of the FOR loop at op{head}")
                     }
                     OpRule::BadCall => f.write_str("call of an unknown POU or of main"),
+                    OpRule::FormalNotLocal => {
+                        f.write_str("a call's formal parameter is not in L memory")
+                    }
                     OpRule::ForWithoutNext => f.write_str("FOR without its NEXT"),
                     OpRule::NextWithoutFor => f.write_str("NEXT without its FOR"),
                     OpRule::LoopsOverlap => f.write_str("FOR loops overlap without nesting"),
@@ -217,8 +222,14 @@ fn verify_pou(
         let bad = |rule| Err(Ok((i, rule)));
         match op {
             Op::Jump(l) if l.index() >= pou.labels.len() => return bad(OpRule::UnknownLabel),
-            Op::Call(c) if c.index() >= program.pous.len() || c.index() == 0 => {
+            _ if op
+                .callee()
+                .is_some_and(|c| c.index() >= program.pous.len() || c.index() == 0) =>
+            {
                 return bad(OpRule::BadCall);
+            }
+            Op::CallArgs(c) if !c.args.iter().all(super::Arg::formal_is_local) => {
+                return bad(OpRule::FormalNotLocal);
             }
             Op::For { next, .. } => {
                 let paired = matches!(pou.ops.get(next.index()), Some(Op::Next { head }) if head.index() == i);
@@ -285,7 +296,14 @@ fn locations(program: &Program, layout: &Layout, op: &Op) -> Result<(), OpRule> 
             Err(OpRule::OutOfArea { area, offset, len })
         }
     };
-    for u in op.operand_uses().iter() {
+    let params = match op {
+        Op::CallArgs(c) => c.args.as_slice(),
+        _ => &[],
+    };
+    let param_uses = params
+        .iter()
+        .flat_map(|a| a.actual_use().into_iter().chain(a.formal_use()));
+    for u in op.operand_uses().iter().chain(param_uses) {
         match u.operand {
             Operand::Mem(l) => inside(l.area, l.offset, u.width.bytes())?,
             Operand::Indirect(l) => inside(l.area, l.offset, Width::DWord.bytes())?,
@@ -337,8 +355,11 @@ fn locations(program: &Program, layout: &Layout, op: &Op) -> Result<(), OpRule> 
     }
     let family = layout.profile.profile().family;
     let op_family = match op {
+        // The immediate I/O copies are the S7 `BIR`/`BIW` and Omron's `!` word refresh.
+        Op::Box(BoxOp::ImmediateRead { .. } | BoxOp::ImmediateWrite { .. }) => None,
         Op::Interlock
         | Op::InterlockEnd
+        | Op::TaskStart
         | Op::OmronTimer { .. }
         | Op::OmronCounter { .. }
         | Op::Omron(_) => Some(Family::Omron),
@@ -442,6 +463,63 @@ mod tests {
                 pou: 0,
                 rule: PouRule::LocsLength
             })
+        );
+    }
+
+    /// A call's parameters: formals in L and inside the frame, no constant as an OUT actual.
+    #[test]
+    fn call_parameters_are_checked() {
+        use crate::ir::{Arg, ArgDir, ArgValue, CallArgs};
+        let call = |dir, formal: Loc, actual| {
+            let mut p = program(
+                vec![Op::CallArgs(Box::new(CallArgs {
+                    callee: crate::PouId::new(1),
+                    args: vec![Arg {
+                        dir,
+                        value: ArgValue::Value {
+                            width: Width::Word,
+                            formal,
+                            actual,
+                        },
+                    }],
+                }))],
+                vec![],
+            );
+            let mut sub = p.pous[0].clone();
+            sub.kind = crate::ir::PouKind::Subroutine(0);
+            sub.ops.clear();
+            sub.locs.clear();
+            p.pous.push(sub);
+            op_rule(&p)
+        };
+        let l = |offset| Loc {
+            area: Area::L,
+            offset,
+        };
+        assert_eq!(call(ArgDir::In, l(0), Operand::Const(5)), None);
+        assert_eq!(call(ArgDir::Out, l(62), vw(0)), None);
+        assert_eq!(
+            call(ArgDir::Out, l(0), Operand::Const(5)),
+            Some((0, OpRule::WriteToConstant))
+        );
+        assert_eq!(
+            call(ArgDir::In, l(63), vw(0)),
+            Some((
+                0,
+                OpRule::OutOfArea {
+                    area: Area::L,
+                    offset: 63,
+                    len: 2
+                }
+            ))
+        );
+        let v = Loc {
+            area: Area::V,
+            offset: 0,
+        };
+        assert_eq!(
+            call(ArgDir::In, v, vw(0)),
+            Some((0, OpRule::FormalNotLocal))
         );
     }
 

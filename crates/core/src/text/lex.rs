@@ -150,6 +150,16 @@ impl<'a> Line<'a> {
         Err(self.err(self.col(), ParseErrorKind::Field { key, found }))
     }
 
+    /// Takes the next piece when it is the word `key=value`; returns the value.
+    pub(super) fn optional_field(&mut self, key: &'static str) -> Option<Word<'a>> {
+        match self.pieces.get(self.next) {
+            Some((Piece::Word(text), _)) if text.split_once('=').is_some_and(|(k, _)| k == key) => {
+                self.field(key).ok()
+            }
+            _ => None,
+        }
+    }
+
     /// Takes the next piece when it is a word starting with `c`.
     pub(super) fn word_starting(&mut self, c: char) -> Option<Word<'a>> {
         match self.pieces.get(self.next) {
@@ -304,8 +314,35 @@ impl<'a> Word<'a> {
             .ok_or_else(|| self.unknown(what))
     }
 
+    /// Splits the word at the first `N - 1` separators `sep` into `N` parts (the last takes
+    /// the rest, separators included), each with its column.
+    pub(super) fn split_n<const N: usize>(&self, sep: char) -> Result<[Word<'a>; N]> {
+        let mut parts = [*self; N];
+        let mut start = 0;
+        for (i, part) in parts.iter_mut().enumerate() {
+            let rest = &self.text[start..];
+            let len = if i + 1 == N {
+                rest.len()
+            } else {
+                rest.find(sep).ok_or_else(|| {
+                    self.err(ParseErrorKind::Expected {
+                        expected: "more comma-separated parts",
+                        found: format!("`{}`", self.text),
+                    })
+                })?
+            };
+            let tail = self.tail(start);
+            *part = Word {
+                text: &tail.text[..len],
+                ..tail
+            };
+            start += len + sep.len_utf8();
+        }
+        Ok(parts)
+    }
+
     /// `Area.offset`.
-    fn loc(&self) -> Result<Loc> {
+    pub(super) fn loc(&self) -> Result<Loc> {
         let (area, rest) = self.area()?;
         Ok(Loc {
             area,

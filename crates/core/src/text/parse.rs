@@ -8,9 +8,9 @@ use super::{MAGIC, VERSION};
 use crate::area::Width;
 use crate::index::{CounterId, EdgeSlot, FileId, LabelId, OpIdx, PouId, TimerId};
 use crate::ir::{
-    ArithOp, BoxOp, CmpOp, CmpType, Contact, Conversion, CounterDecl, CounterKind, EdgeDecl,
-    LogicOp, OmronArith, OmronBox, OmronCounterKind, OmronTimerKind, Op, Operand, Pou, PouKind,
-    Program, RealFn, TimerDecl, TimerKind,
+    Arg, ArgDir, ArgValue, ArithOp, BoxOp, CallArgs, CmpOp, CmpType, Contact, Conversion,
+    CounterDecl, CounterKind, EdgeDecl, LogicOp, OmronArith, OmronBox, OmronCounterKind,
+    OmronTimerKind, Op, Operand, Pou, PouKind, Program, RealFn, TimerDecl, TimerKind,
 };
 use crate::profile::{ProfileId, Resolution};
 use std::fmt;
@@ -323,6 +323,7 @@ fn op(line: &mut Line<'_>) -> Result<Op> {
         "jump" => Op::Jump(LabelId(line.word("a label")?.index(LabelId(0), "label")?)),
         "label" => Op::Label(LabelId(line.word("a label")?.index(LabelId(0), "label")?)),
         "call" => Op::Call(PouId(line.word("a POU")?.index(PouId(0), "POU index")?)),
+        "call_args" => call_args(line)?,
         "return" => Op::Return {
             conditional: line.field("conditional")?.flag()?,
         },
@@ -354,6 +355,7 @@ fn op(line: &mut Line<'_>) -> Result<Op> {
         "scr_end" => Op::ScrEnd,
         "interlock" => Op::Interlock,
         "interlock_end" => Op::InterlockEnd,
+        "task_start" => Op::TaskStart,
         "omron_timer" => Op::OmronTimer {
             kind: line
                 .field("kind")?
@@ -404,6 +406,30 @@ fn omron_box(line: &mut Line<'_>) -> Result<OmronBox> {
         },
         _ => return Err(key.unknown("Omron box op")),
     })
+}
+
+/// `call_args callee=POU arg=DIR,KIND,FORMAL,ACTUAL …` (KIND `Bit` or a `Width`).
+fn call_args(line: &mut Line<'_>) -> Result<Op> {
+    let callee = PouId(line.field("callee")?.index(PouId(0), "POU index")?);
+    let mut args = Vec::new();
+    while let Some(w) = line.optional_field("arg") {
+        let [dir, kind, formal, actual] = w.split_n::<4>(',')?;
+        let dir = dir.choice(ArgDir::ALL, "argument direction")?;
+        let value = if kind.text == "Bit" {
+            ArgValue::Bit {
+                formal: formal.bit()?,
+                actual: actual.bit()?,
+            }
+        } else {
+            ArgValue::Value {
+                width: kind.choice(&[Width::Byte, Width::Word, Width::DWord], "width")?,
+                formal: formal.loc()?,
+                actual: actual.operand()?,
+            }
+        };
+        args.push(Arg { dir, value });
+    }
+    Ok(Op::CallArgs(Box::new(CallArgs { callee, args })))
 }
 
 fn op_index(w: Word<'_>) -> Result<OpIdx> {

@@ -4,8 +4,8 @@
 use super::{MAGIC, VERSION};
 use crate::index::{EdgeSlot, FileId, LabelId, OpIdx, PouId};
 use crate::ir::{
-    BitLoc, BoxOp, Contact, IndexOffset, Loc, OmronBox, OmronRef, Op, Operand, Pou, PouKind,
-    Program, SrcLoc,
+    ArgValue, BitLoc, BoxOp, Contact, IndexOffset, Loc, OmronBox, OmronRef, Op, Operand, Pou,
+    PouKind, Program, SrcLoc,
 };
 use std::fmt::{self, Write as _};
 
@@ -145,6 +145,23 @@ fn write_op(out: &mut String, op: &Op) -> fmt::Result {
         Op::Jump(l) => write!(out, "jump {l}"),
         Op::Label(l) => write!(out, "label {l}"),
         Op::Call(p) => write!(out, "call {p}"),
+        Op::CallArgs(c) => {
+            write!(out, "call_args callee={}", c.callee)?;
+            for a in &c.args {
+                write!(out, " arg={:?},", a.dir)?;
+                match a.value {
+                    ArgValue::Bit { formal, actual } => {
+                        write!(out, "Bit,{},{}", Bit(formal), Bit(actual))?;
+                    }
+                    ArgValue::Value {
+                        width,
+                        formal,
+                        actual,
+                    } => write!(out, "{width:?},{},{}", Place(formal), Opd(actual))?,
+                }
+            }
+            Ok(())
+        }
         Op::Return { conditional } => write!(out, "return conditional={}", Flag(*conditional)),
         Op::End { conditional } => write!(out, "end conditional={}", Flag(*conditional)),
         Op::Stop => out.write_str("stop"),
@@ -171,6 +188,7 @@ fn write_op(out: &mut String, op: &Op) -> fmt::Result {
         Op::ScrEnd => out.write_str("scr_end"),
         Op::Interlock => out.write_str("interlock"),
         Op::InterlockEnd => out.write_str("interlock_end"),
+        Op::TaskStart => out.write_str("task_start"),
         Op::OmronTimer {
             kind,
             timer,

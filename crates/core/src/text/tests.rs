@@ -6,9 +6,9 @@ use super::{ParseErrorKind, parse, print};
 use crate::area::{Area, Width};
 use crate::index::{CounterId, EdgeSlot, FileId, LabelId, OpIdx, PouId, TimerId};
 use crate::ir::{
-    ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, Conversion, CounterDecl, CounterKind,
-    EdgeDecl, Loc, LogicOp, Op, Operand, Pou, PouKind, Program, RealFn, SrcLoc, TimerDecl,
-    TimerKind,
+    Arg, ArgDir, ArgValue, ArithOp, BitLoc, BoxOp, CallArgs, CmpOp, CmpType, Contact, Conversion,
+    CounterDecl, CounterKind, EdgeDecl, Loc, LogicOp, Op, Operand, Pou, PouKind, Program, RealFn,
+    SrcLoc, TimerDecl, TimerKind,
 };
 use crate::profile::{ProfileId, Resolution};
 
@@ -98,6 +98,62 @@ fn every_op() -> Vec<Op> {
         Op::Jump(LabelId(0)),
         Op::Label(LabelId(0)),
         Op::Call(PouId(1)),
+        Op::CallArgs(Box::new(CallArgs {
+            callee: PouId(1),
+            args: vec![
+                Arg {
+                    dir: ArgDir::In,
+                    value: ArgValue::Bit {
+                        formal: BitLoc {
+                            area: Area::L,
+                            byte: 0,
+                            bit: 0,
+                        },
+                        actual: q,
+                    },
+                },
+                Arg {
+                    dir: ArgDir::In,
+                    value: ArgValue::Value {
+                        width: Width::Word,
+                        formal: Loc {
+                            area: Area::L,
+                            offset: 1,
+                        },
+                        actual: Operand::Const(3),
+                    },
+                },
+                Arg {
+                    dir: ArgDir::InOut,
+                    value: ArgValue::Value {
+                        width: Width::DWord,
+                        formal: Loc {
+                            area: Area::L,
+                            offset: 3,
+                        },
+                        actual: Operand::Indirect(Loc {
+                            area: Area::V,
+                            offset: 4,
+                        }),
+                    },
+                },
+                Arg {
+                    dir: ArgDir::Out,
+                    value: ArgValue::Value {
+                        width: Width::Byte,
+                        formal: Loc {
+                            area: Area::L,
+                            offset: 7,
+                        },
+                        actual: mem(Area::L, 9),
+                    },
+                },
+            ],
+        })),
+        Op::CallArgs(Box::new(CallArgs {
+            callee: PouId(1),
+            args: vec![],
+        })),
         Op::Return { conditional: true },
         Op::End { conditional: false },
         Op::Stop,
@@ -119,6 +175,9 @@ fn every_op() -> Vec<Op> {
         },
         Op::ScrCondEnd { end: OpIdx(12) },
         Op::ScrEnd,
+        Op::Interlock,
+        Op::InterlockEnd,
+        Op::TaskStart,
     ]);
     for &kind in TimerKind::ALL {
         ops.push(Op::Timer {

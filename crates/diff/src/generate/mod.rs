@@ -8,12 +8,14 @@
 //! eight, pointers stepped past their area, loops left to the watchdog.
 //!
 //! The parts: [`operands`] picks operands per operand class, [`programs`] builds networks and
-//! POUs, [`stimulus`] builds the per-scan inputs and scan times.
+//! POUs, [`params`] gives subroutines parameters and calls them with actuals, [`stimulus`] builds
+//! the per-scan inputs and scan times.
 
 pub mod boxes;
 pub mod control;
 pub mod omron;
 pub mod operands;
+pub mod params;
 pub mod programs;
 pub mod stimulus;
 
@@ -116,8 +118,9 @@ pub fn generate_case(c: &mut Choices<'_>, cfg: &GenConfig) -> Case {
 pub fn generate_program(c: &mut Choices<'_>, cfg: &GenConfig) -> Program {
     let profile = match cfg.profile {
         Some(p) if p.profile().family == Family::S7 => p,
-        // The A5 is the product; the S7-200 table exercises the kind-by-number timer rules.
-        _ => [ProfileId::A5, ProfileId::S7_200][c.weighted(&[4, 1])],
+        // The A5 is the product; the S7-200 table exercises the kind-by-number timer rules, the
+        // SMART its larger areas.
+        _ => [ProfileId::A5, ProfileId::S7_200, ProfileId::Smart][c.weighted(&[4, 1, 1])],
     };
     let mut g = Gen::new(c, cfg, profile);
     g.program()
@@ -166,6 +169,8 @@ pub(crate) struct Gen<'c, 'a> {
     pub(crate) pending_wild: Vec<LabelId>,
     /// Wild-jump labels of the current POU already placed (targets of backward jumps).
     pub(crate) placed_wild: Vec<LabelId>,
+    /// Each POU's parameters (empty for the main program and most subroutines), by POU index.
+    pub(crate) params: Vec<Vec<params::Param>>,
 }
 
 impl<'c, 'a> Gen<'c, 'a> {
@@ -188,6 +193,7 @@ impl<'c, 'a> Gen<'c, 'a> {
             in_interrupt: false,
             pending_wild: Vec::new(),
             placed_wild: Vec::new(),
+            params: Vec::new(),
         }
     }
 
@@ -256,6 +262,12 @@ impl<'c, 'a> Gen<'c, 'a> {
         self.wild_jumps = self.c.chance(1, 12);
         let plan = self.plan_subroutines();
         self.n_pous = 1 + plan.len() as u32;
+        self.params = std::iter::once(Vec::new())
+            .chain(plan.iter().map(|_| Vec::new()))
+            .collect();
+        for i in 1..self.params.len() {
+            self.params[i] = self.signature();
+        }
         let mut pous = Vec::with_capacity(self.n_pous as usize);
         self.pou = Program::MAIN;
         self.main_body(&plan);

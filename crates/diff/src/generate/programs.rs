@@ -27,7 +27,8 @@ impl Gen<'_, '_> {
             if sub.chain_next.is_some() && !targets.contains(&id) {
                 let c = self.contact();
                 self.emit(Op::Load(c));
-                self.emit(Op::Call(id));
+                let op = self.call_op(id);
+                self.emit(op);
             }
         }
         // Now and then a main program four times as long: straight-line code past the JIT's
@@ -61,7 +62,8 @@ impl Gen<'_, '_> {
         let ctx = Ctx::default();
         if let Some(next) = plan.chain_next {
             self.emit(Op::Load(on(sm(0, 0))));
-            self.emit(Op::Call(next));
+            let op = self.call_op(next);
+            self.emit(op);
         }
         let scr_at = self.c.chance(1, 8).then(|| self.c.below(plan.networks + 1));
         for k in 0..=plan.networks {
@@ -133,7 +135,8 @@ impl Gen<'_, '_> {
             9 => {
                 self.expr(1);
                 if let Some(id) = self.callee() {
-                    self.emit(Op::Call(id));
+                    let op = self.call_op(id);
+                    self.emit(op);
                 }
             }
             10 => self.branches(ctx),
@@ -296,7 +299,8 @@ impl Gen<'_, '_> {
             }
             6 => {
                 if let Some(id) = self.callee() {
-                    self.emit(Op::Call(id));
+                    let op = self.call_op(id);
+                    self.emit(op);
                 }
             }
             _ => {

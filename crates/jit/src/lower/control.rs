@@ -7,6 +7,7 @@
 use super::Lower;
 use super::mem::OnFail;
 use super::value::B;
+use crate::helpers::Helper;
 use cranelift_codegen::ir::{
     Block, InstBuilder,
     condcodes::IntCC,
@@ -243,6 +244,13 @@ impl Lower<'_, '_> {
         self.block.gate = pf;
     }
 
+    /// The start of an Omron cyclic task: the runtime's `scan::task_start` (flags cleared, gate
+    /// open), once per task and scan, so a call rather than an inlined copy of the rule.
+    pub(crate) fn task_start(&mut self) {
+        self.call_helper(Helper::TaskStart, &[]);
+        self.block.gate = B::K(true);
+    }
+
     /// `CALL`: if PF, the callee runs one frame deeper with a fresh stack (its own function);
     /// nesting beyond the profile's limit is error 0x0008 and the call is skipped.
     pub(crate) fn call(&mut self, callee: PouId) {
@@ -251,11 +259,23 @@ impl Lower<'_, '_> {
             return;
         }
         let max = i64::from(self.env.layout.profile.profile().max_call_depth);
-        let exits_one = self
-            .env
-            .info
-            .get(callee.index())
-            .is_some_and(|i| i.exits_one);
+        let gate_before = self.block.gate;
+        self.guarded(pf, |s| {
+            let too_deep =
+                s.b.ins()
+                    .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, s.func.call_depth, max);
+            s.diamond(
+                too_deep,
+                |s| s.record_error_k(ErrorCode::CallNesting),
+                |s| s.run_callee(callee),
+            );
+        });
+        self.block.gate = self.gate_after_call(callee, gate_before);
+    }
+
+    /// Calls `callee` one frame deeper with a fresh stack, after forgetting the cache (the callee
+    /// may write anything); a fatal status ends this POU too.
+    pub(crate) fn run_callee(&mut self, callee: PouId) {
         let fref = match self.func.pou_refs.get(&callee) {
             Some(f) => *f,
             None => {
@@ -265,29 +285,26 @@ impl Lower<'_, '_> {
                 f
             }
         };
-        let gate_before = self.block.gate;
-        self.guarded(pf, |s| {
-            let too_deep =
-                s.b.ins()
-                    .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, s.func.call_depth, max);
-            s.diamond(
-                too_deep,
-                |s| s.record_error_k(ErrorCode::CallNesting),
-                |s| {
-                    s.forget_all();
-                    let d1 = s.b.ins().iadd_imm_s(s.func.call_depth, 1);
-                    let call = s.b.ins().call(fref, &[s.func.image, d1]);
-                    let status = s.b.inst_results(call)[0];
-                    // A callee's fatal error ends this POU too.
-                    s.side_exit(status, true, |s| s.return_status(status));
-                },
-            );
-        });
-        self.block.gate = if exits_one {
+        self.forget_all();
+        let d1 = self.b.ins().iadd_imm_s(self.func.call_depth, 1);
+        let call = self.b.ins().call(fref, &[self.func.image, d1]);
+        let status = self.b.inst_results(call)[0];
+        self.side_exit(status, true, |s| s.return_status(status));
+    }
+
+    /// The gate after a call of `callee`: unchanged when every exit of the callee leaves it
+    /// open (`analysis`), else reloaded from the image.
+    pub(crate) fn gate_after_call(&mut self, callee: PouId, gate_before: B) -> B {
+        let exits_one = self
+            .env
+            .info
+            .get(callee.index())
+            .is_some_and(|i| i.exits_one);
+        if exits_one {
             gate_before
         } else {
             self.gate_reload()
-        };
+        }
     }
 
     fn gate_reload(&mut self) -> B {

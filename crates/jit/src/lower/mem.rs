@@ -72,7 +72,7 @@ impl Lower<'_, '_> {
         v
     }
 
-    fn load_be(&mut self, base: Value, off: i32, width: Width) -> Value {
+    pub(crate) fn load_be(&mut self, base: Value, off: i32, width: Width) -> Value {
         match width {
             Width::Byte => self.b.ins().uload8(I32, mf(), base, off),
             Width::Word => {
@@ -87,7 +87,7 @@ impl Lower<'_, '_> {
         }
     }
 
-    fn store_be(&mut self, base: Value, off: i32, width: Width, v: Value) {
+    pub(crate) fn store_be(&mut self, base: Value, off: i32, width: Width, v: Value) {
         match width {
             Width::Byte => {
                 self.b.ins().istore8(mf(), v, base, off);

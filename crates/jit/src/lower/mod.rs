@@ -18,6 +18,7 @@
 pub(crate) mod bits;
 pub(crate) mod boxes;
 pub(crate) mod cache;
+pub(crate) mod call;
 pub(crate) mod control;
 pub(crate) mod flow;
 pub(crate) mod mem;
@@ -43,17 +44,27 @@ use stljit_core::{Area, ErrorCode, FatalCode, ScanStatus};
 use stljit_runtime::rules::Rules;
 use value::B;
 
+/// The host addresses compiled code uses as constants. They must stay valid while the code
+/// lives: the engine boxes what they point to and keeps it beside the code.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Baked {
+    /// The program's boxed [`Layout`], passed to every runtime shim.
+    pub(crate) layout: i64,
+    /// The program's boxed `runtime::scan::ScanPlan`, passed to the scan prologue shim.
+    pub(crate) scan_plan: i64,
+    /// A `u64` that counts executed ops (the instrumented build for `bench`).
+    pub(crate) op_counter: Option<i64>,
+}
+
 /// What all POU functions of one program share.
 pub(crate) struct Env<'a> {
     pub(crate) prog: &'a Program,
     pub(crate) layout: &'a Layout,
-    /// Address of the program's boxed [`Layout`], passed to every runtime shim.
-    pub(crate) layout_ptr: i64,
+    /// Host addresses baked into the code (the layout passed to every runtime shim, …).
+    pub(crate) baked: Baked,
     pub(crate) pou_funcs: Vec<FuncId>,
     pub(crate) helpers: &'a HelperIds,
     pub(crate) info: Vec<PouInfo>,
-    /// Address of a `u64` that counts executed ops (the instrumented build for `bench`).
-    pub(crate) op_counter: Option<i64>,
     /// Per POU, how it is split into chunk functions (`None`: one function).
     pub(crate) plans: Vec<Option<ChunkPlan>>,
     /// [`crate::JitOptions::hot_ops`].
@@ -278,7 +289,7 @@ impl<'e, 'f> Lower<'e, 'f> {
         let mut all = Vec::with_capacity(args.len() + 2);
         if h.takes_image() {
             all.push(self.func.image);
-            let layout = self.iconst(I64, self.env.layout_ptr);
+            let layout = self.iconst(I64, self.env.baked.layout);
             all.push(layout);
         }
         all.extend_from_slice(args);
@@ -536,7 +547,7 @@ impl<'e, 'f> Lower<'e, 'f> {
             self.op = i;
             self.block.cache.now = i;
             self.b.set_srcloc(SourceLoc::new(i as u32 + 1));
-            if let Some(addr) = self.env.op_counter {
+            if let Some(addr) = self.env.baked.op_counter {
                 let a = self.iconst(I64, addr);
                 let n = self.b.ins().load(I64, mf(), a, 0);
                 let n = self.b.ins().iadd_imm_s(n, 1);
@@ -591,6 +602,7 @@ impl<'e, 'f> Lower<'e, 'f> {
             Op::Jump(l) => self.jump(l),
             Op::Label(_) | Op::Nop => {}
             Op::Call(callee) => self.call(callee),
+            Op::CallArgs(ref c) => self.call_args(c),
             Op::Return { conditional } | Op::End { conditional } => self.ret(conditional),
             Op::Stop => self.stop(),
             Op::Wdr => self.wdr(),
@@ -606,6 +618,7 @@ impl<'e, 'f> Lower<'e, 'f> {
             Op::ScrCondEnd { end } => self.scr_cond_end(end.index()),
             Op::ScrEnd | Op::InterlockEnd => self.scr_end(),
             Op::Interlock => self.interlock(),
+            Op::TaskStart => self.task_start(),
             Op::OmronTimer {
                 kind,
                 timer,

@@ -7,17 +7,23 @@ use super::mem::OnFail;
 use super::state::{BoxState, Pred};
 use super::value::{B, Stack};
 use crate::helpers::Helper;
-use cranelift_codegen::ir::{InstBuilder, Value, condcodes::IntCC, types::I32};
+use cranelift_codegen::ir::{
+    InstBuilder, Value,
+    condcodes::IntCC,
+    types::{I16, I32, I64},
+};
+use std::cmp::Ordering;
 use stljit_core::ir::{
     BoxOperands, OmronArith, OmronBox, OmronCounterKind, OmronTimerKind, Operand,
 };
-use stljit_core::layout::{COUNTER_STATE_SIZE, Sched, TimerState};
+use stljit_core::layout::{CounterState, Sched, TimerState};
 use stljit_core::{Area, FatalCode, Width};
-use stljit_runtime::ffi::{OMRON_ARITH_HAS_RESULT, OMRON_CTL_KIND_SHIFT, OMRON_NO_OPERAND};
-use stljit_runtime::omron::Flag;
-use stljit_runtime::omron::FlagWrites;
+use stljit_runtime::ffi::{OMRON_ARITH_HAS_RESULT, OMRON_NO_OPERAND};
+use stljit_runtime::omron::arith::{self, BinarySum};
 use stljit_runtime::omron::data;
-use stljit_runtime::omron_image;
+use stljit_runtime::omron::flags::compare_writes;
+use stljit_runtime::omron::{Flag, FlagWrites};
+use stljit_runtime::omron_image::{self, CounterFixed, CounterLevels};
 
 impl Lower<'_, '_> {
     /// The Omron value of a direct operand: a word, or a double word with its low 16 bits in
@@ -44,7 +50,10 @@ impl Lower<'_, '_> {
     }
 
     /// `TIM`…`TTIMX n sv`: the fast shim on the timer's own bytes and the scan time, its flag
-    /// writes applied here.
+    /// writes applied here. With a constant set value under an open gate, a reset (EC OFF) and
+    /// a start (EC ON, not running) are the runtime's outcomes computed now
+    /// (`omron_image::timer_reset_outcome`, `timer_start_outcome`), stored inline: only a
+    /// running timer calls.
     pub(crate) fn omron_timer(&mut self, kind: OmronTimerKind, n: u16, sv: &Operand) {
         let l = self.env.layout;
         if u32::from(n) >= l.area_size(Area::TimerBit) {
@@ -52,26 +61,56 @@ impl Lower<'_, '_> {
         }
         let [v, b, s] = l.timer_bytes(n).map(|(off, len)| (Addr::img(off), len));
         let ranges = [v, b, s, (self.sched(Sched::T_NOW), 8)];
-        let code = omron_kind_code(OmronTimerKind::ALL, kind);
-        // EC OFF under an open gate with a constant set value is the runtime's reset, whose
-        // outcome it computes now (`timer_reset_outcome`): stored inline, no call.
-        let reset = match (*sv, self.block.gate) {
-            (Operand::Const(k), B::K(true)) => omron_image::timer_reset_outcome(kind, k as u16),
-            _ => None,
+        let (reset, start) = match (*sv, self.block.gate) {
+            (Operand::Const(k), B::K(true)) => (
+                omron_image::timer_reset_outcome(kind, k as u16),
+                omron_image::timer_start_outcome(kind, k as u16),
+            ),
+            _ => (None, None),
         };
         let sv = self.omron_value(sv, false);
+        let h = Helper::omron_timer_fast(kind);
+        let call = move |s: &mut Self| s.omron_fast(h, &ranges, sv);
+        let on = move |s: &mut Self| match start {
+            Some(outcome) => {
+                let running = s.byte(ranges[2].0.plus(TimerState::RUN));
+                s.diamond(running, call, move |s| s.store_timer_start(n, outcome));
+            }
+            None => call(s),
+        };
         match (reset, self.block.stack.top()) {
             (Some(r), B::K(false)) => self.store_timer_reset(n, r),
-            (Some(r), ec) if ec != B::K(true) => {
+            (_, B::K(true)) => on(self),
+            (Some(r), ec) => {
                 let c = ec.cond(&mut self.b);
-                self.diamond(
-                    c,
-                    |s| s.omron_fast(Helper::OmronTimerFast, &ranges, code, sv),
-                    |s| s.store_timer_reset(n, r),
-                );
+                self.diamond(c, on, move |s| s.store_timer_reset(n, r));
             }
-            _ => self.omron_fast(Helper::OmronTimerFast, &ranges, code, sv),
+            (None, _) => call(self),
         }
+    }
+
+    /// Stores a timer start computed at compile time: PV, flag, the flag writes, `running`
+    /// ON, no unconverted milliseconds and the scan's time as the last execution.
+    fn store_timer_start(&mut self, n: u16, (pv, flag, w): ([u8; 2], u8, FlagWrites)) {
+        let [(v, _), (b, _), (s, _)] = self.env.layout.timer_bytes(n);
+        for (at, byte) in [
+            (v, pv[0]),
+            (v + 1, pv[1]),
+            (b, flag),
+            (s + TimerState::RUN, 1),
+            (s + TimerState::TOF, 0),
+        ] {
+            let k = self.iconst(I32, i64::from(byte));
+            self.set_byte(Addr::img(at), k);
+        }
+        // `LAST := T_NOW`: both native-endian u64, copied as two 4-byte halves (any byte order
+        // copies the same bytes).
+        let (now, last) = (self.sched(Sched::T_NOW), Addr::img(s + TimerState::LAST));
+        for half in [0, 4] {
+            let word = self.read_static(now.plus(half), Width::DWord);
+            self.write_static(last.plus(half), Width::DWord, word);
+        }
+        self.put_constant_flags(w);
     }
 
     /// Stores a timer reset computed at compile time: PV, flag, `running` and the flag writes.
@@ -90,60 +129,88 @@ impl Lower<'_, '_> {
         self.put_constant_flags(w);
     }
 
-    /// `CNT`…`CNTRX n sv`: as [`Lower::omron_timer`].
+    /// `CNT`…`CNTRX n sv`: as [`Lower::omron_timer`]. With a constant set value under an open
+    /// gate, the runtime's outcomes of a reset and of a quiet execution (no count edge,
+    /// `omron_image::counter_fixed`, computed now) are stored inline; only a count calls.
     pub(crate) fn omron_counter(&mut self, kind: OmronCounterKind, n: u16, sv: &Operand) {
         let l = self.env.layout;
         if u32::from(n) >= l.area_size(Area::CounterBit) {
             return;
         }
-        let [v, b, s] = l.counter_bytes(n).map(|(off, len)| (Addr::img(off), len));
-        let code = omron_kind_code(OmronCounterKind::ALL, kind);
-        // With every input OFF under an open gate and a constant set value, the runtime's step
-        // does not depend on the counter's state: its outcome (`counter_idle_outcome`, computed
-        // now) is stored inline and the call is made only when an input is ON.
-        let idle = match (*sv, self.block.gate) {
-            (Operand::Const(k), B::K(true)) => omron_image::counter_idle_outcome(kind, k as u16),
-            _ => None,
+        let ranges = l.counter_bytes(n).map(|(off, len)| (Addr::img(off), len));
+        let fixed = match (*sv, self.block.gate) {
+            (Operand::Const(k), B::K(true)) => omron_image::counter_fixed(kind, k as u16),
+            _ => CounterFixed {
+                reset: None,
+                quiet: None,
+            },
         };
         let sv = self.omron_value(sv, false);
-        let Some(idle) = idle else {
-            self.omron_fast(Helper::OmronCounterFast, &[v, b, s], code, sv);
-            return;
+        let h = Helper::omron_counter_fast(kind);
+        let call = move |s: &mut Self| s.omron_fast(h, &ranges, sv);
+        let levels = CounterLevels::of(kind);
+        let count = self.block.stack.level(levels.count);
+        let reset = self.block.stack.level(levels.reset);
+        let dec = levels.dec.map(|l| self.block.stack.level(l));
+        let state = ranges[2].0;
+        let inputs = [
+            (Some(count), CounterState::PREV_UP),
+            (dec, CounterState::PREV_DOWN),
+        ];
+        // The count edges: an input ON whose memory is OFF.
+        let mut edge = B::K(false);
+        if fixed.quiet.is_some() {
+            for (input, at) in inputs {
+                if let Some(input) = input {
+                    let memory = self.byte(state.plus(at));
+                    let rising = input.and_not(&mut self.b, B::Bit { v: memory, pos: 0 });
+                    edge = edge.or(&mut self.b, rising);
+                }
+            }
+        }
+        let record = move |s: &mut Self| {
+            for (input, at) in inputs {
+                if let Some(input) = input {
+                    let v = input.to01(&mut s.b);
+                    s.set_byte(state.plus(at), v);
+                }
+            }
         };
-        let inputs = (0..usize::from(kind.conditions())).map(|i| self.block.stack.level(i));
-        let mut any = B::K(false);
-        for input in inputs.collect::<Vec<_>>() {
-            any = any.or(&mut self.b, input);
-        }
-        match any {
-            B::K(false) => self.store_counter_idle(n, idle),
-            B::K(true) => self.omron_fast(Helper::OmronCounterFast, &[v, b, s], code, sv),
+        let on_reset = move |s: &mut Self| match fixed.reset {
+            Some((pv, flag, w)) => {
+                let (value, bit) = (ranges[0].0, ranges[1].0);
+                for (at, byte) in [(value, pv[0]), (value.plus(1), pv[1]), (bit, flag)] {
+                    let k = s.iconst(I32, i64::from(byte));
+                    s.set_byte(at, k);
+                }
+                record(s);
+                s.put_constant_flags(w);
+            }
+            None => call(s),
+        };
+        let otherwise = move |s: &mut Self| match fixed.quiet {
+            Some(w) if edge == B::K(false) => {
+                record(s);
+                s.put_constant_flags(w);
+            }
+            Some(w) if edge != B::K(true) => {
+                let c = edge.cond(&mut s.b);
+                s.diamond(c, call, move |s| {
+                    record(s);
+                    s.put_constant_flags(w);
+                });
+            }
+            _ => call(s),
+        };
+        match reset {
+            B::K(true) => on_reset(self),
+            B::K(false) => otherwise(self),
+            _ if fixed.reset.is_none() && fixed.quiet.is_none() => call(self),
             _ => {
-                let c = any.cond(&mut self.b);
-                self.diamond(
-                    c,
-                    |s2| s2.omron_fast(Helper::OmronCounterFast, &[v, b, s], code, sv),
-                    |s2| s2.store_counter_idle(n, idle),
-                );
+                let c = reset.cond(&mut self.b);
+                self.diamond(c, on_reset, otherwise);
             }
         }
-    }
-
-    /// Stores a counter's all-inputs-OFF outcome computed at compile time: the private state
-    /// bytes it sets and the flag writes.
-    fn store_counter_idle(
-        &mut self,
-        n: u16,
-        (bytes, w): ([Option<u8>; COUNTER_STATE_SIZE as usize], FlagWrites),
-    ) {
-        let (state, _) = self.env.layout.counter_bytes(n)[2];
-        for (i, byte) in bytes.iter().enumerate() {
-            if let Some(k) = byte {
-                let k = self.iconst(I32, i64::from(*k));
-                self.set_byte(Addr::img(state + i as u32), k);
-            }
-        }
-        self.put_constant_flags(w);
     }
 
     /// The condition flags := the constant writes `w`.
@@ -163,14 +230,10 @@ impl Lower<'_, '_> {
     }
 
     /// Calls a fast Omron shim on the image ranges `ranges` (pointers, in order) with `ctl`
-    /// (stack levels 0–2, the gate, `kind`) and `sv`, then applies the flag writes it returns.
-    fn omron_fast(&mut self, h: Helper, ranges: &[(Addr, u32)], kind: u32, sv: Value) {
+    /// (stack levels 0–2, the gate) and `sv`, then applies the flag writes it returns.
+    fn omron_fast(&mut self, h: Helper, ranges: &[(Addr, u32)], sv: Value) {
         let stack = self.omron_conditions();
         let ctl = self.fast_ctl(stack);
-        let ctl = self
-            .b
-            .ins()
-            .bor_imm_s(ctl, i64::from(kind << OMRON_CTL_KIND_SHIFT));
         let image = self.func.image;
         let mut args: Vec<Value> = ranges
             .iter()
@@ -221,6 +284,10 @@ impl Lower<'_, '_> {
                 rhs,
             } => {
                 self.omron_free(pf, |s| s.omron_compare(double, signed, &lhs, &rhs));
+                return;
+            }
+            OmronBox::Arith { op, lhs, rhs, dst } if BinarySum::of(op).is_some() => {
+                self.omron_free(pf, |s| s.omron_binary_sum(op, &lhs, &rhs, &dst));
                 return;
             }
             OmronBox::Arith { op, lhs, rhs, dst } if op.result_words() <= 2 => {
@@ -385,8 +452,9 @@ impl Lower<'_, '_> {
         self.put_flag_values(writes.mask, &[(Flag::Eq, zero), (Flag::N, n)]);
     }
 
-    /// `CMP`/`CMPL`/`CPS`/`CPSL` inline with `data::compare`'s flags: the six comparison flags
-    /// from the order of the operands, ER OFF.
+    /// `CMP`/`CMPL`/`CPS`/`CPSL` inline: the order of the operands as an index (0 less, 1
+    /// equal, 2 greater) selects each flag byte's bits from a table of the runtime's own
+    /// writes for the three orders (`flags::compare_writes`), so no flag formula is restated.
     fn omron_compare(&mut self, double: bool, signed: bool, lhs: &Operand, rhs: &Operand) {
         let a = self.omron_value(lhs, double);
         let b = self.omron_value(rhs, double);
@@ -402,22 +470,28 @@ impl Lower<'_, '_> {
         };
         let lt = self.b.ins().icmp(lt_cc, a, b);
         let gt = self.b.ins().icmp(gt_cc, a, b);
-        let eq = self.b.ins().icmp(IntCC::Equal, a, b);
-        let ge = self.b.ins().bxor_imm_s(lt, 1);
-        let le = self.b.ins().bxor_imm_s(gt, 1);
-        let ne = self.b.ins().bxor_imm_s(eq, 1);
-        let mask = data::compare(double, signed, 0, 0).mask;
-        self.put_flag_values(
-            mask,
-            &[
-                (Flag::Lt, lt),
-                (Flag::Gt, gt),
-                (Flag::Eq, eq),
-                (Flag::Ge, ge),
-                (Flag::Le, le),
-                (Flag::Ne, ne),
-            ],
-        );
+        let lt = self.b.ins().uextend(I32, lt);
+        let gt = self.b.ins().uextend(I32, gt);
+        // (gt − lt + 1) · 8: the bit offset of the order's entry in a byte table.
+        let order = self.b.ins().isub(gt, lt);
+        let shift = self.b.ins().ishl_imm_s(order, 3);
+        let shift = self.b.ins().iadd_imm_s(shift, 8);
+        let table = [Ordering::Less, Ordering::Equal, Ordering::Greater].map(compare_writes);
+        let mask = table[0].mask;
+        for byte in 0..2u32 {
+            let bits_of = |w: FlagWrites| u32::from((w.value & mask) >> (8 * byte)) & 0xFF;
+            let packed = table
+                .iter()
+                .enumerate()
+                .fold(0u32, |acc, (i, w)| acc | bits_of(*w) << (8 * i));
+            if (mask >> (8 * byte)) & 0xFF == 0 {
+                continue;
+            }
+            let packed = self.iconst(I32, i64::from(packed));
+            let bits = self.b.ins().ushr(packed, shift);
+            let bits = self.b.ins().band_imm_s(bits, 0xFF);
+            self.put_omron_flags(byte, mask, bits);
+        }
     }
 
     /// An arithmetic instruction with at most two result words: the runtime's pure arithmetic
@@ -427,13 +501,7 @@ impl Lower<'_, '_> {
         let double = op.operand_words() == 2;
         let a = self.omron_value(lhs, double);
         let b = self.omron_value(rhs, double);
-        let cy_at = self.area_addr(Area::Flags, 0);
-        let cy = self.byte(cy_at);
-        let cy = self
-            .b
-            .ins()
-            .ushr_imm_s(cy, i64::from(Flag::Cy.system_bit().bit_loc().bit));
-        let cy = self.b.ins().band_imm_s(cy, 1);
+        let cy = self.flag_bit(Flag::Cy);
         let code = self.iconst(I32, i64::from(omron_kind_code(OmronArith::ALL, op)));
         let out = self.call_pure(Helper::OmronArith, &[code, a, b, cy]);
         // The flag writes, repacked as a fast shim's (mask 16–31, values 0–15).
@@ -459,6 +527,110 @@ impl Lower<'_, '_> {
             self.write_static(a, width, v);
         }
         self.apply_packed_flags(packed);
+    }
+
+    /// The binary sums and differences inline (`runtime::omron::arith`'s `add`/`sub`): the
+    /// exact result one size wider gives CY (the unsigned result does not fit, or the borrow),
+    /// OF/UF (the signed result above / below the range), `=` and N from the stored result.
+    fn omron_binary_sum(&mut self, op: OmronArith, lhs: &Operand, rhs: &Operand, dst: &Operand) {
+        let Some(shape) = BinarySum::of(op) else {
+            return;
+        };
+        let double = op.operand_words() == 2;
+        let bits = if double { 32 } else { 16 };
+        let mask = (1i64 << bits) - 1;
+        let a = self.omron_value(lhs, double);
+        let b = self.omron_value(rhs, double);
+        let (ua, sa) = self.widened(a, double);
+        let (ub, sb) = self.widened(b, double);
+        let cin = if shape.carry_in {
+            let cy = self.flag_bit(Flag::Cy);
+            Some(self.b.ins().uextend(I64, cy))
+        } else {
+            None
+        };
+        let (r, cy, exact) = if shape.add {
+            let sum = self.b.ins().iadd(ua, ub);
+            let exact = self.b.ins().iadd(sa, sb);
+            let (sum, exact) = match cin {
+                Some(c) => (self.b.ins().iadd(sum, c), self.b.ins().iadd(exact, c)),
+                None => (sum, exact),
+            };
+            let r = self.b.ins().band_imm_s(sum, mask);
+            let cy = self
+                .b
+                .ins()
+                .icmp_imm_s(IntCC::UnsignedGreaterThan, sum, mask);
+            (r, cy, exact)
+        } else {
+            let (y, exact) = match cin {
+                Some(c) => {
+                    let e = self.b.ins().isub(sa, sb);
+                    (self.b.ins().iadd(ub, c), self.b.ins().isub(e, c))
+                }
+                None => (ub, self.b.ins().isub(sa, sb)),
+            };
+            let diff = self.b.ins().isub(ua, y);
+            let r = self.b.ins().band_imm_s(diff, mask);
+            let cy = self.b.ins().icmp(IntCC::UnsignedLessThan, ua, y);
+            (r, cy, exact)
+        };
+        let of = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::SignedGreaterThan, exact, mask >> 1);
+        let uf = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::SignedLessThan, exact, -(mask >> 1) - 1);
+        let eq = self.b.ins().icmp_imm_s(IntCC::Equal, r, 0);
+        let n = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::SignedGreaterThan, r, mask >> 1);
+        if let Operand::Mem(loc) = *dst {
+            let r = self.b.ins().ireduce(I32, r);
+            let at = self.area_addr(loc.area, loc.offset);
+            let (width, stored) = if double {
+                (Width::DWord, self.swap_halves(r))
+            } else {
+                (Width::Word, r)
+            };
+            self.write_static(at, width, stored);
+        }
+        let writes = arith::execute(op, 0, 0, false).flags;
+        self.put_flag_values(
+            writes.mask,
+            &[
+                (Flag::Cy, cy),
+                (Flag::Eq, eq),
+                (Flag::N, n),
+                (Flag::Of, of),
+                (Flag::Uf, uf),
+            ],
+        );
+    }
+
+    /// An Omron value as i64, zero-extended and sign-extended from its 16 or 32 bits.
+    fn widened(&mut self, v: Value, double: bool) -> (Value, Value) {
+        let narrow = if double {
+            v
+        } else {
+            self.b.ins().ireduce(I16, v)
+        };
+        (
+            self.b.ins().uextend(I64, narrow),
+            self.b.ins().sextend(I64, narrow),
+        )
+    }
+
+    /// Condition flag `flag` as a 0/1 `i32`.
+    fn flag_bit(&mut self, flag: Flag) -> Value {
+        let at = flag.system_bit().bit_loc();
+        let byte = self.area_addr(Area::Flags, at.byte);
+        let v = self.byte(byte);
+        let v = self.b.ins().ushr_imm_s(v, i64::from(at.bit));
+        self.b.ins().band_imm_s(v, 1)
     }
 
     /// `v` with its 16-bit halves swapped: an Omron double word to the IR's big-endian dword

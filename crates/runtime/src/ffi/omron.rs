@@ -12,8 +12,8 @@ use stljit_core::ir::{OmronCounterKind, OmronTimerKind};
 use stljit_core::layout::{COUNTER_STATE_SIZE, Layout, TIMER_STATE_SIZE};
 
 /// `ctl` of the fast Omron shims: bits 0–2 the logic-stack levels 0–2, bit 8 the gate open
-/// ([`super::CTL_GATE`]), bits 16–23 the kind's position in its `ALL` list.
-pub const OMRON_CTL_KIND_SHIFT: u32 = 16;
+/// ([`super::CTL_GATE`]); other bits are ignored.
+const CTL_LEVELS: u32 = 0b111;
 
 /// The packed condition-flag writes a fast Omron shim returns: the mask in bits 16–31, the
 /// values in bits 0–15 (both in the `Flags` area's little-endian bit order).
@@ -21,29 +21,30 @@ pub fn pack_flag_writes(w: crate::omron::FlagWrites) -> u32 {
     u32::from(w.mask) << 16 | u32::from(w.value & w.mask)
 }
 
-fn ctl_parts(ctl: u32) -> (u16, Gate, usize) {
+/// The levels and the gate of a fast shim's `ctl`.
+fn ctl_parts(ctl: u32) -> (u16, Gate) {
     let gate = Gate::with(
         ctl & super::CTL_GATE != 0,
         stljit_core::GatePolicy::OmronInterlock,
     );
-    (
-        (ctl & 0b111) as u16,
-        gate,
-        ((ctl >> OMRON_CTL_KIND_SHIFT) & 0xFF) as usize,
-    )
+    ((ctl & CTL_LEVELS) as u16, gate)
 }
 
-/// [`omron_image::timer_step`] on one timer's bytes, for compiled code that knows the layout:
-/// `value` (2 bytes), `flag` (1), `state` (`TIMER_STATE_SIZE`), `now` (the scheduler's
-/// native-endian `u64` `T_NOW`), `ctl` as [`OMRON_CTL_KIND_SHIFT`] says, `sv` the set value.
-/// Returns the flag writes ([`pack_flag_writes`]) for compiled code to apply; an impossible
-/// kind writes nothing and returns 0.
+/// [`omron_image::timer_step`] for `kind` on one timer's bytes.
+///
+/// **Why no `catch_unwind`** (as the S7 fast shims, `ffi/fast.rs`): between entry and return
+/// this does fixed-size array accesses with constant in-bounds indices and runs
+/// `OmronTimer::step`, whose arithmetic saturates, whose divisions are by a timer unit (never
+/// 0, and `max(1)` where it is not a constant) and whose BCD conversions are total; so it cannot
+/// panic and nothing unwinds across `extern "C"`. Keep it that way when editing `step`.
 ///
 /// # Safety
 /// Each pointer must be valid for reads and writes of its size (`now`: reads), the ranges must
 /// not overlap, and nothing else may access them during the call. The JIT derives them from
 /// the program's layout for a timer the profile has, inside the image it runs on.
-pub unsafe extern "C" fn stljit_rt_omron_timer_fast(
+#[inline(always)]
+unsafe fn timer_fast(
+    kind: OmronTimerKind,
     value: *mut u8,
     flag: *mut u8,
     state: *mut u8,
@@ -51,10 +52,7 @@ pub unsafe extern "C" fn stljit_rt_omron_timer_fast(
     ctl: u32,
     sv: u32,
 ) -> u32 {
-    let (stack, gate, kind) = ctl_parts(ctl);
-    let Some(&kind) = OmronTimerKind::ALL.get(kind) else {
-        return 0;
-    };
+    let (stack, gate) = ctl_parts(ctl);
     // SAFETY: the caller's contract: valid, disjoint, exclusively ours for the call.
     let (value, flag, state, now) = unsafe {
         (
@@ -64,29 +62,26 @@ pub unsafe extern "C" fn stljit_rt_omron_timer_fast(
             u64::from_ne_bytes(*now.cast::<[u8; 8]>()),
         )
     };
-    let run = AssertUnwindSafe(|| {
-        let w = omron_image::timer_step((value, flag, state), now, kind, stack, gate, sv as u16);
-        pack_flag_writes(w)
-    });
-    catch_unwind(run).unwrap_or(0)
+    let w = omron_image::timer_step((value, flag, state), now, kind, stack, gate, sv as u16);
+    pack_flag_writes(w)
 }
 
-/// [`omron_image::counter_step`] on one counter's bytes: `value`, `flag`, `state`
-/// (`COUNTER_STATE_SIZE`), `ctl`, `sv`, as [`stljit_rt_omron_timer_fast`].
+/// [`omron_image::counter_step`] for `kind` on one counter's bytes; as [`timer_fast`] (no
+/// `now`), and no `catch_unwind` for the same reason: `OmronCounter::step` counts only where
+/// the result stays in range (`pv + 1` below the set value, `pv - 1` above 0).
 ///
 /// # Safety
-/// As [`stljit_rt_omron_timer_fast`] (no `now`).
-pub unsafe extern "C" fn stljit_rt_omron_counter_fast(
+/// As [`timer_fast`].
+#[inline(always)]
+unsafe fn counter_fast(
+    kind: OmronCounterKind,
     value: *mut u8,
     flag: *mut u8,
     state: *mut u8,
     ctl: u32,
     sv: u32,
 ) -> u32 {
-    let (stack, gate, kind) = ctl_parts(ctl);
-    let Some(&kind) = OmronCounterKind::ALL.get(kind) else {
-        return 0;
-    };
+    let (stack, gate) = ctl_parts(ctl);
     // SAFETY: the caller's contract: valid, disjoint, exclusively ours for the call.
     let (value, flag, state) = unsafe {
         (
@@ -95,12 +90,69 @@ pub unsafe extern "C" fn stljit_rt_omron_counter_fast(
             &mut *state.cast::<[u8; COUNTER_STATE_SIZE as usize]>(),
         )
     };
-    let run = AssertUnwindSafe(|| {
-        let w = omron_image::counter_step((value, flag, state), kind, stack, gate, sv as u16);
-        pack_flag_writes(w)
-    });
-    catch_unwind(run).unwrap_or(0)
+    let w = omron_image::counter_step((value, flag, state), kind, stack, gate, sv as u16);
+    pack_flag_writes(w)
 }
+
+/// Defines one `extern "C"` shim per Omron timer or counter kind, each the inner function
+/// specialised to its kind (no dispatch, constant units and number formats), and the table
+/// from kind to shim.
+macro_rules! omron_fast_shims {
+    (@one $name:ident, $kind:expr, $inner:ident ($($arg:ident: $ty:ty),*)) => {
+        #[doc = concat!("`", stringify!($kind), "` on one object's bytes ([`", stringify!($inner), "`]).")]
+        ///
+        /// # Safety
+        #[doc = concat!("As [`", stringify!($inner), "`].")]
+        pub unsafe extern "C" fn $name($($arg: $ty),*) -> u32 {
+            // SAFETY: forwarded caller contract.
+            unsafe { $inner($kind, $($arg),*) }
+        }
+    };
+    (timers: $($name:ident => $kind:ident;)+) => {
+        $(omron_fast_shims!(@one $name, OmronTimerKind::$kind, timer_fast(
+            value: *mut u8, flag: *mut u8, state: *mut u8, now: *const u8, ctl: u32, sv: u32));)+
+
+        /// The fast shim of an Omron timer kind.
+        pub fn omron_timer_fast_fn(kind: OmronTimerKind) -> OmronTimerFn {
+            match kind {
+                $(OmronTimerKind::$kind => $name,)+
+            }
+        }
+    };
+    (counters: $($name:ident => $kind:ident;)+) => {
+        $(omron_fast_shims!(@one $name, OmronCounterKind::$kind, counter_fast(
+            value: *mut u8, flag: *mut u8, state: *mut u8, ctl: u32, sv: u32));)+
+
+        /// The fast shim of an Omron counter kind.
+        pub fn omron_counter_fast_fn(kind: OmronCounterKind) -> OmronCounterFn {
+            match kind {
+                $(OmronCounterKind::$kind => $name,)+
+            }
+        }
+    };
+}
+
+/// The type of every fast Omron timer shim: `(value, flag, state, now, ctl, sv)`.
+pub type OmronTimerFn = unsafe extern "C" fn(*mut u8, *mut u8, *mut u8, *const u8, u32, u32) -> u32;
+/// The type of every fast Omron counter shim: `(value, flag, state, ctl, sv)`.
+pub type OmronCounterFn = unsafe extern "C" fn(*mut u8, *mut u8, *mut u8, u32, u32) -> u32;
+
+omron_fast_shims!(timers:
+    stljit_rt_omron_tim_fast => Tim;
+    stljit_rt_omron_timx_fast => TimX;
+    stljit_rt_omron_timh_fast => TimH;
+    stljit_rt_omron_timhx_fast => TimHX;
+    stljit_rt_omron_tmhh_fast => Tmhh;
+    stljit_rt_omron_tmhhx_fast => TmhhX;
+    stljit_rt_omron_ttim_fast => Ttim;
+    stljit_rt_omron_ttimx_fast => TtimX;
+);
+omron_fast_shims!(counters:
+    stljit_rt_omron_cnt_fast => Cnt;
+    stljit_rt_omron_cntx_fast => CntX;
+    stljit_rt_omron_cntr_fast => Cntr;
+    stljit_rt_omron_cntrx_fast => CntrX;
+);
 
 /// Bit of [`stljit_rt_omron_arith`]'s result: a result is to be written (no ER).
 pub const OMRON_ARITH_HAS_RESULT: u64 = 1 << 63;
@@ -203,5 +255,89 @@ pub unsafe extern "C" fn stljit_rt_omron_box_refs(
                 Err(stljit_core::ErrorCode::OperandRange)
             }
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A deterministic byte stream for the random states.
+    fn bytes(seed: u64) -> impl FnMut() -> u8 {
+        let mut x = seed | 1;
+        move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x as u8
+        }
+    }
+
+    #[test]
+    fn every_kind_shim_is_the_image_step_of_its_kind() {
+        // The per-kind shims must be `timer_step`/`counter_step` of exactly their kind, on any
+        // bytes, levels, gate and set value.
+        let mut next = bytes(0x5EED);
+        for _ in 0..2000 {
+            let ctl = u32::from(next()) & 0b111 | (u32::from(next() & 1) << 8);
+            let sv = u32::from(next()) << 8 | u32::from(next());
+            let (stack, gate) = ctl_parts(ctl);
+            for &kind in OmronTimerKind::ALL {
+                let mut t: omron_image::TimerBytes = (
+                    [next(), next()],
+                    next() & 1,
+                    std::array::from_fn(|_| next() % 4),
+                );
+                let now = u64::from(next()) * 37;
+                let mut want = t;
+                let w = omron_image::timer_step(
+                    (&mut want.0, &mut want.1, &mut want.2),
+                    now,
+                    kind,
+                    stack,
+                    gate,
+                    sv as u16,
+                );
+                let now_bytes = now.to_ne_bytes();
+                // SAFETY: four distinct local arrays of the sizes the shim reads and writes.
+                let got = unsafe {
+                    omron_timer_fast_fn(kind)(
+                        t.0.as_mut_ptr(),
+                        &mut t.1,
+                        t.2.as_mut_ptr(),
+                        now_bytes.as_ptr(),
+                        ctl,
+                        sv,
+                    )
+                };
+                assert_eq!((got, t), (pack_flag_writes(w), want), "{kind:?}");
+            }
+            for &kind in OmronCounterKind::ALL {
+                let mut c: omron_image::CounterBytes = (
+                    [next(), next()],
+                    next() & 1,
+                    std::array::from_fn(|_| next() & 1),
+                );
+                let mut want = c;
+                let w = omron_image::counter_step(
+                    (&mut want.0, &mut want.1, &mut want.2),
+                    kind,
+                    stack,
+                    gate,
+                    sv as u16,
+                );
+                // SAFETY: three distinct local arrays of the sizes the shim reads and writes.
+                let got = unsafe {
+                    omron_counter_fast_fn(kind)(
+                        c.0.as_mut_ptr(),
+                        &mut c.1,
+                        c.2.as_mut_ptr(),
+                        ctl,
+                        sv,
+                    )
+                };
+                assert_eq!((got, c), (pack_flag_writes(w), want), "{kind:?}");
+            }
+        }
     }
 }

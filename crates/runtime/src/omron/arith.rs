@@ -90,14 +90,9 @@ impl Width {
         (1i64 << (self.bits - 1)) - 1
     }
 
-    /// Decimal digits of a BCD operand.
-    fn digits(self) -> u32 {
-        self.bits / 4
-    }
-
-    /// `10^digits`: the BCD modulus.
+    /// `10^digits`: the BCD modulus (a constant per width, so no `pow` on the hot path).
     fn bcd_modulus(self) -> u64 {
-        10u64.pow(self.digits())
+        if self.bits == 16 { 10_000 } else { 100_000_000 }
     }
 
     /// The value of BCD operand `v`, or `None` if it is not BCD.
@@ -112,6 +107,33 @@ impl Width {
     /// `v` (below `10^(2·digits)`) as BCD of `2·digits` digits, as a double-width result.
     fn to_bcd(v: u64) -> u64 {
         bcd::bin_to_bcd64(v).unwrap_or(0) // callers pass products and quotients that fit
+    }
+}
+
+/// The binary sums and differences (`+`, `+L`, `+C`, `+CL`, `-`, `-L`, `-C`, `-CL`): what
+/// compiled code may compute inline, with the flag rule of `add`/`sub` here (the JIT's copy is
+/// held equal to it by the differential tests; `binary_sum_shapes` below holds this table
+/// equal to [`execute`]'s dispatch).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BinarySum {
+    /// `+` forms; else `-` forms (CY is the borrow).
+    pub add: bool,
+    /// The `C` forms: the carry flag before the instruction is added (subtracted).
+    pub carry_in: bool,
+}
+
+impl BinarySum {
+    /// The shape of `kind`, if it is a binary sum or difference.
+    pub fn of(kind: OmronArith) -> Option<BinarySum> {
+        use OmronArith::*;
+        let (add, carry_in) = match kind {
+            Add | AddL => (true, false),
+            AddC | AddCL => (true, true),
+            Sub | SubL => (false, false),
+            SubC | SubCL => (false, true),
+            _ => return None,
+        };
+        Some(BinarySum { add, carry_in })
     }
 }
 
@@ -189,8 +211,10 @@ fn add_bcd(w: Width, a: u32, b: u32, cin: bool) -> ArithOutcome {
         return ArithOutcome::ERROR;
     };
     let sum = x + y + u64::from(cin);
-    let r = sum % w.bcd_modulus();
-    bcd_result(r, sum >= w.bcd_modulus())
+    // Both operands are below the modulus, so the sum is below twice it.
+    let carry = sum >= w.bcd_modulus();
+    let r = if carry { sum - w.bcd_modulus() } else { sum };
+    bcd_result(w, r, carry)
 }
 
 /// `-B`, `-BL`, `-BC`, `-BCL`: `a − b − bin` if not negative (CY OFF), else its ten's
@@ -201,19 +225,25 @@ fn sub_bcd(w: Width, a: u32, b: u32, bin: bool) -> ArithOutcome {
     };
     let y = y + u64::from(bin);
     if x >= y {
-        bcd_result(x - y, false)
+        bcd_result(w, x - y, false)
     } else {
         // y − x ≤ 10^digits, so the complement is 0 ..= 10^digits − 1.
-        bcd_result(w.bcd_modulus() - (y - x), true)
+        bcd_result(w, w.bcd_modulus() - (y - x), true)
     }
 }
 
 /// A BCD sum or difference `r` (below the modulus): ER OFF, CY, `=`.
-fn bcd_result(r: u64, carry: bool) -> ArithOutcome {
+fn bcd_result(w: Width, r: u64, carry: bool) -> ArithOutcome {
     let flags = FlagWrites::OK
         .write(Flag::Cy, carry)
         .write(Flag::Eq, r == 0);
-    ArithOutcome::ok(Width::to_bcd(r), flags)
+    // `r` has the operands' digits, so the encoding of their width always succeeds.
+    let bcd = if w.bits == 16 {
+        bcd::bin_to_bcd16(r as u16).map(u64::from)
+    } else {
+        bcd::bin_to_bcd32(r as u32).map(u64::from)
+    };
+    ArithOutcome::ok(bcd.unwrap_or(0), flags)
 }
 
 /// A product of double width: ER OFF, `=` := it is 0, and (binary forms) N := its top bit.

@@ -333,3 +333,28 @@ fn every_kind_runs_on_every_corner_without_panicking() {
         }
     }
 }
+
+#[test]
+fn binary_sum_shapes() {
+    // `BinarySum::of` names exactly the kinds `execute` runs through `add`/`sub`: the outcome
+    // of every binary kind equals the plain sum or difference with the carry folded in.
+    for &kind in OmronArith::ALL {
+        let Some(s) = BinarySum::of(kind) else {
+            continue;
+        };
+        for (a, b, cy) in [(0x7FFF, 1, true), (0xFFFF, 0xFFFF, false), (3, 5, true)] {
+            let w = Width::of(kind);
+            let cin = s.carry_in && cy;
+            let want = if s.add {
+                add(w, a, b, cin)
+            } else {
+                sub(w, a, b, cin)
+            };
+            assert_eq!(execute(kind, a, b, cy), want, "{kind:?}");
+        }
+    }
+    let binary = OmronArith::ALL
+        .iter()
+        .filter(|k| BinarySum::of(**k).is_some());
+    assert_eq!(binary.count(), 8);
+}

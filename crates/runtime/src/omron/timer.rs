@@ -176,8 +176,16 @@ impl OmronTimer {
     fn credit(&mut self, t: u64, unit: u64) -> u64 {
         let total = u64::from(self.rem_ms).saturating_add(t.saturating_sub(self.last_ms));
         self.last_ms = t;
-        self.rem_ms = (total % unit) as u32; // below the unit
-        total / unit
+        // One arm per timer unit, so each divides by a constant (a multiplication) instead of
+        // a hardware division on every running timer's execution.
+        let (ticks, rem) = match unit {
+            1 => (total, 0),
+            10 => (total / 10, total % 10),
+            100 => (total / 100, total % 100),
+            _ => (total / unit.max(1), total % unit.max(1)),
+        };
+        self.rem_ms = rem as u32; // below the unit
+        ticks
     }
 }
 

@@ -1,0 +1,283 @@
+//! The native many-scans loop (`run_scans`): `for i in 0..n { begin; main; end }` at times
+//! `t0 + i · dt`, stopping at the first scan whose status is not Ok.
+//!
+//! A scan that stays on the common path runs its prologue and epilogue inline: an S7 program
+//! whose plan has no clock-refreshed timer, outside the first scan, not in STOP, whose main
+//! program returns Ok without a STOP request. Every other scan calls the runtime's
+//! `scan::begin`/`scan::end` shims, which remain the definition. The inline path reads every
+//! fact it applies from `runtime::scan` (`DELTAS`, `RESETS`, the `SMB0_*` bits) and the image
+//! layout, so it restates no rule; the differential tests and every fuzz campaign compare its
+//! bytes with the interpreter's, which always calls `scan::begin`/`end`.
+//!
+//! Why inline: an empty program's scan is otherwise two shim calls, each with its pointer
+//! checks and `catch_unwind`, around a few dozen stores; inline, the whole scan of a small
+//! program costs a few nanoseconds (`docs/performance.md`).
+
+use crate::helpers::Helper;
+use crate::lower::Env;
+use cranelift_codegen::Context;
+use cranelift_codegen::ir::{
+    BlockArg, InstBuilder, MemFlagsData, Value,
+    condcodes::IntCC,
+    types::{I8, I32, I64},
+};
+use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
+use cranelift_jit::JITModule;
+use cranelift_module::{FuncId, Module};
+use stljit_core::layout::{Layout, Sched};
+use stljit_core::{Area, Family, ScanStatus};
+use stljit_runtime::scan::{self, ScanPlan};
+
+/// Whether scans of `plan`'s program may take the inline path at all.
+fn inline_path(plan: &ScanPlan) -> bool {
+    plan.family() == Family::S7 && plan.clock_timers().is_empty()
+}
+
+/// The loop, with the signature `build::run_signature`:
+/// `(image, t0, dt, n, done_out) -> status`; writes the number of scans run to `done_out`.
+pub(crate) fn build_run(
+    env: &Env<'_>,
+    plan: &ScanPlan,
+    module: &mut JITModule,
+    ctx: &mut Context,
+    fbc: &mut FunctionBuilderContext,
+    main: FuncId,
+) {
+    let mut b = FunctionBuilder::new(&mut ctx.func, fbc);
+    let entry = b.create_block();
+    b.append_block_params_for_function_params(entry);
+    b.switch_to_block(entry);
+    let p = b.block_params(entry).to_vec();
+    let (image, t0, dt, n, done) = (p[0], p[1], p[2], p[3], p[4]);
+    let begin = module.declare_func_in_func(env.helpers.id(Helper::ScanBegin), b.func);
+    let end = module.declare_func_in_func(env.helpers.id(Helper::ScanEnd), b.func);
+    let mainf = module.declare_func_in_func(main, b.func);
+    let layout = b.ins().iconst(I64, env.baked.layout);
+    let scan_plan = b.ins().iconst(I64, env.baked.scan_plan);
+    let img = Img {
+        base: image,
+        layout: env.layout,
+    };
+
+    // The loop carries `t / div` of the previous scan for every delta field (the scan before the
+    // first one of this call left its time in `T_NOW`), so each scan divides its own time once.
+    let head = b.create_block();
+    let i = b.append_block_param(head, I64);
+    let prev_q: Vec<Value> = scan::DELTAS
+        .iter()
+        .map(|_| b.append_block_param(head, I64))
+        .collect();
+    let body = b.create_block();
+    let slow_begin = b.create_block();
+    let fast_begin = b.create_block();
+    let run = b.create_block();
+    let slow_end = b.create_block();
+    let fast_end = b.create_block();
+    let next = b.create_block();
+    let fin = b.create_block();
+    let (fin_i, fin_st) = (
+        b.append_block_param(fin, I64),
+        b.append_block_param(fin, I32),
+    );
+    let zero64 = b.ins().iconst(I64, 0);
+    let before = img.load(&mut b, I64, Sched::T_NOW);
+    let mut args = vec![zero64.into()];
+    args.extend(quotients(&mut b, before).into_iter().map(BlockArg::from));
+    b.ins().jump(head, &args);
+
+    b.switch_to_block(head);
+    let more = b.ins().icmp(IntCC::UnsignedLessThan, i, n);
+    let ok = b.ins().iconst(I32, ScanStatus::Ok as i64);
+    b.ins().brif(more, body, &[], fin, &[i.into(), ok.into()]);
+
+    b.switch_to_block(body);
+    let it = b.ins().imul(i, dt);
+    let t = b.ins().iadd(t0, it);
+    let i1 = b.ins().iadd_imm_s(i, 1);
+    let q = quotients(&mut b, t);
+    if inline_path(plan) {
+        // The common path needs RUN mode and a scan after the first.
+        let mode = img.load(&mut b, I8, Sched::MODE);
+        let first = img.load(&mut b, I8, Sched::FIRST_SCAN);
+        let slow = b.ins().bor(mode, first);
+        b.ins().brif(slow, slow_begin, &[], fast_begin, &[]);
+    } else {
+        b.ins().jump(slow_begin, &[]);
+    }
+
+    b.switch_to_block(slow_begin);
+    let c = b.ins().call(begin, &[image, layout, scan_plan, t]);
+    let runs = b.inst_results(c)[0];
+    let stopped = b.ins().iconst(I32, ScanStatus::Stopped as i64);
+    b.ins()
+        .brif(runs, run, &[], fin, &[i1.into(), stopped.into()]);
+
+    b.switch_to_block(fast_begin);
+    inline_begin(&mut b, &img, t, &q, &prev_q);
+    b.ins().jump(run, &[]);
+
+    b.switch_to_block(run);
+    let zero32 = b.ins().iconst(I32, 0);
+    let c = b.ins().call(mainf, &[image, zero32]);
+    let s = b.inst_results(c)[0];
+    if inline_path(plan) {
+        // Ok and no STOP request: the epilogue is the output copy and the scan counters.
+        let stop = img.load(&mut b, I8, Sched::STOP_REQ);
+        let stop = b.ins().uextend(I32, stop);
+        let slow = b.ins().bor(s, stop);
+        b.ins().brif(slow, slow_end, &[], fast_end, &[]);
+    } else {
+        b.ins().jump(slow_end, &[]);
+    }
+
+    b.switch_to_block(slow_end);
+    let c = b.ins().call(end, &[image, layout, s]);
+    let st = b.inst_results(c)[0];
+    b.ins().brif(st, fin, &[i1.into(), st.into()], next, &[]);
+
+    b.switch_to_block(fast_end);
+    inline_end(&mut b, &img);
+    b.ins().jump(next, &[]);
+
+    b.switch_to_block(next);
+    let mut args = vec![i1.into()];
+    args.extend(q.iter().map(|&v| BlockArg::from(v)));
+    b.ins().jump(head, &args);
+
+    b.switch_to_block(fin);
+    b.ins()
+        .store(MemFlagsData::new().with_notrap(), fin_i, done, 0);
+    b.ins().return_(&[fin_st]);
+    b.seal_all_blocks();
+    let fc = module.isa().frontend_config();
+    b.finalize(fc);
+}
+
+/// The image at its base address, with the layout its offsets come from.
+struct Img<'a> {
+    base: Value,
+    layout: &'a Layout,
+}
+
+impl Img<'_> {
+    fn flags() -> MemFlagsData {
+        MemFlagsData::new().with_notrap()
+    }
+
+    /// Loads a native-endian value of type `ty` from scheduler field `field`.
+    fn load(
+        &self,
+        b: &mut FunctionBuilder<'_>,
+        ty: cranelift_codegen::ir::Type,
+        field: u32,
+    ) -> Value {
+        b.ins().load(
+            ty,
+            Self::flags(),
+            self.base,
+            self.layout.sched(field) as i32,
+        )
+    }
+
+    /// Stores `v` (its own type) to scheduler field `field`.
+    fn store(&self, b: &mut FunctionBuilder<'_>, v: Value, field: u32) {
+        self.store_at(b, v, self.layout.sched(field));
+    }
+
+    /// Stores `v` at image offset `off`.
+    fn store_at(&self, b: &mut FunctionBuilder<'_>, v: Value, off: u32) {
+        b.ins().store(Self::flags(), v, self.base, off as i32);
+    }
+
+    /// Copies `len` bytes from image offset `src` to `dst`, in 8-byte words and then bytes
+    /// (the I/O images are small; their offsets and size are constants of the layout).
+    fn copy(&self, b: &mut FunctionBuilder<'_>, src: u32, dst: u32, len: u32) {
+        let mut at = 0;
+        while at < len {
+            let ty = if len - at >= 8 { I64 } else { I8 };
+            let v = b
+                .ins()
+                .load(ty, Self::flags(), self.base, (src + at) as i32);
+            self.store_at(b, v, dst + at);
+            at += ty.bytes();
+        }
+    }
+}
+
+/// `t / div` for every field of [`scan::DELTAS`].
+fn quotients(b: &mut FunctionBuilder<'_>, t: Value) -> Vec<Value> {
+    scan::DELTAS
+        .iter()
+        .map(|&(_, div)| match div {
+            1 => t,
+            _ => b.ins().udiv_imm_u(t, div as i64),
+        })
+        .collect()
+}
+
+/// `scan::begin` for a scan in RUN after the first, S7 family, no clock-refreshed timer: the
+/// time step with its deltas (`q`: this scan's `t / div`, `prev_q`: the previous scan's), the
+/// step-5 resets, the input copy and SMB0.
+fn inline_begin(
+    b: &mut FunctionBuilder<'_>,
+    img: &Img<'_>,
+    t: Value,
+    q: &[Value],
+    prev_q: &[Value],
+) {
+    let l = img.layout;
+    let prev = img.load(b, I64, Sched::T_NOW);
+    for (&(field, _), (&now, &before)) in scan::DELTAS.iter().zip(q.iter().zip(prev_q)) {
+        // `t / div − prev / div`, saturated at 0 below and at u32::MAX above.
+        let d = b.ins().isub(now, before);
+        let below = b.ins().icmp(IntCC::UnsignedLessThan, now, before);
+        let zero = b.ins().iconst(I64, 0);
+        let d = b.ins().select(below, zero, d);
+        let max = b.ins().iconst(I64, i64::from(u32::MAX));
+        let d = b.ins().umin(d, max);
+        let d = b.ins().ireduce(I32, d);
+        img.store(b, d, field);
+    }
+    img.store(b, prev, Sched::T_PREV);
+    img.store(b, t, Sched::T_NOW);
+    for (field, v) in scan::RESETS {
+        let v = b.ins().iconst(I8, i64::from(v));
+        img.store(b, v, field);
+    }
+    let zero = b.ins().iconst(I32, 0);
+    img.store(b, zero, Sched::LOOP_COUNT);
+    img.copy(b, l.phys_in, l.base(Area::I), l.area_size(Area::I));
+    if l.area_size(Area::SM) > 0 {
+        // SMB0 outside the first scan: the constant bits, the clock bits, the parity bit.
+        let mut v = b.ins().iconst(I32, i64::from(scan::SMB0_ALWAYS));
+        for (bit, period) in scan::SMB0_CLOCKS {
+            // ON while `t / (period / 2)` is even.
+            let half = b.ins().udiv_imm_u(t, (period / 2) as i64);
+            let odd = b.ins().band_imm_u(half, 1);
+            let on = b.ins().bxor_imm_u(odd, 1);
+            let on = b.ins().ireduce(I32, on);
+            let on = b.ins().ishl_imm_u(on, i64::from(bit));
+            v = b.ins().bor(v, on);
+        }
+        let k = img.load(b, I64, Sched::SCAN_NO);
+        let odd = b.ins().band_imm_u(k, 1);
+        let even = b.ins().bxor_imm_u(odd, 1);
+        let even = b.ins().ireduce(I32, even);
+        let even = b.ins().ishl_imm_u(even, i64::from(scan::SMB0_EVEN_SCAN));
+        let v = b.ins().bor(v, even);
+        let v = b.ins().ireduce(I8, v);
+        img.store_at(b, v, l.base(Area::SM));
+    }
+}
+
+/// `scan::end` for a scan that returned Ok without a STOP request: the output copy, the first-
+/// scan flag cleared, the scan number counted.
+fn inline_end(b: &mut FunctionBuilder<'_>, img: &Img<'_>) {
+    let l = img.layout;
+    img.copy(b, l.base(Area::Q), l.phys_out, l.area_size(Area::Q));
+    let zero = b.ins().iconst(I8, 0);
+    img.store(b, zero, Sched::FIRST_SCAN);
+    let k = img.load(b, I64, Sched::SCAN_NO);
+    let k = b.ins().iadd_imm_u(k, 1);
+    img.store(b, k, Sched::SCAN_NO);
+}
