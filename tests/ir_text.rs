@@ -27,25 +27,16 @@ pub(crate) fn source(path: &Path) -> SourceFile {
     }
 }
 
-/// The program of conformance case `f` and its CPU (`cpu = …`, else `default`).
-pub(crate) fn conformance_program(f: &Path, default: ProfileId) -> (SourceFile, ProfileId) {
+/// The program of conformance case `f`, its CPU and its front-end options.
+pub(crate) fn conformance_program(f: &Path) -> (SourceFile, ProfileId, stljit_front::Options) {
     let text = std::fs::read_to_string(f).unwrap_or_default();
-    let table: toml::Table = text
-        .parse()
+    let (src, cpu, options) = crate::conformance::harness::case_program(&text)
         .unwrap_or_else(|e| panic!("{}: {e}", f.display()));
-    let Some(src) = table.get("program").and_then(|v| v.as_str()) else {
-        panic!("{}: no program", f.display());
-    };
-    let cpu = table
-        .get("cpu")
-        .and_then(|v| v.as_str())
-        .map_or(Some(default), ProfileId::from_name)
-        .unwrap_or_else(|| panic!("{}: unknown cpu", f.display()));
     let file = SourceFile {
         name: f.display().to_string(),
-        bytes: src.as_bytes().to_vec(),
+        bytes: src.into_bytes(),
     };
-    (file, cpu)
+    (file, cpu, options)
 }
 
 /// Compiles `files` (with an optional symbol table); `None` when the front end rejects them.
@@ -73,7 +64,7 @@ fn corpus() -> Vec<(String, Program)> {
         out.push((f.display().to_string(), p));
     }
     for f in files_in(&root.join("tests/conformance"), &["toml"]) {
-        let (file, cpu) = conformance_program(&f, ProfileId::A5);
+        let (file, cpu, _) = conformance_program(&f);
         let p = program(&[file], None, cpu)
             .unwrap_or_else(|| panic!("{} does not compile", f.display()));
         out.push((f.display().to_string(), p));

@@ -15,16 +15,20 @@ use stljit_diff::generate::{Case, stimulus};
 use stljit_diff::oracle::RunOptions;
 use stljit_diff::rng::Choices;
 use stljit_diff::roundtrip::roundtrip;
-use stljit_front::{Dialect, SourceFile};
+use stljit_front::{Dialect, Options, SourceFile};
 use stljit_jit::OptLevel;
 
-/// Every Omron program text of the repository with its profile and symbol table.
-fn texts() -> Vec<(String, SourceFile, Option<SourceFile>, ProfileId)> {
+/// One Omron program text of the repository: its name, the text, its symbol table, profile
+/// and front-end options.
+type Text = (String, SourceFile, Option<SourceFile>, ProfileId, Options);
+
+/// Every Omron program text of the repository.
+fn texts() -> Vec<Text> {
     let root = stljit_harness::repo_root();
     let mut out = Vec::new();
     for f in files_in(&root.join("tests/conformance/omron"), &["toml"]) {
-        let (file, cpu) = crate::ir_text::conformance_program(&f, ProfileId::Cp1h);
-        out.push((f.display().to_string(), file, None, cpu));
+        let (file, cpu, options) = crate::ir_text::conformance_program(&f);
+        out.push((f.display().to_string(), file, None, cpu, options));
     }
     for dir in [
         "crates/front-omron/tests/spec",
@@ -47,15 +51,21 @@ fn texts() -> Vec<(String, SourceFile, Option<SourceFile>, ProfileId)> {
                 source(&f),
                 symbols,
                 ProfileId::Cp1h,
+                Options::default(),
             ));
         }
     }
     out
 }
 
-fn compile(file: &SourceFile, symbols: Option<&SourceFile>, cpu: ProfileId) -> Option<Program> {
+fn compile(
+    file: &SourceFile,
+    symbols: Option<&SourceFile>,
+    cpu: ProfileId,
+    options: Options,
+) -> Option<Program> {
     Dialect::Omron
-        .compile(std::slice::from_ref(file), symbols, cpu)
+        .compile_with(std::slice::from_ref(file), symbols, cpu, options)
         .program
 }
 
@@ -64,9 +74,10 @@ fn every_repository_omron_program_round_trips_through_the_printer() {
     let texts = texts();
     let mut compiled = 0;
     let mut failures = Vec::new();
-    for (name, file, symbols, cpu) in &texts {
+    for (name, file, symbols, cpu, options) in &texts {
         // Diagnostics fixtures that are meant to be rejected have no IR to print.
-        let Some(p) = compile(file, symbols.as_ref(), *cpu) else {
+        let Some(p) = compile(file, symbols.as_ref(), *cpu, *options) else {
+            assert!(!name.contains("conformance"), "{name} does not compile");
             continue;
         };
         compiled += 1;
@@ -74,9 +85,10 @@ fn every_repository_omron_program_round_trips_through_the_printer() {
             failures.push(format!("{name}: {e}"));
         }
     }
-    // 36 conformance cases, 10 spec programs, 11 fixtures that compile (warnings only), the
-    // example and the benchmark program: 59 today.
-    assert!(compiled >= 55, "only {compiled} of {} compile", texts.len());
+    // 44 conformance cases (tasks, steps, blocks, `!` words, binary mode and backward jumps
+    // among them), 10 spec programs, 13 fixtures that compile (warnings only), the example and
+    // the benchmark program: 69 today.
+    assert!(compiled >= 69, "only {compiled} of {} compile", texts.len());
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
@@ -120,24 +132,25 @@ fn mutate(lines: &[&str], next: &mut impl FnMut() -> u64) -> String {
 
 #[test]
 fn mutated_omron_texts_never_panic_and_what_compiles_round_trips_and_runs_alike() {
-    let mut bases: Vec<(String, ProfileId)> = texts()
+    let mut bases: Vec<(String, ProfileId, Options)> = texts()
         .into_iter()
         .filter(|(name, ..)| !name.ends_with("omron_mixed_10k.omr"))
-        .filter_map(|(_, f, s, cpu)| {
-            compile(&f, s.as_ref(), cpu)?;
-            (s.is_none()).then(|| (String::from_utf8_lossy(&f.bytes).into_owned(), cpu))
+        .filter_map(|(_, f, s, cpu, options)| {
+            compile(&f, s.as_ref(), cpu, options)?;
+            let text = String::from_utf8_lossy(&f.bytes).into_owned();
+            (s.is_none()).then_some((text, cpu, options))
         })
         .collect();
     for seed in 0..10 {
         let mut c = Choices::from_seed(seed);
         let g = stljit_diff::generate::omron::generate(&mut c, &Default::default())
             .expect("generated programs compile");
-        bases.push((g.source, g.case.program.profile));
+        bases.push((g.source, g.case.program.profile, Options::default()));
     }
     let mut next = crate::mutate::xorshift(0x51A7_E0F0_1234_5678);
     let (mut accepted, mut tried) = (0, 0);
     for k in 0..1200 {
-        let (base, cpu) = &bases[k % bases.len()];
+        let (base, cpu, options) = &bases[k % bases.len()];
         let lines: Vec<&str> = base.lines().collect();
         let text = mutate(&lines, &mut next);
         let file = SourceFile {
@@ -145,7 +158,7 @@ fn mutated_omron_texts_never_panic_and_what_compiles_round_trips_and_runs_alike(
             bytes: text.clone().into_bytes(),
         };
         tried += 1;
-        let c = Dialect::Omron.compile(std::slice::from_ref(&file), None, *cpu);
+        let c = Dialect::Omron.compile_with(std::slice::from_ref(&file), None, *cpu, *options);
         assert_eq!(c.program.is_some(), c.error_count() == 0, "{text}");
         for d in &c.diagnostics {
             let _ = stljit_front::render_human(d, &c.sources);

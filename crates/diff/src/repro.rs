@@ -429,7 +429,7 @@ mod tests {
                 .sum::<usize>();
             reads_back(&dir, &case, seed);
             let omr = std::fs::read_to_string(dir.join("program.omr")).unwrap();
-            let compiled = crate::roundtrip::compile_dialect(&omr, case.program.profile).unwrap();
+            let compiled = crate::roundtrip::compile_dialect(&omr, &case.program).unwrap();
             assert_eq!(
                 crate::roundtrip::normalized(&compiled),
                 crate::roundtrip::normalized(&case.program)

@@ -150,9 +150,12 @@ pub fn dialect_text(program: &Program) -> Result<String, RoundTripError> {
     }
 }
 
-/// Compiles `text` in the dialect of `profile`: the program, or the rendered errors.
-pub fn compile_dialect(text: &str, profile: stljit_core::ProfileId) -> Result<Program, String> {
+/// Compiles `text`, the dialect text of `like` or a cut of it, in the dialect of `like`'s
+/// profile with the options its print needs (an Omron program with backward jumps compiles
+/// with `allow_backward_jumps`): the program, or the rendered errors.
+pub fn compile_dialect(text: &str, like: &Program) -> Result<Program, String> {
     let render = |errors: Vec<String>| errors.join("");
+    let profile = like.profile;
     match profile.profile().family {
         Family::S7 => {
             let c = stljit_front_s7::compile_str("fuzz.stl", text, profile);
@@ -167,7 +170,9 @@ pub fn compile_dialect(text: &str, profile: stljit_core::ProfileId) -> Result<Pr
             })
         }
         Family::Omron => {
-            let c = stljit_front_omron::compile_str("fuzz.omr", text, profile);
+            let file = stljit_front_omron::SourceFile::from_text("fuzz.omr", text);
+            let options = stljit_front_omron::printed_options(like);
+            let c = stljit_front_omron::compile_with(&[file], None, profile, options);
             c.program.ok_or_else(|| {
                 render(
                     c.diagnostics
@@ -189,7 +194,7 @@ pub fn front_end_roundtrip(program: &Program) -> Result<Program, RoundTripError>
         Family::Omron => "omron",
     };
     let text = dialect_text(program)?;
-    let back = compile_dialect(&text, program.profile).map_err(|diagnostics| {
+    let back = compile_dialect(&text, program).map_err(|diagnostics| {
         RoundTripError::FrontEndRejected {
             dialect,
             text: text.clone(),

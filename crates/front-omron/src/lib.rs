@@ -116,7 +116,7 @@ mod tasks;
 pub use address::{AddressError, parse_address, print_address};
 pub use detect::{looks_like_omron, looks_like_s7};
 pub use options::{Options, TcMode};
-pub use print::{PrintError, print_program};
+pub use print::{PrintError, print_program, printed_options};
 pub use stljit_source::{
     Code, Diagnostic, Encoding, Severity, SourceFile, SourceText, Sources, render_human,
     render_json,

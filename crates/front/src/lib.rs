@@ -184,6 +184,17 @@ impl Dialect {
             Dialect::Omron => stljit_front_omron::print_program(program).ok(),
         }
     }
+
+    /// The options the text of [`Dialect::print_program`] compiles back with (an Omron
+    /// program with backward jumps needs `allow_backward_jumps`).
+    pub fn printed_options(self, program: &Program) -> Options {
+        match self {
+            Dialect::S7 => Options::default(),
+            Dialect::Omron => Options {
+                omron: stljit_front_omron::printed_options(program),
+            },
+        }
+    }
 }
 
 #[cfg(test)]

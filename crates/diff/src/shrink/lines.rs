@@ -10,7 +10,6 @@ impl Shrinker<'_> {
         let Ok(text) = stljit_front_omron::print_program(&self.best.program) else {
             return;
         };
-        let profile = self.best.program.profile;
         let mut lines: Vec<&str> = text.lines().filter(|l| !l.starts_with(';')).collect();
         let mut chunk = (lines.len() / 2).max(1);
         loop {
@@ -18,8 +17,8 @@ impl Shrinker<'_> {
             while start < lines.len() && self.budget > 0 {
                 let end = (start + chunk).min(lines.len());
                 let candidate = [&lines[..start], &lines[end..]].concat().join("\n");
-                let compiled = stljit_front_omron::compile_str("shrink.omr", &candidate, profile);
-                let kept = compiled.program.is_some_and(|program| {
+                let compiled = crate::roundtrip::compile_dialect(&candidate, &self.best.program);
+                let kept = compiled.is_ok_and(|program| {
                     self.try_case(Case {
                         program,
                         stimulus: self.best.stimulus.clone(),

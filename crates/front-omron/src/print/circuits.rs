@@ -8,7 +8,7 @@
 //! unfolded `NOT / OUT b / NOT` (`NOT / CJP n / NOT`) stands just before, folds it into
 //! `OUT NOT b` (`JMP n`), an output that ends the rung the same way.
 
-use super::Line;
+use super::body::Line;
 use crate::circuit::Class;
 use crate::lexer::lex_line;
 use crate::lower::class_of;

@@ -3,14 +3,23 @@
 
 use super::operands::ea_operand;
 use super::*;
-use crate::compile_str;
-use crate::mnemonics::relation_flag;
-use stljit_core::ProfileId;
-use stljit_core::ir::SrcLoc;
+use crate::SourceFile;
+use crate::mnemonics::{RELATIONS, relation_flag};
+use stljit_core::ir::{BitLoc, Contact, Operand, SrcLoc};
 use stljit_core::omron::{EaRegion, effective_address};
+use stljit_core::{Area, LabelId, ProfileId};
 
-fn compiled(text: &str, profile: ProfileId) -> Program {
-    let c = compile_str("t.omr", text, profile);
+pub(super) fn compiled(text: &str, profile: ProfileId) -> Program {
+    compiled_with(text, profile, Options::default())
+}
+
+pub(super) fn compiled_with(text: &str, profile: ProfileId, options: Options) -> Program {
+    let c = crate::compile_with(
+        &[SourceFile::from_text("t.omr", text)],
+        None,
+        profile,
+        options,
+    );
     match c.program {
         Some(p) => p,
         None => panic!("does not compile: {:#?}\n{text}", c.diagnostics),
@@ -26,10 +35,16 @@ fn normalized(mut p: Program) -> Program {
 }
 
 /// Compiles `text`, prints the IR, compiles the print: both IRs must be equal.
-fn round_trip(text: &str, profile: ProfileId) -> String {
-    let p = compiled(text, profile);
+pub(super) fn round_trip(text: &str, profile: ProfileId) -> String {
+    round_trip_with(text, profile, Options::default())
+}
+
+/// [`round_trip`] of a text compiled with `options`; the print is compiled with the options
+/// [`printed_options`] names.
+pub(super) fn round_trip_with(text: &str, profile: ProfileId, options: Options) -> String {
+    let p = compiled_with(text, profile, options);
     let printed = print_program(&p).unwrap_or_else(|e| panic!("{e}\n{text}"));
-    let back = compiled(&printed, profile);
+    let back = compiled_with(&printed, profile, printed_options(&p));
     assert_eq!(
         normalized(p),
         normalized(back),
