@@ -1,15 +1,17 @@
 //! The instruction and operand forms of Omron text, as the fuzzer's coverage counts them:
 //! [`forms`] reads a text with the front end's own lexer and operand syntax and names, per
 //! instruction, the mnemonic as written with its options (`!@LD`, `LD>=S`, `TIMX`) and the form
-//! of each operand (`W bit`, `T PV`, `#hex`, `,IR+` …). [`mnemonic_forms`] and
-//! [`OPERAND_FORMS`] list every form the front end accepts, so a coverage report can say what
-//! was never generated.
+//! of each operand (`W bit`, `T PV`, `#hex`, `,IR+` …); [`program_forms`] names the forms of
+//! a whole program (its units, regions inside regions, backward jumps, the options it is
+//! compiled with). [`mnemonic_forms`], [`OPERAND_FORMS`] and [`PROGRAM_FORMS`] list every form
+//! the front end accepts, so a coverage report can say what was never generated.
 
-use crate::lexer::lex_line;
+use crate::lexer::{Line, lex_line};
 use crate::mnemonics::{
     self, COMPARE_JOINS, COMPARE_SUFFIXES, Flow, Group, Mnemonic, RELATIONS, TABLE,
 };
 use crate::operand::{ConstForm, Syn, parse_syn};
+use crate::{Options, TcMode};
 use stljit_core::ir::{IndexOffset, IndexStep, OmronArith, OmronRef};
 use stljit_core::omron::{SystemBit, WordArea, word_loc};
 use stljit_core::{Area, ProfileId};
@@ -68,11 +70,26 @@ pub const OPERAND_FORMS: &[&str] = &[
     "TIM/CNT prefix",
 ];
 
+/// Every form of a whole program [`program_forms`] names.
+pub const PROGRAM_FORMS: &[&str] = &[
+    "$TASK CYCLIC",
+    "$TASK CYCLIC STANDBY",
+    "$TASK UNASSIGNED",
+    "$FB",
+    "several tasks",
+    "STEP in IL",
+    "BPRG in a step area",
+    "backward jump",
+    "tc_mode binary",
+    "allow_backward_jumps",
+];
+
 /// The forms of every instruction line of `text` (lines the front end would not lower, after
-/// END, count too: they are lexed all the same).
+/// END, count too: they are lexed all the same); directives are not instructions.
 pub fn forms(text: &str) -> Vec<Form> {
     text.split('\n')
         .filter_map(|raw| lex_line(raw, 1))
+        .filter(|l| !l.mnemonic.starts_with('$'))
         .map(|l| {
             let group = mnemonics::lookup(&l.mnemonic).map(|m| m.group);
             let operands = l
@@ -99,7 +116,13 @@ fn is_number(group: Option<Group>, i: usize) -> bool {
                 Group::Timer(_)
                     | Group::Counter(_)
                     | Group::Control(
-                        Flow::Jmp | Flow::Cjp | Flow::Cjpn | Flow::Jme | Flow::Sbs | Flow::Sbn
+                        Flow::Jmp
+                            | Flow::Cjp
+                            | Flow::Cjpn
+                            | Flow::Jme
+                            | Flow::Sbs
+                            | Flow::Sbn
+                            | Flow::Bprg
                     )
             )
         )
@@ -187,6 +210,92 @@ fn operand_forms(text: &str, group: Option<Group>, i: usize) -> Vec<&'static str
     out
 }
 
+/// The forms of a whole program (names from [`PROGRAM_FORMS`]), each once: its directives,
+/// whether several tasks run, a step area inside IL–ILC, a block program inside a step area, a
+/// jump back to a JME before it, and the `options` it is compiled with.
+pub fn program_forms(text: &str, options: Options) -> Vec<&'static str> {
+    let mut out = Vec::new();
+    let mut add = |f: &'static str| {
+        if !out.contains(&f) {
+            out.push(f);
+        }
+    };
+    let (mut tasks, mut instructions_before) = (0, false);
+    let (mut il, mut step) = (false, false);
+    let mut jmes: Vec<u32> = Vec::new();
+    for l in text.split('\n').filter_map(|raw| lex_line(raw, 1)) {
+        if l.mnemonic.starts_with('$') {
+            jmes.clear();
+            (il, step) = (false, false);
+            if let Some(f) = directive_form(&l) {
+                tasks += usize::from(f == "$TASK CYCLIC");
+                add(f);
+            }
+            continue;
+        }
+        if tasks == 0 && !instructions_before {
+            // The text before the first directive is task 0.
+            instructions_before = true;
+            tasks += 1;
+        }
+        let number = l.operands.first().and_then(|t| number(&t.text));
+        match (l.mnemonic.as_str(), l.operands.is_empty()) {
+            ("IL", _) => il = true,
+            ("ILC", _) => il = false,
+            ("STEP", false) => {
+                step = true;
+                if il {
+                    add("STEP in IL");
+                }
+            }
+            ("STEP", true) => step = false,
+            ("BPRG", _) if step => add("BPRG in a step area"),
+            ("JME", _) => jmes.extend(number),
+            ("JMP" | "CJP" | "CJPN", _) if number.is_some_and(|n| jmes.contains(&n)) => {
+                add("backward jump");
+            }
+            ("SBN" | "RET" | "END", _) => jmes.clear(),
+            _ => {}
+        }
+    }
+    if tasks > 1 {
+        add("several tasks");
+    }
+    if options.tc_mode == TcMode::Binary {
+        add("tc_mode binary");
+    }
+    if options.allow_backward_jumps {
+        add("allow_backward_jumps");
+    }
+    out
+}
+
+/// The form of a directive line.
+fn directive_form(l: &Line) -> Option<&'static str> {
+    let words: Vec<String> = l
+        .operands
+        .iter()
+        .map(|t| t.text.to_ascii_uppercase())
+        .collect();
+    let words: Vec<&str> = words.iter().map(String::as_str).collect();
+    match (l.mnemonic.as_str(), words.as_slice()) {
+        ("$TASK", ["CYCLIC", _]) => Some("$TASK CYCLIC"),
+        ("$TASK", ["CYCLIC", _, "STANDBY"]) => Some("$TASK CYCLIC STANDBY"),
+        ("$TASK", ["UNASSIGNED"]) => Some("$TASK UNASSIGNED"),
+        ("$FB", [_]) => Some("$FB"),
+        _ => None,
+    }
+}
+
+/// A jump number as written (`5`, `&5`, `#0005`).
+fn number(text: &str) -> Option<u32> {
+    match parse_syn(text).ok()? {
+        Syn::Const(v, _) => u32::try_from(v).ok(),
+        Syn::Word { word, .. } => Some(word),
+        _ => None,
+    }
+}
+
 /// The options an instruction may be written with, one at a time: none, `@`, `%`, `!`.
 fn option_forms(m: &Mnemonic) -> impl Iterator<Item = String> + '_ {
     [
@@ -247,6 +356,36 @@ mod tests {
                 ("LD", vec!["TIM/CNT prefix", "T flag"]),
             ]
         );
+    }
+
+    #[test]
+    fn program_forms_name_units_regions_and_options() {
+        let text = "LD 0.00\nOUT W0.00\nEND(001)\n$task cyclic 3\nLD 0.01\nIL(002)\nLD P_On\nSNXT W1.00\nSTEP W1.00\nLD 0.02\nBPRG(096) 1\nBEND(801)\nSTEP\nILC(003)\nJME(005) &2\nLD 0.03\nCJP(510) #0002\nEND(001)\n$TASK CYCLIC 4 STANDBY\nEND(001)\n$FB f\n";
+        let binary = Options {
+            tc_mode: TcMode::Binary,
+            ..Options::default()
+        };
+        let mut got = program_forms(text, binary);
+        got.sort_unstable();
+        let mut want = vec![
+            "$TASK CYCLIC",
+            "$TASK CYCLIC STANDBY",
+            "$FB",
+            "several tasks",
+            "STEP in IL",
+            "BPRG in a step area",
+            "backward jump",
+            "tc_mode binary",
+        ];
+        want.sort_unstable();
+        assert_eq!(got, want);
+        assert!(got.iter().all(|f| PROGRAM_FORMS.contains(f)));
+        // One task, a forward jump: nothing.
+        let plain = program_forms(
+            "LD 0.00\nJMP(004) 1\nJME(005) 1\nEND(001)\n",
+            Options::default(),
+        );
+        assert!(plain.is_empty(), "{plain:?}");
     }
 
     #[test]
