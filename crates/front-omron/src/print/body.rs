@@ -98,7 +98,13 @@ impl<'a> Body<'a> {
             // `NOT; OUT b; NOT` and `OUT NOT b` (likewise `NOT; CJP n; NOT` and `JMP n`) give
             // the same ops but leave the circuit in a different place: the folded form is
             // printed unless an LD follows, whose role `circuits::separate` then settles.
-            if let Some((folded, used, always)) = self.fold(ops, i).map_err(err)? {
+            // `NOT; OUT a; NOT; OUT b; NOT; <refresh of b>` is `NOT / OUT a / !OUT NOT b`: a
+            // fold that only the folded form gives wins the shared NOT.
+            let later = matches!(ops.get(i + 2), Some(Op::Not))
+                && self.fold_only(ops, i + 2).map_err(err)?;
+            if let Some((folded, used, always)) = self.fold(ops, i).map_err(err)?
+                && (always || !later)
+            {
                 if always || !opens_block(ops, i + used) {
                     lines.push(Line::plain(folded));
                     i += used;

@@ -16,18 +16,11 @@ impl Body<'_> {
     /// `Not; Jump; Not` (`JMP n`, or `BPRG n` in a step area) at `i`, if the ops there are one:
     /// the text, the ops it covers, and whether only the folded form gives these ops.
     pub(super) fn fold(&mut self, ops: &[Op], i: usize) -> Res<Option<(String, usize, bool)>> {
+        if let Some(bit) = out_not(ops, i) {
+            let (text, used) = self.out(ops, i + 3, bit, true)?;
+            return Ok(Some((text, used, used > 3)));
+        }
         match (ops.get(i), ops.get(i + 1), ops.get(i + 2)) {
-            (
-                Some(Op::Not),
-                Some(Op::Assign {
-                    bit,
-                    immediate: false,
-                }),
-                Some(Op::Not),
-            ) if bit.area != Area::Tr => {
-                let (text, used) = self.out(ops, i + 3, *bit, true)?;
-                Ok(Some((text, used, used > 3)))
-            }
             (Some(Op::Not), Some(Op::Jump(l)), Some(Op::Not)) if !self.is_exit(*l) => {
                 if self.step.is_some() {
                     let n = self.next_block;
@@ -42,6 +35,15 @@ impl Body<'_> {
                 Ok(Some((control(Flow::Jmp, &[n])?, 3, false)))
             }
             _ => Ok(None),
+        }
+    }
+
+    /// Whether the ops at `i` are a fold only its folded form gives (`!OUT NOT b` with its
+    /// refresh), without allocating anything.
+    pub(super) fn fold_only(&self, ops: &[Op], i: usize) -> Res<bool> {
+        match out_not(ops, i) {
+            Some(bit) => Ok(self.out(ops, i + 3, bit, true)?.1 > 3),
+            None => Ok(false),
         }
     }
 
@@ -259,5 +261,20 @@ impl Body<'_> {
             Role::Exit => Err("a jump to a FOR exit that is not a BREAK".into()),
             Role::Block => Err("a jump to a block program's end".into()),
         }
+    }
+}
+
+/// The coil of `Not; Assign b; Not` at `i` (`OUT NOT b`; a TR bit is never one).
+fn out_not(ops: &[Op], i: usize) -> Option<BitLoc> {
+    match (ops.get(i), ops.get(i + 1), ops.get(i + 2)) {
+        (
+            Some(Op::Not),
+            Some(Op::Assign {
+                bit,
+                immediate: false,
+            }),
+            Some(Op::Not),
+        ) if bit.area != Area::Tr => Some(*bit),
+        _ => None,
     }
 }

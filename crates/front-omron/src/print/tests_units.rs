@@ -299,3 +299,23 @@ END(001)
     let forward = compiled("LD 0.00\nJMP(004) 1\nJME(005) 1\nEND(001)\n", CP1H);
     assert_eq!(printed_options(&forward), Options::default());
 }
+
+#[test]
+fn a_refreshed_out_not_takes_the_not_it_shares() {
+    // `NOT; OUT a; NOT; OUT b; NOT; <refresh>`: folding the first three into OUT NOT a would
+    // leave the refresh behind a plain OUT b (found by the fuzzer's round trip, seed 1518).
+    round_trip(
+        "LD 0.00\nNOT(520)\nOUT W14.00\n!OUT NOT 100.04\nLD 0.01\nNOT(520)\nCJP(510) 1\n!OUT NOT 101.00\nJME(005) 1\nEND(001)\n",
+        CP1H,
+    );
+}
+
+#[test]
+fn an_uncalled_subroutine_goes_to_the_task_its_edges_need() {
+    // SBN 2 is called by no task. Its neighbour before it (SBN 1) is task 0's, but there its
+    // `@` would come after task 1's in the slot order: only task 1 gives these edge slots.
+    round_trip(
+        "LD 0.00\nSBS(091) 1\nSBN(092) 1\nLD 0.01\nOUT W0.00\nRET(093)\nEND(001)\n$TASK CYCLIC 1\n@LD 0.02\nSBS(091) 3\nSBN(092) 2\n@LD 0.03\nOUT W0.01\nRET(093)\nSBN(092) 3\nRET(093)\nEND(001)\n",
+        CP1H,
+    );
+}

@@ -3,9 +3,10 @@
 //! order (an `Op::TaskStart` between two), followed by those tasks' subroutines in source order;
 //! edge slots are numbered in source order over every unit, run or not. [`plan`] reads that
 //! back: the tasks, which subroutines belong to which task (the calls decide; an uncalled one
-//! joins its neighbour's task), and a source order that gives the same subroutine order and
-//! edge slots, with the slots no op uses (the edges of units that never run) put back as
-//! `$TASK UNASSIGNED` programs where they were.
+//! joins its neighbour's task, else another, whichever gives a layout the front end produces),
+//! and a source order that gives the same subroutine order and edge slots, with the slots no
+//! op uses (the edges of units that never run) put back as `$TASK UNASSIGNED` programs where
+//! they were.
 
 use super::body::Body;
 use super::{PrintError, callee, control, edge_option, head, line};
@@ -23,7 +24,7 @@ pub(super) enum Unit {
 }
 
 /// One task of the main POU.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 struct Task {
     /// Its ops in the main POU (without the `TaskStart` before it and the final END).
     ops: Range<usize>,
@@ -81,16 +82,60 @@ pub(super) fn plan(program: &Program) -> Result<Plan, PrintError> {
         });
         start = end + 1;
     }
-    let owner = owners(program, &tasks)?;
-    for (sub, k) in owner.iter().enumerate().skip(1) {
-        tasks[*k].subs.push(sub);
+    let called = called_owners(program, &tasks)?;
+    // A subroutine no task calls could have been in any task: try its neighbour's first, then
+    // the others, until the layout is one the front end gives (bounded: such subroutines are
+    // few; a program with too many is refused).
+    let free: Vec<usize> = (1..program.pous.len())
+        .filter(|&s| called[s].is_none())
+        .collect();
+    let n = tasks.len();
+    let tries = u32::try_from(free.len())
+        .ok()
+        .and_then(|k| n.checked_pow(k))
+        .filter(|&t| t <= 4096)
+        .ok_or_else(|| err(0, "too many subroutines no task calls"))?;
+    let mut last = "no layout";
+    for mut code in 0..tries {
+        let mut owner = called.clone();
+        let mut ok = true;
+        for &s in &free {
+            let digit = code % n;
+            code /= n;
+            if owner[s].is_some() {
+                continue;
+            }
+            let guess = preferred(program, &owner, s);
+            let k = (guess + digit) % n;
+            ok &= claim(program, &mut owner, vec![(s, k)]).is_ok();
+        }
+        if !ok {
+            continue;
+        }
+        let owner: Vec<usize> = owner.into_iter().map(|o| o.unwrap_or(0)).collect();
+        match layout(program, &tasks, &owner) {
+            Ok(plan) => return Ok(plan),
+            Err(message) => last = message,
+        }
+    }
+    Err(err(0, last))
+}
+
+/// The `tasks` (none with subroutines yet) with their subroutines (`owner`), in a source order
+/// giving the program's edge slots and subroutine order, with the unused edge slots as units of
+/// their own.
+fn layout(program: &Program, tasks: &[Task], owner: &[usize]) -> Result<Plan, &'static str> {
+    let main = &program.pous[0];
+    let mut tasks = tasks.to_vec();
+    for (sub, &k) in owner.iter().enumerate().skip(1) {
+        tasks[k].subs.push(sub);
     }
     // The subroutines of a task are consecutive POUs (a unit's SBNs are written together).
     let mut seen = Vec::new();
     for &k in owner.iter().skip(1) {
         if seen.last() != Some(&k) {
             if seen.contains(&k) {
-                return Err(err(0, "a task's subroutines are not consecutive POUs"));
+                return Err("a task's subroutines are not consecutive POUs");
             }
             seen.push(k);
         }
@@ -106,25 +151,18 @@ pub(super) fn plan(program: &Program) -> Result<Plan, PrintError> {
             })
             .collect();
         if t.slots.windows(2).any(|w| w[1] != w[0] + 1) {
-            return Err(err(
-                0,
-                "a task's edge slots are not consecutive in text order",
-            ));
+            return Err("a task's edge slots are not consecutive in text order");
         }
     }
-    let order = source_order(&tasks).ok_or_else(|| {
-        err(
-            0,
-            "no source order of the tasks gives these edge slots and subroutines",
-        )
-    })?;
+    let order = source_order(&tasks)
+        .ok_or("no source order of the tasks gives these edge slots and subroutines")?;
     let mut units = Vec::new();
     let mut next = 0;
     let unused = |r: Range<usize>| Unit::Unused(program.edges[r].iter().map(|e| e.init).collect());
     for k in order {
         if let (Some(&first), Some(&last)) = (tasks[k].slots.first(), tasks[k].slots.last()) {
             if first < next || last >= program.edges.len() {
-                return Err(err(0, "the tasks' edge slots overlap"));
+                return Err("the tasks' edge slots overlap");
             }
             if first > next {
                 units.push(unused(next..first));
@@ -139,12 +177,10 @@ pub(super) fn plan(program: &Program) -> Result<Plan, PrintError> {
     Ok(Plan { tasks, units })
 }
 
-/// The task each subroutine belongs to (index 0, the main POU, is task 0 and unused): the
-/// task whose code calls it, directly or through other subroutines; an uncalled one takes the
-/// task of a subroutine it calls, else of the subroutine before it (or after it).
-fn owners(program: &Program, tasks: &[Task]) -> Result<Vec<usize>, PrintError> {
-    let n = program.pous.len();
-    let mut owner: Vec<Option<usize>> = vec![None; n];
+/// The task each subroutine belongs to when some task's code calls it, directly or through
+/// other subroutines (`None` for the rest).
+fn called_owners(program: &Program, tasks: &[Task]) -> Result<Vec<Option<usize>>, PrintError> {
+    let mut owner: Vec<Option<usize>> = vec![None; program.pous.len()];
     let main = &program.pous[0];
     let mut calls = Vec::new();
     for (k, t) in tasks.iter().enumerate() {
@@ -156,17 +192,17 @@ fn owners(program: &Program, tasks: &[Task]) -> Result<Vec<usize>, PrintError> {
         );
     }
     claim(program, &mut owner, calls)?;
-    for s in 1..n {
-        if owner[s].is_some() {
-            continue;
-        }
-        let k = reached_owner(program, &owner, s)
-            .or_else(|| (1..s).rev().find_map(|p| owner[p]))
-            .or_else(|| (s + 1..n).find_map(|p| owner[p]))
-            .unwrap_or(0);
-        claim(program, &mut owner, vec![(s, k)])?;
-    }
-    Ok(owner.into_iter().map(|o| o.unwrap_or(0)).collect())
+    Ok(owner)
+}
+
+/// The likeliest task of subroutine `s`, which no task calls: the task of a subroutine it
+/// calls, else of the subroutine before it (or after it), else the first.
+fn preferred(program: &Program, owner: &[Option<usize>], s: usize) -> usize {
+    let n = owner.len();
+    reached_owner(program, owner, s)
+        .or_else(|| (1..s).rev().find_map(|p| owner[p]))
+        .or_else(|| (s + 1..n).find_map(|p| owner[p]))
+        .unwrap_or(0)
 }
 
 /// Gives each subroutine of `calls` (and everything it calls) to its task.
