@@ -145,7 +145,11 @@ fn mutated_omron_texts_never_panic_and_what_compiles_round_trips_and_runs_alike(
         let mut c = Choices::from_seed(seed);
         let g = stljit_diff::generate::omron::generate(&mut c, &Default::default())
             .expect("generated programs compile");
-        bases.push((g.source, g.case.program.profile, Options::default()));
+        bases.push((
+            g.source,
+            g.case.program.profile,
+            Options { omron: g.options },
+        ));
     }
     let mut next = crate::mutate::xorshift(0x51A7_E0F0_1234_5678);
     let (mut accepted, mut tried) = (0, 0);

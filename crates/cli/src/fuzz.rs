@@ -333,6 +333,12 @@ fn print_summary(report: &campaign::Report, elapsed: Duration, jobs: usize) {
             .map(|(k, n)| format!("{k} {n}"))
             .collect();
         let _ = writeln!(out, "operands: {}", kinds.join(", "));
+        let programs: Vec<String> = c
+            .omron_programs
+            .iter()
+            .map(|(k, n)| format!("{k} {n}"))
+            .collect();
+        let _ = writeln!(out, "programs: {}", programs.join(", "));
         let missing = c.missing_omron();
         if !missing.is_empty() {
             let _ = writeln!(out, "never generated: {}", missing.join(", "));

@@ -213,9 +213,13 @@ pub fn run(
             let (seed, family, generated) = campaign_case(cfg, index);
             let engines = campaign_engines(cfg, index);
             let (case, source, result) = match generated {
-                Ok(Generated { case, source }) => {
+                Ok(Generated {
+                    case,
+                    source,
+                    options,
+                }) => {
                     match &source {
-                        Some(text) => cov.add_omron_source(text),
+                        Some(text) => cov.add_omron_source(text, options),
                         None => cov.add_program(&case.program),
                     }
                     let result = check_case(&case, engines, &cfg.run, cfg.roundtrip);

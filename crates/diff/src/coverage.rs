@@ -1,8 +1,9 @@
 //! Coverage counters: how often each mnemonic and each operand kind was generated, so that a
 //! campaign shows what it exercised (and what it never reached). S7 programs are counted from
 //! their IR (per STL mnemonic); Omron programs from their generated text, per instruction form
-//! as written (`!@LD`, `LD>=S`, `TIMX`) and per operand form (`W bit`, `T PV`, `,IR+` …),
-//! which the Omron front end names and lists (`stljit_front_omron::forms`).
+//! as written (`!@LD`, `LD>=S`, `TIMX`), per operand form (`W bit`, `T PV`, `,IR+` …) and per
+//! program form (`$TASK CYCLIC`, `STEP in IL`, `backward jump`, `tc_mode binary` …), which the
+//! Omron front end names and lists (`stljit_front_omron::forms`).
 
 use std::collections::BTreeMap;
 use stljit_core::ir::{BoxOp, CmpType, Contact, Conversion, Op, Operand, Program};
@@ -21,6 +22,8 @@ pub struct Coverage {
     pub omron_mnemonics: BTreeMap<String, u64>,
     /// Generated Omron operands per form.
     pub omron_operands: BTreeMap<&'static str, u64>,
+    /// Generated Omron programs per program form (units, regions, options).
+    pub omron_programs: BTreeMap<&'static str, u64>,
 }
 
 impl Coverage {
@@ -36,8 +39,12 @@ impl Coverage {
         }
     }
 
-    /// Counts every instruction and operand of an Omron program's text.
-    pub fn add_omron_source(&mut self, text: &str) {
+    /// Counts every instruction and operand of an Omron program's text, and its program forms
+    /// with the front-end `options` it is compiled with.
+    pub fn add_omron_source(&mut self, text: &str, options: stljit_front_omron::Options) {
+        for f in stljit_front_omron::forms::program_forms(text, options) {
+            *self.omron_programs.entry(f).or_default() += 1;
+        }
         for f in stljit_front_omron::forms::forms(text) {
             for o in &f.operands {
                 *self.omron_operands.entry(o).or_default() += 1;
@@ -60,10 +67,13 @@ impl Coverage {
         for (k, v) in &other.omron_operands {
             *self.omron_operands.entry(k).or_default() += v;
         }
+        for (k, v) in &other.omron_programs {
+            *self.omron_programs.entry(k).or_default() += v;
+        }
     }
 
-    /// Omron instruction forms (`stljit_front_omron::forms::mnemonic_forms`) and operand forms
-    /// (`forms::OPERAND_FORMS`) never generated.
+    /// Omron instruction forms (`stljit_front_omron::forms::mnemonic_forms`), operand forms
+    /// (`forms::OPERAND_FORMS`) and program forms (`forms::PROGRAM_FORMS`) never generated.
     pub fn missing_omron(&self) -> Vec<String> {
         let forms = stljit_front_omron::forms::mnemonic_forms()
             .into_iter()
@@ -72,7 +82,11 @@ impl Coverage {
             .iter()
             .filter(|o| !self.omron_operands.contains_key(*o))
             .map(|o| format!("operand {o}"));
-        forms.chain(operands).collect()
+        let programs = stljit_front_omron::forms::PROGRAM_FORMS
+            .iter()
+            .filter(|f| !self.omron_programs.contains_key(*f))
+            .map(|f| format!("program {f}"));
+        forms.chain(operands).chain(programs).collect()
     }
 
     /// Mnemonics of [`ALL_MNEMONICS`] never generated.

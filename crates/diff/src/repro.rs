@@ -245,6 +245,14 @@ pub fn write_repro(
             meta.profile.profile().family
         );
     }
+    if meta.profile.profile().family == Family::Omron
+        && stljit_front_omron::printed_options(&case.program).allow_backward_jumps
+    {
+        let _ = writeln!(
+            readme,
+            "`program.omr` jumps backward: compile it with --allow-backward-jumps."
+        );
+    }
     let _ = writeln!(
         readme,
         "Engines: {}; loop budget per scan: {}.\nThe program is `program.ir` (IR text, \

@@ -86,6 +86,8 @@ pub struct Generated {
     pub case: Case,
     /// The generated source text (`None` for S7 programs, which are built as IR).
     pub source: Option<String>,
+    /// The Omron front-end options `source` compiles with (the default for S7 programs).
+    pub options: stljit_front_omron::Options,
 }
 
 /// Generates a case of the dialect `family` (S7 programs as IR, Omron programs as text
@@ -99,10 +101,12 @@ pub fn generate_in(
         Family::S7 => Ok(Generated {
             case: generate_case(c, cfg),
             source: None,
+            options: Default::default(),
         }),
         Family::Omron => omron::generate(c, cfg).map(|g| Generated {
             case: g.case,
             source: Some(g.source),
+            options: g.options,
         }),
     }
 }

@@ -109,9 +109,13 @@ impl OmronGen<'_, '_> {
                 let pulses: Vec<SystemBit> = SystemBit::PULSES.iter().map(|p| p.0).collect();
                 self.system_bit(&pulses)
             }
-            10 => match self.c.below(3) {
+            10 => match self.c.below(4) {
                 0 => "P_First_Cycle".into(),
                 1 => format!("A448.{bit:02}"),
+                // A step's bit, as a step's outputs would read it elsewhere.
+                2 => self
+                    .some_step_bit()
+                    .unwrap_or_else(|| format!("A200.{bit:02}")),
                 _ => format!("A200.{bit:02}"),
             },
             _ => format!("D{}.{bit:02}", self.c.below(16)),
@@ -194,7 +198,13 @@ impl OmronGen<'_, '_> {
         let negated = self.c.chance(1, 4);
         let group = Group::Contact(join, negated);
         let options = self.options(group);
-        let b = self.read_bit();
+        // `!` refreshes the word of an input bit: mostly read one then.
+        let b = if options.contains('!') && self.c.chance(2, 3) {
+            let (word, bit) = (self.c.below(2), self.c.below(16));
+            self.cio(word, Some(bit))
+        } else {
+            self.read_bit()
+        };
         self.op(&options, group, &[b]);
     }
 
@@ -209,13 +219,17 @@ impl OmronGen<'_, '_> {
         let Some(cc) = mnemonics::compare(&name) else {
             return;
         };
-        let bang = if COMPARE_OPTIONS.immediate && self.c.chance(1, 8) {
+        let bang = if COMPARE_OPTIONS.immediate && !self.plain && self.c.chance(1, 8) {
             "!"
         } else {
             ""
         };
         let words = if double { 2 } else { 1 };
-        let lhs = self.src(words, false);
+        let lhs = if bang == "!" && self.c.chance(2, 3) {
+            self.io_word(true, words)
+        } else {
+            self.src(words, false)
+        };
         let rhs = self.src(words, false);
         self.ins(bang, &name, Some(cc.code), &[lhs, rhs]);
     }
@@ -250,10 +264,12 @@ impl OmronGen<'_, '_> {
                 self.contact(join);
             }
             1 => self.op("", Group::Not, &[]),
-            2 => {
+            // UP/DOWN: not in a block program.
+            2 if !self.block => {
                 let falling = self.c.chance(1, 2);
                 self.op("", Group::Edge(falling), &[]);
             }
+            2 => self.op("", Group::Not, &[]),
             3 => {
                 self.condition(pending + 1, depth + 1);
                 self.join();
@@ -293,6 +309,7 @@ impl OmronGen<'_, '_> {
                 self.contact(join);
             }
             1 => self.op("", Group::Not, &[]),
+            _ if self.block => self.op("", Group::Not, &[]),
             _ => {
                 let falling = self.c.chance(1, 2);
                 self.op("", Group::Edge(falling), &[]);
@@ -326,7 +343,8 @@ impl OmronGen<'_, '_> {
                     }
                 }
             }
-            if self.c.chance(1, 4) {
+            // OUT TRn is an OUT, which a block program may not hold.
+            if !self.block && self.c.chance(1, 4) {
                 let free: Vec<u32> = (0..16).filter(|t| self.trs & (1 << t) == 0).collect();
                 if !free.is_empty() {
                     let tr = if self.c.chance(3, 4) {
@@ -346,9 +364,11 @@ impl OmronGen<'_, '_> {
         }
     }
 
-    /// OUT, OUT NOT, SET, RSET (with their options) or DIFU/DIFD.
+    /// OUT, OUT NOT, SET, RSET (with their options) or DIFU/DIFD; in a block program SET or
+    /// RSET only.
     pub(crate) fn bit_output(&mut self) {
-        let group = match self.c.weighted(&[10, 3, 4, 4, 1, 1]) {
+        let out = u32::from(!self.block);
+        let group = match self.c.weighted(&[10 * out, 3 * out, 4, 4, out, out]) {
             0 => Group::Out(false),
             1 => Group::Out(true),
             2 => Group::SetReset(true),
@@ -357,8 +377,18 @@ impl OmronGen<'_, '_> {
             _ => Group::Differentiate(true),
         };
         let options = self.options(group);
-        let b = self.write_bit();
+        let b = self.refreshed_bit(&options);
         self.op(&options, group, &[b]);
+    }
+
+    /// A coil written with `options`: with `!`, mostly an output bit (whose word is refreshed).
+    fn refreshed_bit(&mut self, options: &str) -> String {
+        if options.contains('!') && self.c.chance(2, 3) {
+            let (word, bit) = (100 + self.c.below(2), self.c.below(16));
+            self.cio(word, Some(bit))
+        } else {
+            self.write_bit()
+        }
     }
 
     /// KEEP(011): a set condition and a reset condition, each a whole block.
@@ -366,7 +396,7 @@ impl OmronGen<'_, '_> {
         self.condition(0, 0);
         self.condition(1, 1);
         let options = self.options(Group::Keep);
-        let b = self.write_bit();
+        let b = self.refreshed_bit(&options);
         self.op(&options, Group::Keep, &[b]);
     }
 

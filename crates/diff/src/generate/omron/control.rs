@@ -12,7 +12,7 @@ use stljit_front_omron::mnemonics::{Flow, Group};
 
 impl OmronGen<'_, '_> {
     /// An unused jump number of the current POU.
-    fn new_jump(&mut self) -> Option<u32> {
+    pub(crate) fn new_jump(&mut self) -> Option<u32> {
         let max = u32::from(self.p.omron.max_jump);
         for _ in 0..6 {
             let n = if self.c.chance(1, 10) {
@@ -28,7 +28,7 @@ impl OmronGen<'_, '_> {
     }
 
     /// A jump number as written: `&5`, `5` or `#0005`.
-    fn jump_text(&mut self, n: u32) -> String {
+    pub(crate) fn jump_text(&mut self, n: u32) -> String {
         match self.c.weighted(&[3, 2, 1]) {
             0 => format!("&{n}"),
             1 => n.to_string(),
@@ -37,7 +37,7 @@ impl OmronGen<'_, '_> {
     }
 
     /// JMP, CJP or CJPN to `n` on a fresh condition.
-    fn jump_to(&mut self, n: u32) {
+    pub(crate) fn jump_to(&mut self, n: u32) {
         self.condition(0, 0);
         let flow = [Flow::Jmp, Flow::Cjp, Flow::Cjpn][self.c.weighted(&[3, 2, 2])];
         let t = self.jump_text(n);

@@ -4,7 +4,7 @@
 //! forms `@D`/`*D`/IR whose pointers a setup rung aims inside and outside their areas.
 
 use super::OmronGen;
-use stljit_core::ir::{OmronArith, OmronCounterKind, OmronTimerKind};
+use stljit_core::ir::OmronArith;
 use stljit_front_omron::mnemonics::{self, Group, Join, Mnemonic, TABLE};
 
 /// A random BCD number of up to `digits` digits, written as its hex pattern.
@@ -14,18 +14,21 @@ fn bcd_text(value: u32, digits: usize) -> String {
 }
 
 impl OmronGen<'_, '_> {
-    /// Options for `m` (an entry of the table or an arithmetic instruction).
+    /// Options for `m` (an entry of the table or an arithmetic instruction): none in a block
+    /// program (`@`/`%`) or a function block (`!`).
     pub(crate) fn options_of(&mut self, m: &Mnemonic) -> String {
         let a = m.allowed;
-        let edge = match self
-            .c
-            .weighted(&[10, u32::from(a.up) * 2, u32::from(a.down)])
-        {
-            1 => "@",
-            2 => "%",
-            _ => "",
-        };
-        let bang = if a.immediate && self.c.chance(1, 6) {
+        let edges = !self.block;
+        let edge =
+            match self
+                .c
+                .weighted(&[10, u32::from(a.up && edges) * 2, u32::from(a.down && edges)])
+            {
+                1 => "@",
+                2 => "%",
+                _ => "",
+            };
+        let bang = if a.immediate && !self.plain && self.c.chance(1, 6) {
             "!"
         } else {
             ""
@@ -201,6 +204,40 @@ impl OmronGen<'_, '_> {
         }
     }
 
+    /// A built-in input (`input`) or output word of `words` words, where `!` refreshes; a
+    /// four-word result, which no I/O area holds, goes to the DM area.
+    pub(crate) fn io_word(&mut self, input: bool, words: u32) -> String {
+        let base = if input { 0 } else { 100 };
+        match words {
+            1 => {
+                let w = base + self.c.below(2);
+                self.cio(w, None)
+            }
+            2 => self.cio(base, None),
+            _ => self.loc_word(words, !input),
+        }
+    }
+
+    /// A source of a data instruction written with `options`: with `!`, half the time a
+    /// built-in input word (refreshed before the instruction).
+    fn refreshed_src(&mut self, options: &str, words: u32) -> String {
+        if options.contains('!') && self.c.chance(1, 2) {
+            self.io_word(true, words)
+        } else {
+            self.src(words, true)
+        }
+    }
+
+    /// A destination of a data instruction written with `options`: with `!`, half the time a
+    /// built-in output word (refreshed after it).
+    fn refreshed_dst(&mut self, options: &str, words: u32) -> String {
+        if options.contains('!') && self.c.chance(1, 2) {
+            self.io_word(false, words)
+        } else {
+            self.dst(words, true)
+        }
+    }
+
     /// A source of `words` words: a location, a constant or (`indirect`) an indirect form.
     pub(crate) fn src(&mut self, words: u32, indirect: bool) -> String {
         self.src_bcd(words, indirect, false)
@@ -304,7 +341,8 @@ impl OmronGen<'_, '_> {
         if kind.totalizing() {
             self.condition(1, 1);
         }
-        let sv = self.set_value(OmronTimerKind::bcd(kind));
+        // In the binary mode the plain timers take binary set values (their X forms).
+        let sv = self.set_value(self.options.tc_mode.timer(kind).bcd());
         let num = self.number_operand(true, n);
         self.ins("", m.name, m.code, &[num, sv]);
         if self.c.chance(1, 2) {
@@ -330,7 +368,7 @@ impl OmronGen<'_, '_> {
         for i in 0..u32::from(kind.conditions()) {
             self.condition(i, u32::from(i > 0));
         }
-        let sv = self.set_value(OmronCounterKind::bcd(kind));
+        let sv = self.set_value(self.options.tc_mode.counter(kind).bcd());
         let num = self.number_operand(false, n);
         self.ins("", m.name, m.code, &[num, sv]);
         if self.c.chance(1, 2) {
@@ -377,7 +415,8 @@ impl OmronGen<'_, '_> {
                     self.bit_output();
                 }
                 _ => {
-                    if self.trs & 1 == 0 {
+                    // OUT TR0 is an OUT, which a block program may not hold.
+                    if self.trs & 1 == 0 && !self.block {
                         self.trs |= 1;
                         self.op("", Group::Out(false), &["TR0".into()]);
                         for i in 0..2 {
@@ -402,8 +441,8 @@ impl OmronGen<'_, '_> {
                 let group = Group::Move(double);
                 let options = self.options(group);
                 let w = if double { 2 } else { 1 };
-                let src = self.src(w, true);
-                let dst = self.dst(w, true);
+                let src = self.refreshed_src(&options, w);
+                let dst = self.refreshed_dst(&options, w);
                 self.op(&options, group, &[src, dst]);
                 false
             }
@@ -416,8 +455,8 @@ impl OmronGen<'_, '_> {
                 let group = Group::Compare(double, signed);
                 let options = self.options(group);
                 let w = if double { 2 } else { 1 };
-                let lhs = self.src(w, true);
-                let rhs = self.src(w, true);
+                let lhs = self.refreshed_src(&options, w);
+                let rhs = self.refreshed_src(&options, w);
                 self.op(&options, group, &[lhs, rhs]);
                 true
             }
@@ -438,9 +477,15 @@ impl OmronGen<'_, '_> {
         let bcd = op.mnemonic().contains('B');
         let options = self.options_of(&m);
         let w = op.operand_words();
-        let lhs = self.src_bcd(w, true, bcd);
-        let rhs = self.src_bcd(w, true, bcd);
-        let dst = self.dst(op.result_words(), true);
+        let (lhs, rhs, dst) = if options.contains('!') && self.c.chance(1, 2) {
+            let lhs = self.io_word(true, w);
+            let rhs = self.src_bcd(w, true, bcd);
+            (lhs, rhs, self.io_word(false, op.result_words()))
+        } else {
+            let lhs = self.src_bcd(w, true, bcd);
+            let rhs = self.src_bcd(w, true, bcd);
+            (lhs, rhs, self.dst(op.result_words(), true))
+        };
         self.ins(&options, m.name, m.code, &[lhs, rhs, dst]);
     }
 

@@ -7,26 +7,34 @@
 //! block (E005–E009), at most 13 blocks are ever pending (E041), TR bits are stored once per
 //! circuit before they are read (E010), options come from the mnemonic's entry in
 //! `front_omron::mnemonics::TABLE` (E012), every timer and counter number is used once (E021),
-//! IL/ILC, JMP/JME, JMP0/JME0 and FOR/NEXT are emitted as properly nested regions of one POU
-//! (jumps go forward and never cross an IL or enter a FOR body: E022–E027), destinations are
-//! writable and multi-word operands stay inside their area (E016, E018, E019), and the
-//! subroutines stand before END. A program the front end rejects is a generator bug:
-//! [`generate`] returns it as a [`GenError`] with the diagnostics, and campaigns report it.
+//! IL/ILC, JMP/JME, JMP0/JME0, FOR/NEXT, step areas and block programs are emitted as properly
+//! nested regions of one POU (jumps never cross an IL or a block program or enter a FOR body,
+//! backward only with the option: E022–E027), a step area or a block program holds only what
+//! its region allows (E026, E029), destinations are writable and multi-word operands stay
+//! inside their area (E016, E018, E019), the subroutines stand before END, and every unit's
+//! pairs, calls and step bits stay in that unit (E025). A program the front end rejects is a
+//! generator bug: [`generate`] returns it as a [`GenError`] with the diagnostics, and campaigns
+//! report it.
 //!
-//! The parts: [`circuit`] (conditions, contacts, bit outputs, TR branches, multi-condition
+//! The parts: [`units`] (the program's options, its `$TASK`/`$FB` units and each unit's
+//! program), [`circuit`] (conditions, contacts, bit outputs, TR branches, multi-condition
 //! instructions), [`data`] (timers, counters and the data instructions with their operands),
-//! [`control`] (IL, jumps, FOR, subroutine calls); the stimulus is
-//! [`super::stimulus::generate`], which knows the Omron I/O words.
+//! [`control`] (IL, jumps, FOR, subroutine calls), [`regions`] (step areas, block programs,
+//! backward jumps); the stimulus is [`super::stimulus::generate`], which knows the Omron I/O
+//! words.
 
 mod circuit;
 mod control;
 mod data;
+mod regions;
+mod units;
 
 use super::{Case, GenConfig, stimulus};
 use crate::rng::Choices;
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
 use stljit_core::{CpuProfile, ProfileId};
+use stljit_front_omron::Options;
 use stljit_front_omron::mnemonics::{Group, Mnemonic, TABLE};
 
 /// A generated Omron case: the compiled case and the text it was compiled from.
@@ -36,6 +44,8 @@ pub struct OmronCase {
     pub case: Case,
     /// The generated Omron source text.
     pub source: String,
+    /// The front-end options it was compiled with (the binary timer mode, backward jumps).
+    pub options: Options,
 }
 
 /// The Omron front end rejected a generated program: a generator bug.
@@ -69,9 +79,11 @@ pub fn generate(c: &mut Choices<'_>, cfg: &GenConfig) -> Result<OmronCase, GenEr
         // The CP1H is the reference model; the CP1E has the smaller areas (and D bits).
         _ => [ProfileId::Cp1h, ProfileId::Cp1e][c.weighted(&[4, 1])],
     };
-    let source = generate_source(c, cfg, profile);
-    let compiled =
-        std::panic::catch_unwind(|| stljit_front_omron::compile_str("fuzz.omr", &source, profile));
+    let (source, options) = generate_source(c, cfg, profile);
+    let compiled = std::panic::catch_unwind(|| {
+        let file = stljit_front_omron::SourceFile::from_text("fuzz.omr", &source);
+        stljit_front_omron::compile_with(&[file], None, profile, options)
+    });
     let Ok(compiled) = compiled else {
         return Err(GenError {
             source,
@@ -97,14 +109,20 @@ pub fn generate(c: &mut Choices<'_>, cfg: &GenConfig) -> Result<OmronCase, GenEr
     Ok(OmronCase {
         case: Case { program, stimulus },
         source,
+        options,
     })
 }
 
-/// Generates the text of one Omron program for `profile`.
-pub fn generate_source(c: &mut Choices<'_>, cfg: &GenConfig, profile: ProfileId) -> String {
+/// Generates the text of one Omron program for `profile` and the front-end options it is
+/// compiled with (named in its first line when they are not the default).
+pub fn generate_source(
+    c: &mut Choices<'_>,
+    cfg: &GenConfig,
+    profile: ProfileId,
+) -> (String, Options) {
     let mut g = OmronGen::new(c, cfg, profile);
     g.program();
-    g.out
+    (g.out, g.options)
 }
 
 /// Where the rung being generated sits: what may appear there.
@@ -121,6 +139,10 @@ pub(crate) struct Ctx {
     /// Jump numbers whose JME follows the innermost FOR's NEXT at this IL level: a jump to
     /// one leaves the loop.
     pub(crate) loop_exits: Vec<u32>,
+    /// Inside a step area (no jumps, IL, FOR or another step area there).
+    pub(crate) in_step: bool,
+    /// Inside a block program (its restrictions are [`OmronGen::block`]'s).
+    pub(crate) in_block: bool,
 }
 
 /// Generator state for one program.
@@ -149,6 +171,20 @@ pub(crate) struct OmronGen<'c, 'a> {
     /// Coils written so far (mostly avoided again: W020 is a warning, realistic programs have
     /// few).
     pub(crate) coils: BTreeSet<String>,
+    /// The front-end options the program is compiled with.
+    pub(crate) options: Options,
+    /// Subroutine numbers of the whole project (each unit has its own subroutines).
+    pub(crate) all_subs: BTreeSet<u32>,
+    /// Writing a block program: no `@`/`%`, no UP/DOWN, no OUT/KEEP/DIFU/DIFD, no timers.
+    pub(crate) block: bool,
+    /// Writing a function block: no `!`.
+    pub(crate) plain: bool,
+    /// Block program numbers used in the current unit.
+    pub(crate) blocks: BTreeSet<u32>,
+    /// Step bits used so far (each in one unit: a SNXT and its STEP must be in one task).
+    pub(crate) step_bits: u32,
+    /// Words D200… used as counters of backward-jump loops.
+    pub(crate) loop_words: u32,
 }
 
 impl<'c, 'a> OmronGen<'c, 'a> {
@@ -168,6 +204,13 @@ impl<'c, 'a> OmronGen<'c, 'a> {
             recursion: false,
             trs: 0,
             coils: BTreeSet::new(),
+            options: Options::default(),
+            all_subs: BTreeSet::new(),
+            block: false,
+            plain: false,
+            blocks: BTreeSet::new(),
+            step_bits: 0,
+            loop_words: 0,
         }
     }
 
@@ -243,96 +286,38 @@ impl<'c, 'a> OmronGen<'c, 'a> {
         }
     }
 
-    fn program(&mut self) {
-        self.recursion = self.c.chance(1, 12);
-        let n_subs = self.c.below(self.cfg.max_subroutines + 1);
-        let max_sub = u32::from(self.p.max_subroutine);
-        for k in 0..n_subs {
-            // An exhausted byte stream picks 0 every time: fall back to the next free number.
-            let n = if self.c.chance(1, 10) {
-                max_sub - self.c.below(3)
-            } else {
-                self.c.below(16)
-            };
-            let n = if self.subs.contains(&n) { 16 + k } else { n };
-            self.subs.push(n);
-        }
-        if self.c.chance(1, 2) {
-            self.setup();
-        }
-        let long = self.c.chance(1, 25);
-        let rungs = if long {
-            self.limit = 4 * self.cfg.max_ops_per_pou;
-            4 * self.cfg.max_networks
-        } else {
-            self.c.range(1, self.cfg.max_networks)
-        };
-        for _ in 0..rungs {
-            if !self.room() {
-                break;
-            }
-            self.rung(&Ctx::default());
-        }
-        for i in 0..self.subs.len() {
-            self.current_sub = Some(i);
-            self.jumps.clear();
-            self.lines = 0;
-            self.limit = self.cfg.max_ops_per_pou / 2;
-            let n = self.subs[i].to_string();
-            self.op(
-                "",
-                Group::Control(stljit_front_omron::mnemonics::Flow::Sbn),
-                &[n],
-            );
-            for _ in 0..self.c.range(0, 4) {
-                self.rung(&Ctx::default());
-            }
-            self.op(
-                "",
-                Group::Control(stljit_front_omron::mnemonics::Flow::Ret),
-                &[],
-            );
-            if self.c.chance(1, 30) {
-                // Never runs (W028): code between the subroutine region and END.
-                self.out.push_str("LD 0.00\nOUT W511.15\n");
-            }
-        }
-        self.op(
-            "",
-            Group::Control(stljit_front_omron::mnemonics::Flow::End),
-            &[],
-        );
-        if self.c.chance(1, 20) {
-            // Never runs (W002): lines after the first END, a second END among them.
-            self.out.push_str("LD 0.01\nOUT 100.00\nEND(001)\n");
-        }
-    }
-
     /// One rung, or one region of rungs, of any kind allowed in `ctx`.
     pub(crate) fn rung(&mut self, ctx: &Ctx) {
         self.trs = 0;
         let structured = ctx.depth < 3;
-        let in_loop = ctx.for_depth > 0;
+        let (step, block) = (ctx.in_step, ctx.in_block);
+        // Regions a step area (NOT_IN_STEPS) or a block program (NOT_IN_BLOCKS) holds none of.
+        let free = !step && !block;
+        let on = |b: bool, w: u32| if b { w } else { 0 };
+        // Step areas are only in a task's body (not in subroutines); IL around one is the
+        // case the front end's gate saving is for.
+        let main_body = self.current_sub.is_none();
+        let step_area = if ctx.in_il { 4 } else { 2 };
+        let backward = self.options.allow_backward_jumps;
         let weights = [
-            30,                                             // contacts and coils
-            8,                                              // timer
-            6,                                              // counter
-            4,                                              // KEEP
-            3,                                              // DIFU/DIFD
-            14,                                             // data
-            2,                                              // PV rewrite
-            if structured && !ctx.in_il { 4 } else { 1 },   // IL region
-            if structured { 4 } else { 0 },                 // jump region
-            if structured && !ctx.in_jmp0 { 2 } else { 0 }, // JMP0 region
-            if structured && ctx.for_depth < 3 {
-                3
-            } else {
-                0
-            }, // FOR
-            if self.has_callee() { 4 } else { 0 },          // SBS
-            2,                                              // CCS/CCL, IORF
-            2,                                              // deep blocks
-            if in_loop { 3 } else { 0 },                    // BREAK / leave the loop
+            30,                                                     // contacts and coils
+            on(!block, 8),                                          // timer
+            6,                                                      // counter
+            on(!block, 4),                                          // KEEP
+            on(!block, 3),                                          // DIFU/DIFD
+            14,                                                     // data
+            2,                                                      // PV rewrite
+            on(free, if structured && !ctx.in_il { 4 } else { 1 }), // IL region
+            on(structured && !step, 4),                             // jump region
+            on(structured && free && !ctx.in_jmp0, 2),              // JMP0 region
+            on(structured && free && ctx.for_depth < 3, 3),         // FOR
+            on(self.has_callee(), 4),                               // SBS
+            2,                                                      // CCS/CCL, IORF
+            2,                                                      // deep blocks
+            on(free && ctx.for_depth > 0, 3),                       // BREAK / leave the loop
+            on(structured && free && main_body, step_area),         // step area
+            on(structured && !block, 2),                            // block program
+            on(structured && !step && backward, 4),                 // backward jump
         ];
         match self.c.weighted(&weights) {
             0 => self.logic_rung(),
@@ -349,7 +334,10 @@ impl<'c, 'a> OmronGen<'c, 'a> {
             11 => self.call_rung(),
             12 => self.misc_rung(),
             13 => self.deep_rung(),
-            _ => self.leave_loop(ctx),
+            14 => self.leave_loop(ctx),
+            15 => self.step_area(ctx),
+            16 => self.block_program(ctx),
+            _ => self.backward_jump(ctx),
         }
     }
 }

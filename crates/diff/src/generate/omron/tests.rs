@@ -43,16 +43,18 @@ fn programs_from_fuzzer_bytes_compile() {
     );
 }
 
-/// Every instruction form (each mnemonic of the front end's table and every arithmetic and
-/// comparison instruction, alone and with each option it takes) and every operand form appears
-/// in the coverage of a fixed-seed batch of 2,000 programs.
+/// Every instruction form (each mnemonic of the front end's table, STEP, SNXT, BPRG and BEND
+/// among them, and every arithmetic and comparison instruction, alone and with each option it
+/// takes), every operand form and every program form (the `$TASK`/`$FB` units, several tasks,
+/// a step area inside IL, a block program inside a step area, a backward jump, both options)
+/// appears in the coverage of a fixed-seed batch of 2,000 programs.
 #[test]
 fn every_omron_form_is_generated() {
     let mut cov = crate::coverage::Coverage::default();
     for seed in 0..2000 {
         let mut c = Choices::from_seed(seed);
         if let Ok(g) = generate(&mut c, &GenConfig::default()) {
-            cov.add_omron_source(&g.source);
+            cov.add_omron_source(&g.source, g.options);
         }
     }
     let missing = cov.missing_omron();
@@ -63,4 +65,20 @@ fn every_omron_form_is_generated() {
         .map(|m| (cov.omron_mnemonics[&m], m))
         .min();
     assert!(rarest.as_ref().is_some_and(|r| r.0 >= 5), "{rarest:?}");
+    let rarest_program = stljit_front_omron::forms::PROGRAM_FORMS
+        .iter()
+        .map(|f| (cov.omron_programs[f], *f))
+        .min();
+    assert!(
+        rarest_program.is_some_and(|r| r.0 >= 5),
+        "{rarest_program:?}"
+    );
+    // The new instructions are among the table's, so required above; not just once either.
+    for m in ["STEP", "SNXT", "BPRG", "BEND", "!LD", "!OUT", "!MOV"] {
+        assert!(
+            cov.omron_mnemonics[m] >= 20,
+            "{m}: {}",
+            cov.omron_mnemonics[m]
+        );
+    }
 }
