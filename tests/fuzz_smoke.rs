@@ -1,10 +1,11 @@
-//! A fixed-seed differential fuzzing campaign on every `cargo test`: 2,000 generated programs of
-//! 50 scans each, interpreter against the JIT, whole image compared after every scan. It also
-//! proves the oracle is not blind: a JIT wrapped in a fault injector must be caught at the exact
-//! scan and byte.
+//! Fixed-seed differential fuzzing campaigns on every `cargo test`: 2,000 generated S7 programs
+//! and 2,000 generated Omron programs of 50 scans each, interpreter against the JIT (the odd
+//! programs split into one function per basic block), whole image compared after every scan.
+//! It also proves the oracle is not blind: a JIT wrapped in a fault injector must be caught at
+//! the exact scan and byte.
 
 use stljit_core::{Area, Layout};
-use stljit_diff::campaign::{self, CampaignConfig, Totals, check_case};
+use stljit_diff::campaign::{self, CampaignConfig, Dialects, Report, Totals, check_case};
 use stljit_diff::engines::EngineKind;
 use stljit_diff::generate::{GenConfig, case_from_seed};
 use stljit_diff::inject::{Fault, Faulty};
@@ -12,14 +13,16 @@ use stljit_diff::locate::Place;
 use stljit_diff::oracle::{Finding, RunOptions, run_pair};
 use stljit_jit::OptLevel;
 
-#[test]
-fn smoke_campaign_finds_no_divergence() {
+/// Runs 2,000 programs of `dialects` from `seed` on 2 threads and requires no finding and
+/// most programs running all their scans.
+fn smoke(seed: u64, dialects: Dialects) -> Report {
     let cfg = CampaignConfig {
-        seed: 0x5EED,
+        seed,
         programs: Some(2000),
         jobs: 2,
         shard: (0, 1),
         engines: [EngineKind::Interp, EngineKind::Jit(OptLevel::None)],
+        dialects,
         generator: GenConfig::default(),
         run: RunOptions::default(),
         roundtrip: true,
@@ -27,9 +30,15 @@ fn smoke_campaign_finds_no_divergence() {
     let report = campaign::run(&cfg, &|_: &Totals| true, &|_: &Totals| {});
     if let Some(f) = &report.failure {
         panic!(
-            "program {} (seed {}) fails; reproduce with `stljit fuzz --seed {} --programs {}`:\n{}",
+            "program {} (seed {}) fails; reproduce with `stljit fuzz --dialect {} --seed {} \
+             --programs {}`:\n{}",
             f.index,
             f.seed,
+            if dialects == Dialects::Omron {
+                "omron"
+            } else {
+                "s7"
+            },
             cfg.seed,
             f.index + 1,
             f.finding
@@ -38,8 +47,6 @@ fn smoke_campaign_finds_no_divergence() {
     let t = &report.totals;
     assert_eq!(t.programs, 2000);
     assert_eq!(t.scans, 2000 * 50);
-    let missing = report.coverage.missing();
-    assert!(missing.is_empty(), "mnemonics never generated: {missing:?}");
     // Most programs must run all their scans: a generator that mostly produced programs stopping
     // in scan 0 would compare little.
     assert!(
@@ -47,6 +54,25 @@ fn smoke_campaign_finds_no_divergence() {
         "{} of {} programs stopped",
         t.stopped,
         t.programs
+    );
+    report
+}
+
+#[test]
+fn smoke_campaign_finds_no_divergence() {
+    let report = smoke(0x5EED, Dialects::S7);
+    let missing = report.coverage.missing();
+    assert!(missing.is_empty(), "mnemonics never generated: {missing:?}");
+}
+
+#[test]
+fn omron_smoke_campaign_finds_no_divergence() {
+    let report = smoke(0x0E1D, Dialects::Omron);
+    assert_eq!(report.totals.omron_programs, 2000);
+    let missing = report.coverage.missing_omron();
+    assert!(
+        missing.is_empty(),
+        "Omron forms never generated: {missing:?}"
     );
 }
 

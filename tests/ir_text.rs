@@ -9,7 +9,7 @@ use stljit_core::ir::Program;
 use stljit_core::text;
 use stljit_front_s7::{SourceFile, compile};
 
-fn files_in(dir: &Path, exts: &[&str]) -> Vec<PathBuf> {
+pub(crate) fn files_in(dir: &Path, exts: &[&str]) -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .flatten()
@@ -20,11 +20,23 @@ fn files_in(dir: &Path, exts: &[&str]) -> Vec<PathBuf> {
     v
 }
 
-fn source(path: &Path) -> SourceFile {
+pub(crate) fn source(path: &Path) -> SourceFile {
     SourceFile {
         name: path.display().to_string(),
         bytes: std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())),
     }
+}
+
+/// The program of conformance case `f`, its CPU and its front-end options.
+pub(crate) fn conformance_program(f: &Path) -> (SourceFile, ProfileId, stljit_front::Options) {
+    let text = std::fs::read_to_string(f).unwrap_or_default();
+    let (src, cpu, options) = crate::conformance::harness::case_program(&text)
+        .unwrap_or_else(|e| panic!("{}: {e}", f.display()));
+    let file = SourceFile {
+        name: f.display().to_string(),
+        bytes: src.into_bytes(),
+    };
+    (file, cpu, options)
 }
 
 /// Compiles `files` (with an optional symbol table); `None` when the front end rejects them.
@@ -52,22 +64,7 @@ fn corpus() -> Vec<(String, Program)> {
         out.push((f.display().to_string(), p));
     }
     for f in files_in(&root.join("tests/conformance"), &["toml"]) {
-        let text = std::fs::read_to_string(&f).unwrap_or_default();
-        let table: toml::Table = text
-            .parse()
-            .unwrap_or_else(|e| panic!("{}: {e}", f.display()));
-        let Some(src) = table.get("program").and_then(|v| v.as_str()) else {
-            panic!("{}: no program", f.display());
-        };
-        let cpu = table
-            .get("cpu")
-            .and_then(|v| v.as_str())
-            .map_or(Some(ProfileId::A5), ProfileId::from_name)
-            .unwrap_or_else(|| panic!("{}: unknown cpu", f.display()));
-        let file = SourceFile {
-            name: f.display().to_string(),
-            bytes: src.as_bytes().to_vec(),
-        };
+        let (file, cpu, _) = conformance_program(&f);
         let p = program(&[file], None, cpu)
             .unwrap_or_else(|| panic!("{} does not compile", f.display()));
         out.push((f.display().to_string(), p));

@@ -1,8 +1,9 @@
 //! Every fuzz finding stays fixed: each directory under `tests/regressions/` (written by
 //! `stljit fuzz`: program.ir in the IR text form, stimulus.csv, meta) is replayed on the
-//! interpreter and on the JIT at both optimisation levels, with the whole image compared after
-//! every scan. The program is read as IR text, so a case does not depend on any dialect's
-//! printer; `check_case` also runs both round trips (IR text and S7 front end) on it.
+//! interpreter and on the JIT at both optimisation levels, whole and split into one function per
+//! basic block, with the whole image compared after every scan. The program is read as IR text,
+//! so a case does not depend on any dialect's printer; `check_case` also runs both round trips
+//! (IR text, and the front end of the program's dialect) on it.
 
 use stljit_diff::campaign::check_case;
 use stljit_diff::engines::EngineKind;
@@ -35,13 +36,10 @@ fn every_regression_case_agrees_on_both_engines() {
             ..RunOptions::default()
         };
         for opt in [OptLevel::None, OptLevel::Speed] {
-            if let Err(f) = check_case(
-                &case,
-                [EngineKind::Interp, EngineKind::Jit(opt)],
-                &run,
-                true,
-            ) {
-                failures.push(format!("{} ({opt:?}): {f}", dir.display()));
+            for jit in [EngineKind::Jit(opt), EngineKind::JitSplit(opt)] {
+                if let Err(f) = check_case(&case, [EngineKind::Interp, jit], &run, true) {
+                    failures.push(format!("{} ({jit}): {f}", dir.display()));
+                }
             }
         }
     }

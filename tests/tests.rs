@@ -9,5 +9,6 @@ mod fuzz_smoke;
 mod inputs;
 mod ir_text;
 mod mutate;
+mod omron_text;
 mod regressions;
 mod tidy;

@@ -230,6 +230,15 @@ struct Case {
     known_failure: Option<String>,
 }
 
+/// The program, profile and front-end options of a case given as text (what [`run_case_text`]
+/// compiles).
+pub(crate) fn case_program(
+    text: &str,
+) -> Result<(String, ProfileId, stljit_front::Options), String> {
+    let case = parse_case(text)?;
+    Ok((case.program, case.profile, case.options))
+}
+
 /// Runs one case given as text (`file` names it in reports).
 pub(crate) fn run_case_text(file: &str, text: &str, engines: &[EngineEntry]) -> CaseResult {
     let fail = |detail: String| CaseResult {

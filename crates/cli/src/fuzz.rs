@@ -1,10 +1,10 @@
 //! `stljit fuzz`: a differential fuzzing campaign, JIT against the interpreter.
 //!
 //! Programs come from `stljit_diff`'s generator (program `i` of seed `S` is fixed whatever the job
-//! count or shard); each is round-tripped through the front end and run on both engines with the
-//! whole image compared after every scan. Progress goes to stderr about once a second. On the
-//! first failure the case is shrunk, written as a reproducer directory under `--out`, and the
-//! command exits 1 with its path.
+//! count or shard), S7 or Omron (`--dialect`, default both in turn); each is round-tripped
+//! through its front end and run on both engines with the whole image compared after every
+//! scan. Progress goes to stderr about once a second. On the first failure the case is shrunk,
+//! written as a reproducer directory under `--out`, and the command exits 1 with its path.
 
 use crate::duration::parse_duration;
 use crate::engines::OptArg;
@@ -16,8 +16,8 @@ use std::process::ExitCode;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
-use stljit_core::ProfileId;
-use stljit_diff::campaign::{self, CampaignConfig, Totals, check_case};
+use stljit_core::{Family, ProfileId};
+use stljit_diff::campaign::{self, CampaignConfig, Dialects, Totals, check_case};
 use stljit_diff::engines::EngineKind;
 use stljit_diff::generate::{Case, GenConfig};
 use stljit_diff::oracle::RunOptions;
@@ -51,12 +51,26 @@ pub(crate) struct Args {
     /// Scans per program.
     #[arg(long, default_value_t = 50)]
     scans: u32,
-    /// Only this CPU profile (default: a mix of a5 and s7-200).
+    /// Dialects to generate: s7, omron, or both in turn.
+    #[arg(long, value_enum, default_value = "both")]
+    dialect: DialectArg,
+    /// Only this CPU profile (default: a mix of a5 and s7-200, and of cp1h and cp1e).
     #[arg(long)]
     cpu: Option<String>,
     /// Report the first failure as found, without shrinking it.
     #[arg(long)]
     no_shrink: bool,
+}
+
+/// `--dialect` of `stljit fuzz`.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum DialectArg {
+    /// S7-200/A5 STL.
+    S7,
+    /// Omron CP mnemonics.
+    Omron,
+    /// Both, in turn.
+    Both,
 }
 
 pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
@@ -66,6 +80,21 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
         }
         None => None,
     };
+    let dialects = match args.dialect {
+        DialectArg::S7 => Dialects::S7,
+        DialectArg::Omron => Dialects::Omron,
+        DialectArg::Both => Dialects::Both,
+    };
+    if let Some(p) = profile {
+        let family = p.profile().family;
+        let clash = matches!(
+            (dialects, family),
+            (Dialects::S7, Family::Omron) | (Dialects::Omron, Family::S7)
+        );
+        if clash {
+            anyhow::bail!("--cpu {} is not a profile of --dialect", p.name());
+        }
+    }
     let engines = [EngineKind::Interp, EngineKind::Jit(args.opt.into())];
     let cfg = CampaignConfig {
         seed: args.seed,
@@ -77,6 +106,7 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
         jobs: args.jobs.max(1),
         shard: args.shard.unwrap_or((0, 1)),
         engines,
+        dialects,
         generator: GenConfig {
             profile,
             scans: args.scans,
@@ -86,9 +116,14 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
         roundtrip: true,
     };
     eprintln!(
-        "fuzz: seed {}, shard {}/{}, {} job(s), {} vs {} (split into basic blocks for odd \
-         programs), {} scans per program{}",
+        "fuzz: seed {}, {} program(s), shard {}/{}, {} job(s), {} vs {} (split into basic blocks \
+         for odd programs), {} scans per program{}",
         cfg.seed,
+        match dialects {
+            Dialects::S7 => "S7",
+            Dialects::Omron => "Omron",
+            Dialects::Both => "S7 and Omron",
+        },
         cfg.shard.0,
         cfg.shard.1,
         cfg.jobs,
@@ -139,30 +174,40 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     };
     eprintln!(
-        "\nFAILURE in program {} (seed {}):\n{}",
-        failure.index, failure.seed, failure.finding
+        "\nFAILURE in program {} (seed {}, {}):\n{}",
+        failure.index,
+        failure.seed,
+        family_name(failure.family),
+        failure.finding
     );
     let dir = args.out.join(format!("case-{}", failure.seed));
+    let Some(case) = failure.case else {
+        // The generator wrote Omron text its front end rejects: keep the text.
+        std::fs::create_dir_all(&dir)?;
+        let text = failure.source.unwrap_or_default();
+        std::fs::write(dir.join("generated.omr"), text)?;
+        std::fs::write(dir.join("README.txt"), failure.finding.to_string())?;
+        println!("{}", dir.display());
+        return Ok(ExitCode::from(1));
+    };
     let meta = Meta::new(
-        failure.case.program.profile,
+        case.program.profile,
         Some(failure.seed),
         &format!("{} {}", failure.engines[0], failure.engines[1]),
     );
-    write_repro(
-        &dir.join("original"),
-        &failure.case,
-        &meta,
-        Some(&failure.finding),
-    )?;
+    write_repro(&dir.join("original"), &case, &meta, Some(&failure.finding))?;
+    if let Some(text) = &failure.source {
+        std::fs::write(dir.join("original").join("generated.omr"), text)?;
+    }
     let (case, finding) = if args.no_shrink {
-        (failure.case, failure.finding)
+        (case, failure.finding)
     } else {
         eprintln!(
             "shrinking ({} ops, {} scans)...",
-            failure.case.program.op_count(),
-            failure.case.stimulus.len()
+            case.program.op_count(),
+            case.stimulus.len()
         );
-        shrink_quietly(&failure.case, &failure.finding, failure.engines, &cfg.run)
+        shrink_quietly(&case, &failure.finding, failure.engines, &cfg.run)
     };
     write_repro(&dir, &case, &meta, Some(&finding))?;
     eprintln!(
@@ -172,6 +217,13 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     );
     println!("{}", dir.display());
     Ok(ExitCode::from(1))
+}
+
+fn family_name(f: Family) -> &'static str {
+    match f {
+        Family::S7 => "S7",
+        Family::Omron => "Omron",
+    }
 }
 
 /// Shrinks with the panic hook silenced: candidates that panic are expected and already caught.
@@ -231,10 +283,63 @@ fn print_summary(report: &campaign::Report, elapsed: Duration, jobs: usize) {
     if !fatal.is_empty() {
         let _ = writeln!(out, "fatal endings: {}", fatal.join("; "));
     }
-    let _ = writeln!(out, "coverage (generated ops per mnemonic):");
+    let s7 = t.programs - t.omron_programs;
+    if s7 > 0 {
+        let _ = writeln!(
+            out,
+            "S7 coverage ({s7} programs; generated ops per mnemonic):"
+        );
+        table(
+            &mut out,
+            report.coverage.mnemonics.iter().map(|(m, n)| (*m, *n)),
+        );
+        let missing = report.coverage.missing();
+        if !missing.is_empty() {
+            let _ = writeln!(out, "never generated: {}", missing.join(" "));
+        }
+        let kinds: Vec<String> = report
+            .coverage
+            .operands
+            .iter()
+            .map(|(k, n)| format!("{k} {n}"))
+            .collect();
+        let _ = writeln!(out, "operands: {}", kinds.join(", "));
+    }
+    if t.omron_programs > 0 {
+        let c = &report.coverage;
+        let _ = writeln!(
+            out,
+            "Omron coverage ({} programs; generated instructions per form as written):",
+            t.omron_programs
+        );
+        table(
+            &mut out,
+            c.omron_mnemonics.iter().map(|(m, n)| (m.as_str(), *n)),
+        );
+        let kinds: Vec<String> = c
+            .omron_operands
+            .iter()
+            .map(|(k, n)| format!("{k} {n}"))
+            .collect();
+        let _ = writeln!(out, "operands: {}", kinds.join(", "));
+        let programs: Vec<String> = c
+            .omron_programs
+            .iter()
+            .map(|(k, n)| format!("{k} {n}"))
+            .collect();
+        let _ = writeln!(out, "programs: {}", programs.join(", "));
+        let missing = c.missing_omron();
+        if !missing.is_empty() {
+            let _ = writeln!(out, "never generated: {}", missing.join(", "));
+        }
+    }
+}
+
+/// Prints `name count` pairs eight to a line.
+fn table<'a>(out: &mut impl std::io::Write, rows: impl Iterator<Item = (&'a str, u64)>) {
     let mut line = String::new();
-    for (i, (m, n)) in report.coverage.mnemonics.iter().enumerate() {
-        line.push_str(&format!("{m:>6} {n:<8}"));
+    for (i, (m, n)) in rows.enumerate() {
+        line.push_str(&format!("{m:>9} {n:<8}"));
         if i % 8 == 7 {
             let _ = writeln!(out, "  {}", line.trim_end());
             line.clear();
@@ -243,15 +348,4 @@ fn print_summary(report: &campaign::Report, elapsed: Duration, jobs: usize) {
     if !line.is_empty() {
         let _ = writeln!(out, "  {}", line.trim_end());
     }
-    let missing = report.coverage.missing();
-    if !missing.is_empty() && t.programs > 0 {
-        let _ = writeln!(out, "never generated: {}", missing.join(" "));
-    }
-    let kinds: Vec<String> = report
-        .coverage
-        .operands
-        .iter()
-        .map(|(k, n)| format!("{k} {n}"))
-        .collect();
-    let _ = writeln!(out, "operands: {}", kinds.join(", "));
 }

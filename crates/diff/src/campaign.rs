@@ -1,7 +1,9 @@
 //! A fuzzing campaign: program `i` of campaign seed `s` is generated from
-//! [`program_seed`]`(s, i)`, checked (the IR text and S7 front-end round trips, then both engines
-//! side by side),
-//! and counted. Programs are split across threads (`jobs`) and machines (`shard K/N`: program `i`
+//! [`program_seed`]`(s, i)` in the dialect [`campaign_family`] picks (S7, Omron, or both in
+//! turn: programs `4k, 4k+1` S7 and `4k+2, 4k+3` Omron, so each dialect meets the whole and the
+//! split JIT), checked (the IR text and front-end round trips, then both engines side by side),
+//! and counted. A generated Omron program its front end rejects is a finding too (of the
+//! generator). Programs are split across threads (`jobs`) and machines (`shard K/N`: program `i`
 //! belongs to shard `i mod N`), and the split never changes which program a number denotes, so a
 //! finding is reproduced from its seed alone.
 //!
@@ -10,13 +12,25 @@
 
 use crate::coverage::Coverage;
 use crate::engines::EngineKind;
-use crate::generate::{Case, GenConfig, case_from_seed};
+use crate::generate::{Case, GenConfig, Generated, generate_in};
 use crate::oracle::{Finding, RunOptions, RunStats, run_pair};
-use crate::rng::program_seed;
+use crate::rng::{Choices, program_seed};
 use crate::roundtrip::{RoundTripError, roundtrip};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use stljit_core::Family;
+
+/// Which dialects a campaign generates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dialects {
+    /// S7 programs only (built as IR).
+    S7,
+    /// Omron programs only (written as text, compiled by the Omron front end).
+    Omron,
+    /// Both, in turn.
+    Both,
+}
 
 /// What to run.
 #[derive(Clone, Debug)]
@@ -31,12 +45,14 @@ pub struct CampaignConfig {
     pub shard: (u64, u64),
     /// The two engines compared.
     pub engines: [EngineKind; 2],
+    /// The dialects generated (a `generator.profile` fixes its own dialect).
+    pub dialects: Dialects,
     /// Generator knobs.
     pub generator: GenConfig,
     /// Oracle knobs.
     pub run: RunOptions,
     /// Also require every program to survive both round trips ([`roundtrip`]): IR text print →
-    /// parse, and S7 print → compile.
+    /// parse, and print → compile in the program's dialect.
     pub roundtrip: bool,
 }
 
@@ -45,6 +61,8 @@ pub struct CampaignConfig {
 pub struct Totals {
     /// Programs checked.
     pub programs: u64,
+    /// Of which Omron programs.
+    pub omron_programs: u64,
     /// Scans compared (per engine).
     pub scans: u64,
     /// Programs that ended in a fatal error (watchdog, NaN or bad pointer in a compare).
@@ -62,10 +80,14 @@ pub struct Totals {
 pub struct Failure {
     /// Its number in the campaign.
     pub index: u64,
-    /// Its seed ([`case_from_seed`] rebuilds it).
+    /// Its seed ([`campaign_case`] rebuilds it).
     pub seed: u64,
-    /// The program and stimulus.
-    pub case: Case,
+    /// Its dialect.
+    pub family: Family,
+    /// The program and stimulus (`None` when the generated Omron text did not compile).
+    pub case: Option<Case>,
+    /// The generated source text (Omron programs).
+    pub source: Option<String>,
     /// The engines it was run on ([`campaign_engines`]).
     pub engines: [EngineKind; 2],
     /// What went wrong.
@@ -102,7 +124,9 @@ pub fn check_case(
                 RoundTripError::IrTextRejected { .. } | RoundTripError::IrTextChanged { .. } => {
                     "ir text"
                 }
-                RoundTripError::S7Rejected { .. } | RoundTripError::S7Changed { .. } => "front end",
+                RoundTripError::NotPrintable { .. }
+                | RoundTripError::FrontEndRejected { .. }
+                | RoundTripError::FrontEndChanged { .. } => "front end",
             },
             message: e.to_string(),
         })?;
@@ -133,10 +157,33 @@ pub fn campaign_engines(cfg: &CampaignConfig, index: u64) -> [EngineKind; 2] {
     }
 }
 
-/// The case of program `index` of a campaign.
-pub fn campaign_case(cfg: &CampaignConfig, index: u64) -> (u64, Case) {
+/// The dialect of program `index` of a campaign.
+pub fn campaign_family(cfg: &CampaignConfig, index: u64) -> Family {
+    if let Some(p) = cfg.generator.profile {
+        return p.profile().family;
+    }
+    match cfg.dialects {
+        Dialects::S7 => Family::S7,
+        Dialects::Omron => Family::Omron,
+        Dialects::Both if (index >> 1) & 1 == 0 => Family::S7,
+        Dialects::Both => Family::Omron,
+    }
+}
+
+/// The case of program `index` of a campaign (with its seed and dialect); an `Err` is a
+/// generated Omron text its front end rejects.
+pub fn campaign_case(
+    cfg: &CampaignConfig,
+    index: u64,
+) -> (
+    u64,
+    Family,
+    Result<Generated, crate::generate::omron::GenError>,
+) {
     let seed = program_seed(cfg.seed, index);
-    (seed, case_from_seed(seed, &cfg.generator))
+    let family = campaign_family(cfg, index);
+    let mut c = Choices::from_seed(seed);
+    (seed, family, generate_in(family, &mut c, &cfg.generator))
 }
 
 /// Runs a campaign until `cfg.programs` are done, `keep_going` returns false, or a failure.
@@ -163,14 +210,34 @@ pub fn run(
                 break;
             }
             let index = k + j * n;
-            let (seed, case) = campaign_case(cfg, index);
-            cov.add_program(&case.program);
+            let (seed, family, generated) = campaign_case(cfg, index);
             let engines = campaign_engines(cfg, index);
-            let result = check_case(&case, engines, &cfg.run, cfg.roundtrip);
+            let (case, source, result) = match generated {
+                Ok(Generated {
+                    case,
+                    source,
+                    options,
+                }) => {
+                    match &source {
+                        Some(text) => cov.add_omron_source(text, options),
+                        None => cov.add_program(&case.program),
+                    }
+                    let result = check_case(&case, engines, &cfg.run, cfg.roundtrip);
+                    (Some(case), source, result)
+                }
+                Err(e) => {
+                    let finding = Finding::Build {
+                        engine: "generator",
+                        message: e.to_string(),
+                    };
+                    (None, Some(e.source), Err(finding))
+                }
+            };
             let snapshot = {
                 let mut t = totals.lock().unwrap_or_else(|e| e.into_inner());
                 t.programs += 1;
-                t.ops += case.program.op_count() as u64;
+                t.omron_programs += u64::from(family == Family::Omron);
+                t.ops += case.as_ref().map_or(0, |c| c.program.op_count() as u64);
                 match &result {
                     Ok(s) => {
                         t.scans += s.scans;
@@ -192,7 +259,9 @@ pub fn run(
                     *slot = Some(Failure {
                         index,
                         seed,
+                        family,
                         case,
+                        source,
                         engines,
                         finding,
                     });

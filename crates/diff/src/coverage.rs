@@ -1,5 +1,9 @@
 //! Coverage counters: how often each mnemonic and each operand kind was generated, so that a
-//! campaign shows what it exercised (and what it never reached).
+//! campaign shows what it exercised (and what it never reached). S7 programs are counted from
+//! their IR (per STL mnemonic); Omron programs from their generated text, per instruction form
+//! as written (`!@LD`, `LD>=S`, `TIMX`), per operand form (`W bit`, `T PV`, `,IR+` …) and per
+//! program form (`$TASK CYCLIC`, `STEP in IL`, `backward jump`, `tc_mode binary` …), which the
+//! Omron front end names and lists (`stljit_front_omron::forms`).
 
 use std::collections::BTreeMap;
 use stljit_core::ir::{
@@ -17,6 +21,12 @@ pub struct Coverage {
     pub mnemonics: BTreeMap<&'static str, u64>,
     /// Generated operands per kind.
     pub operands: BTreeMap<String, u64>,
+    /// Generated Omron instructions per form (mnemonic with its options as written).
+    pub omron_mnemonics: BTreeMap<String, u64>,
+    /// Generated Omron operands per form.
+    pub omron_operands: BTreeMap<&'static str, u64>,
+    /// Generated Omron programs per program form (units, regions, options).
+    pub omron_programs: BTreeMap<&'static str, u64>,
 }
 
 impl Coverage {
@@ -32,6 +42,20 @@ impl Coverage {
         }
     }
 
+    /// Counts every instruction and operand of an Omron program's text, and its program forms
+    /// with the front-end `options` it is compiled with.
+    pub fn add_omron_source(&mut self, text: &str, options: stljit_front_omron::Options) {
+        for f in stljit_front_omron::forms::program_forms(text, options) {
+            *self.omron_programs.entry(f).or_default() += 1;
+        }
+        for f in stljit_front_omron::forms::forms(text) {
+            for o in &f.operands {
+                *self.omron_operands.entry(o).or_default() += 1;
+            }
+            *self.omron_mnemonics.entry(f.mnemonic).or_default() += 1;
+        }
+    }
+
     /// Adds another coverage (from a worker thread).
     pub fn merge(&mut self, other: &Coverage) {
         for (k, v) in &other.mnemonics {
@@ -40,6 +64,32 @@ impl Coverage {
         for (k, v) in &other.operands {
             *self.operands.entry(k.clone()).or_default() += v;
         }
+        for (k, v) in &other.omron_mnemonics {
+            *self.omron_mnemonics.entry(k.clone()).or_default() += v;
+        }
+        for (k, v) in &other.omron_operands {
+            *self.omron_operands.entry(k).or_default() += v;
+        }
+        for (k, v) in &other.omron_programs {
+            *self.omron_programs.entry(k).or_default() += v;
+        }
+    }
+
+    /// Omron instruction forms (`stljit_front_omron::forms::mnemonic_forms`), operand forms
+    /// (`forms::OPERAND_FORMS`) and program forms (`forms::PROGRAM_FORMS`) never generated.
+    pub fn missing_omron(&self) -> Vec<String> {
+        let forms = stljit_front_omron::forms::mnemonic_forms()
+            .into_iter()
+            .filter(|m| !self.omron_mnemonics.contains_key(m));
+        let operands = stljit_front_omron::forms::OPERAND_FORMS
+            .iter()
+            .filter(|o| !self.omron_operands.contains_key(*o))
+            .map(|o| format!("operand {o}"));
+        let programs = stljit_front_omron::forms::PROGRAM_FORMS
+            .iter()
+            .filter(|f| !self.omron_programs.contains_key(*f))
+            .map(|f| format!("program {f}"));
+        forms.chain(operands).chain(programs).collect()
     }
 
     /// Mnemonics of [`ALL_MNEMONICS`] never generated, except those in [`NOT_GENERATED_YET`].

@@ -5,8 +5,9 @@
 //! byte belongs to comes from core's layout ([`Layout::region`]); this module only spells it.
 
 use std::fmt;
-use stljit_core::Area;
+use stljit_core::ir::{Address, Loc};
 use stljit_core::layout::{Block, L_FRAMES, Layout, Region};
+use stljit_core::{Area, Width};
 use stljit_front_s7::spelling::area_prefix;
 
 /// What an image byte belongs to.
@@ -172,6 +173,21 @@ impl fmt::Display for Place {
                 Area::TimerBit => write!(f, "T{} bit", offset),
                 Area::CounterBit => write!(f, "C{} bit", offset),
                 Area::HC => write!(f, "HC{} byte {}", offset / 4, offset % 4),
+                // The Omron word areas: the word as Omron spells it, and which half.
+                Area::Cio | Area::Work | Area::Holding | Area::Aux | Area::Dm => {
+                    let word = stljit_front_omron::print_address(&Address::Value {
+                        loc: Loc {
+                            area,
+                            offset: offset & !1,
+                        },
+                        width: Width::Word,
+                    });
+                    let half = if offset % 2 == 0 { "15-08" } else { "07-00" };
+                    write!(f, "{word} bits {half}")
+                }
+                Area::Flags => write!(f, "Omron flags byte {offset} (P_ER=0.0 … P_AER=1.3)"),
+                Area::DataReg => write!(f, "DR{} byte {}", offset / 2, offset % 2),
+                Area::IndexReg => write!(f, "IR{} byte {}", offset / 4, offset % 4),
                 Area::AC => write!(f, "AC{} byte {}", offset / 4, offset % 4),
                 _ => write!(f, "{}B{offset}", area_prefix(area)),
             },
@@ -214,6 +230,15 @@ mod tests {
             "Sched.LOOP_COUNT byte 1"
         );
         assert_eq!(Place::of(&l, l.edges + 3), Place::Edge(3));
+        let o = Layout::of(ProfileId::Cp1h);
+        assert_eq!(
+            Place::of(&o, o.addr(Area::Work, 3, 0)).to_string(),
+            "W1 bits 07-00"
+        );
+        assert_eq!(
+            Place::of(&o, o.addr(Area::Dm, 20, 0)).to_string(),
+            "D10 bits 15-08"
+        );
         assert_eq!(Place::of(&l, l.phys_out + 2), Place::PhysOut(2));
         assert_eq!(
             Place::of(&l, l.sched(Sched::FATAL)).sched_field(),

@@ -2,8 +2,10 @@
 //!
 //! ```text
 //! program.ir     the program in the IR text form (`stljit_core::text`); what is read back
-//! program.stl    the same program printed as S7 STL, for reading only (never read back)
-//! stimulus.csv   inputs, analog inputs and HMI writes per scan, in stljit_sim's CSV format
+//! program.stl    the same program printed as S7 STL, for reading only (never read back);
+//! program.omr    for an Omron profile instead: the program printed as Omron mnemonics
+//! stimulus.csv   inputs, analog inputs and HMI writes per scan, in stljit_sim's CSV format,
+//!                addresses spelled in the program's dialect (Omron: input words `0`, `1`)
 //! meta           key = value lines: profile, seed, engines, loop limit, the time of every scan
 //! README.txt     what failed: the scan, the first differing bytes with both values, the seed
 //! ```
@@ -17,7 +19,7 @@ use std::fmt::{self, Write as _};
 use std::path::Path;
 use stljit_core::ir::{Address, BitLoc, Loc};
 use stljit_core::text::{self, ParseError};
-use stljit_core::{Area, ProfileId, Width};
+use stljit_core::{Area, Family, ProfileId, Width};
 use stljit_sim as sim;
 
 /// Facts about a case that are not in the program or the stimulus.
@@ -71,29 +73,52 @@ impl fmt::Display for ReproError {
 
 impl std::error::Error for ReproError {}
 
-fn name(a: &Address) -> String {
-    stljit_front_s7::print_address(a)
+/// `a` spelled in the dialect of `profile`.
+fn name(profile: ProfileId, a: &Address) -> String {
+    match profile.profile().family {
+        Family::S7 => stljit_front_s7::print_address(a),
+        Family::Omron => stljit_front_omron::print_address(a),
+    }
 }
 
-/// The stimulus as stljit_sim CSV: one column per input byte, analog word or HMI address that
-/// is ever non-zero or written, one row per scan where something changes.
+/// The name of a program's text in its dialect: `program.stl` or `program.omr`.
+pub fn dialect_file(profile: ProfileId) -> &'static str {
+    match profile.profile().family {
+        Family::S7 => "program.stl",
+        Family::Omron => "program.omr",
+    }
+}
+
+/// The input unit of a dialect's stimulus columns: S7 input bytes (`IB0`), Omron input words
+/// (CIO `0`, `1`).
+fn input_width(profile: ProfileId) -> Width {
+    match profile.profile().family {
+        Family::S7 => Width::Byte,
+        Family::Omron => Width::Word,
+    }
+}
+
+/// The stimulus as stljit_sim CSV: one column per input byte (Omron: input word), analog word
+/// or HMI address that is ever non-zero or written, one row per scan where something changes.
 pub fn stimulus_csv(profile: ProfileId, s: &Stimulus) -> String {
     let p = profile.profile();
+    let width = input_width(profile);
+    let unit = width.bytes() as usize;
     let mut cols: Vec<Address> = Vec::new();
-    let nonzero_in = |i: usize| {
-        s.scans
-            .iter()
-            .any(|x| x.inputs.get(i).is_some_and(|&b| b != 0))
+    let input = |x: &ScanInput, i: usize| -> Option<u32> {
+        let bytes = x.inputs.get(i..i + unit)?;
+        Some(bytes.iter().fold(0, |v, &b| v << 8 | u32::from(b)))
     };
+    let nonzero_in = |i: usize| s.scans.iter().any(|x| input(x, i).is_some_and(|v| v != 0));
     let nonzero_ai = |i: usize| s.scans.iter().any(|x| x.ai.get(i).is_some_and(|&w| w != 0));
-    for i in 0..p.inputs as usize {
+    for i in (0..p.inputs as usize).step_by(unit) {
         if nonzero_in(i) {
             cols.push(Address::Value {
                 loc: Loc {
                     area: Area::I,
                     offset: i as u32,
                 },
-                width: Width::Byte,
+                width,
             });
         }
     }
@@ -115,7 +140,7 @@ pub fn stimulus_csv(profile: ProfileId, s: &Stimulus) -> String {
     }
     let mut out = String::from("scan");
     for c in &cols {
-        let _ = write!(out, ",{}", name(c));
+        let _ = write!(out, ",{}", name(profile, c));
     }
     out.push('\n');
     let mut prev: Vec<Option<u32>> = vec![Some(0); cols.len()];
@@ -123,9 +148,7 @@ pub fn stimulus_csv(profile: ProfileId, s: &Stimulus) -> String {
         let cells: Vec<Option<u32>> = cols
             .iter()
             .map(|c| match *c {
-                Address::Value { loc, .. } if loc.area == Area::I => {
-                    x.inputs.get(loc.offset as usize).map(|&b| u32::from(b))
-                }
+                Address::Value { loc, .. } if loc.area == Area::I => input(x, loc.offset as usize),
                 Address::Value { loc, .. } if loc.area == Area::AI => {
                     x.ai.get(loc.offset as usize / 2).map(|&w| u32::from(w))
                 }
@@ -195,7 +218,9 @@ pub fn write_repro(
         std::fs::write(dir.join(file), text).map_err(|e| ReproError::Io(dir.join(file), e))
     };
     put("program.ir", text::print(&case.program))?;
-    put("program.stl", stljit_front_s7::print_program(&case.program))?;
+    let dialect_text = crate::roundtrip::dialect_text(&case.program)
+        .unwrap_or_else(|e| format!("; no text in this dialect: {e}\n"));
+    put(dialect_file(meta.profile), dialect_text)?;
     put("stimulus.csv", stimulus_csv(meta.profile, &case.stimulus))?;
     put("meta", meta_text(meta, &case.stimulus))?;
     let mut readme = String::new();
@@ -215,16 +240,28 @@ pub fn write_repro(
     if let Some(seed) = meta.seed {
         let _ = writeln!(
             readme,
-            "Program seed: {seed} (stljit_diff::generate::case_from_seed)."
+            "Program seed: {seed} (stljit_diff::generate::generate_in({:?}, \
+             Choices::from_seed(seed)); `stljit fuzz` prints the campaign seed and index).",
+            meta.profile.profile().family
+        );
+    }
+    if meta.profile.profile().family == Family::Omron
+        && stljit_front_omron::printed_options(&case.program).allow_backward_jumps
+    {
+        let _ = writeln!(
+            readme,
+            "`program.omr` jumps backward: compile it with --allow-backward-jumps."
         );
     }
     let _ = writeln!(
         readme,
         "Engines: {}; loop budget per scan: {}.\nThe program is `program.ir` (IR text, \
-         docs/ir-text.md); `program.stl` is the same program as S7 STL, for reading.\nScan times \
+         docs/ir-text.md); `{}` is the same program in its dialect, for reading.\nScan times \
          (ms) are listed in `meta`; `stimulus.csv` gives inputs per scan number.\nReplay: `cargo test --release -p \
          stljit-harness regressions` once this directory is in tests/regressions/.",
-        meta.engines, meta.loop_limit
+        meta.engines,
+        meta.loop_limit,
+        dialect_file(meta.profile)
     );
     put("README.txt", readme)
 }
@@ -284,7 +321,12 @@ pub fn parse_stimulus(
 ) -> Result<Stimulus, ReproError> {
     let p = profile.profile();
     let resolve = |s: &str| -> Result<Address, String> {
-        stljit_front_s7::parse_address(s, p, None).map_err(|e| e.to_string())
+        match p.family {
+            Family::S7 => stljit_front_s7::parse_address(s, p, None).map_err(|e| e.to_string()),
+            Family::Omron => {
+                stljit_front_omron::parse_address(s, profile, None).map_err(|e| e.to_string())
+            }
+        }
     };
     let st =
         sim::Stimulus::parse(csv, p, &resolve).map_err(|e| ReproError::Stimulus(e.to_string()))?;
@@ -356,18 +398,52 @@ mod tests {
     use super::*;
     use crate::generate::{GenConfig, case_from_seed};
 
+    /// Writes `case` as a reproducer in `dir` and reads it back: the same meta, program and
+    /// stimulus.
+    fn reads_back(dir: &Path, case: &Case, seed: u64) {
+        let meta = Meta::new(case.program.profile, Some(seed), "interp jit(none)");
+        write_repro(dir, case, &meta, None).unwrap();
+        let (back, m) = read_case(dir).unwrap();
+        assert_eq!(m, meta);
+        assert_eq!(back.program, case.program, "seed {seed}");
+        assert_eq!(back.stimulus, case.stimulus, "seed {seed}");
+    }
+
     #[test]
     fn repro_directory_reads_back_the_same_case() {
         let dir = std::env::temp_dir().join(format!("stljit-repro-test-{}", std::process::id()));
         for seed in 0..40 {
-            let case = case_from_seed(seed, &GenConfig::default());
-            let meta = Meta::new(case.program.profile, Some(seed), "interp jit(none)");
-            write_repro(&dir, &case, &meta, None).unwrap();
-            let (back, m) = read_case(&dir).unwrap();
-            assert_eq!(m, meta);
-            assert_eq!(back.program, case.program, "seed {seed}");
-            assert_eq!(back.stimulus, case.stimulus, "seed {seed}");
+            reads_back(&dir, &case_from_seed(seed, &GenConfig::default()), seed);
         }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// Omron cases too: the stimulus in Omron spelling (input words, D/W/H addresses) reads
+    /// back to the same per-scan inputs and writes, and `program.omr` compiles to the program.
+    #[test]
+    fn omron_repro_directory_reads_back_the_same_case() {
+        let dir = std::env::temp_dir().join(format!("stljit-repro-omron-{}", std::process::id()));
+        let mut writes = 0;
+        for seed in 0..40 {
+            let mut c = crate::rng::Choices::from_seed(seed);
+            let case = crate::generate::omron::generate(&mut c, &GenConfig::default())
+                .expect("generated programs compile")
+                .case;
+            writes += case
+                .stimulus
+                .scans
+                .iter()
+                .map(|s| s.writes.len())
+                .sum::<usize>();
+            reads_back(&dir, &case, seed);
+            let omr = std::fs::read_to_string(dir.join("program.omr")).unwrap();
+            let compiled = crate::roundtrip::compile_dialect(&omr, &case.program).unwrap();
+            assert_eq!(
+                crate::roundtrip::normalized(&compiled),
+                crate::roundtrip::normalized(&case.program)
+            );
+        }
+        assert!(writes > 20, "only {writes} HMI writes");
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -3,17 +3,18 @@
 //! - **IR text** ([`ir_text_roundtrip`]): `stljit_core::text::print`, then `text::parse`, must
 //!   give back exactly the same program, source locations included. This is what makes a
 //!   reproducer's `program.ir` and `tests/regressions/` trustworthy, whatever the dialect.
-//! - **S7 front end** ([`s7_roundtrip`]): the S7 printer's STL, compiled again, must be accepted
-//!   and give the same IR up to source locations. This is the S7 front end's own test, and it
-//!   keeps the shrinker within programs that front end can express.
+//! - **The dialect's front end** ([`front_end_roundtrip`]): the program printed in its
+//!   dialect (S7 STL, or Omron mnemonics for an Omron profile), compiled again, must be
+//!   accepted and give the same IR up to source locations. This is each printer's own test,
+//!   and it keeps the shrinker within programs the front end can express.
 //!
 //! [`roundtrip`] checks both; campaigns, the shrinker's callers and the `roundtrip` fuzz target
 //! use it.
 
 use std::fmt;
+use stljit_core::Family;
 use stljit_core::ir::{Program, SrcLoc};
 use stljit_core::text::{self, ParseError};
-use stljit_front_s7::{compile_str, print_program, render_human};
 
 /// Why a program did not survive a round trip.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -32,15 +33,24 @@ pub enum RoundTripError {
         /// What differs.
         difference: Difference,
     },
-    /// The S7 front end rejected the printed STL.
-    S7Rejected {
+    /// The dialect's printer refused the program (an Omron op sequence no text lowers to).
+    NotPrintable {
+        /// Why.
+        message: String,
+    },
+    /// The front end rejected the printed program.
+    FrontEndRejected {
+        /// The dialect (`s7`, `omron`).
+        dialect: &'static str,
         /// The printed program.
         text: String,
         /// The error diagnostics, rendered.
         diagnostics: String,
     },
-    /// The printed STL compiled to a different program.
-    S7Changed {
+    /// The printed program compiled to a different program.
+    FrontEndChanged {
+        /// The dialect.
+        dialect: &'static str,
         /// The printed program.
         text: String,
         /// What differs (source locations aside).
@@ -75,13 +85,24 @@ impl fmt::Display for RoundTripError {
             RoundTripError::IrTextChanged { difference, .. } => {
                 write!(f, "IR text round trip: {difference}")
             }
-            RoundTripError::S7Rejected { diagnostics, .. } => {
+            RoundTripError::NotPrintable { message } => {
+                write!(f, "the printer refuses the program: {message}")
+            }
+            RoundTripError::FrontEndRejected {
+                dialect,
+                diagnostics,
+                ..
+            } => {
                 write!(
                     f,
-                    "the front end rejects the printed program:\n{diagnostics}"
+                    "the {dialect} front end rejects the printed program:\n{diagnostics}"
                 )
             }
-            RoundTripError::S7Changed { difference, .. } => write!(f, "{difference}"),
+            RoundTripError::FrontEndChanged {
+                dialect,
+                difference,
+                ..
+            } => write!(f, "{dialect} print and compile: {difference}"),
         }
     }
 }
@@ -98,10 +119,10 @@ pub fn normalized(p: &Program) -> Program {
     p
 }
 
-/// Both round trips; returns the program the S7 front end compiled back.
+/// Both round trips; returns the program the dialect's front end compiled back.
 pub fn roundtrip(program: &Program) -> Result<Program, RoundTripError> {
     ir_text_roundtrip(program)?;
-    s7_roundtrip(program)
+    front_end_roundtrip(program)
 }
 
 /// Prints `program` as IR text and parses it again; the result must equal `program` exactly.
@@ -117,26 +138,75 @@ pub fn ir_text_roundtrip(program: &Program) -> Result<(), RoundTripError> {
     }
 }
 
-/// Prints `program` as S7 STL, compiles the text for its profile, and returns the compiled
-/// program when it equals the original up to source locations.
-pub fn s7_roundtrip(program: &Program) -> Result<Program, RoundTripError> {
-    let text = print_program(program);
-    let c = compile_str("fuzz.stl", &text, program.profile);
-    let Some(back) = c.program else {
-        let diagnostics = c
-            .diagnostics
-            .iter()
-            .filter(|d| d.severity == stljit_front_s7::Severity::Error)
-            .map(|d| render_human(d, &c.sources))
-            .collect::<Vec<_>>()
-            .join("");
-        return Err(RoundTripError::S7Rejected { text, diagnostics });
+/// The program printed in the dialect of its profile (S7 STL or Omron mnemonics).
+pub fn dialect_text(program: &Program) -> Result<String, RoundTripError> {
+    match program.profile.profile().family {
+        Family::S7 => Ok(stljit_front_s7::print_program(program)),
+        Family::Omron => {
+            stljit_front_omron::print_program(program).map_err(|e| RoundTripError::NotPrintable {
+                message: e.to_string(),
+            })
+        }
+    }
+}
+
+/// Compiles `text`, the dialect text of `like` or a cut of it, in the dialect of `like`'s
+/// profile with the options its print needs (an Omron program with backward jumps compiles
+/// with `allow_backward_jumps`): the program, or the rendered errors.
+pub fn compile_dialect(text: &str, like: &Program) -> Result<Program, String> {
+    let render = |errors: Vec<String>| errors.join("");
+    let profile = like.profile;
+    match profile.profile().family {
+        Family::S7 => {
+            let c = stljit_front_s7::compile_str("fuzz.stl", text, profile);
+            c.program.ok_or_else(|| {
+                render(
+                    c.diagnostics
+                        .iter()
+                        .filter(|d| d.severity == stljit_front_s7::Severity::Error)
+                        .map(|d| stljit_front_s7::render_human(d, &c.sources))
+                        .collect(),
+                )
+            })
+        }
+        Family::Omron => {
+            let file = stljit_front_omron::SourceFile::from_text("fuzz.omr", text);
+            let options = stljit_front_omron::printed_options(like);
+            let c = stljit_front_omron::compile_with(&[file], None, profile, options);
+            c.program.ok_or_else(|| {
+                render(
+                    c.diagnostics
+                        .iter()
+                        .filter(|d| d.severity == stljit_front_omron::Severity::Error)
+                        .map(|d| stljit_front_omron::render_human(d, &c.sources))
+                        .collect(),
+                )
+            })
+        }
+    }
+}
+
+/// Prints `program` in its dialect, compiles the text for its profile, and returns the
+/// compiled program when it equals the original up to source locations.
+pub fn front_end_roundtrip(program: &Program) -> Result<Program, RoundTripError> {
+    let dialect = match program.profile.profile().family {
+        Family::S7 => "s7",
+        Family::Omron => "omron",
     };
+    let text = dialect_text(program)?;
+    let back = compile_dialect(&text, program).map_err(|diagnostics| {
+        RoundTripError::FrontEndRejected {
+            dialect,
+            text: text.clone(),
+            diagnostics,
+        }
+    })?;
     let (a, b) = (normalized(program), normalized(&back));
     if a == b {
         return Ok(back);
     }
-    Err(RoundTripError::S7Changed {
+    Err(RoundTripError::FrontEndChanged {
+        dialect,
         text,
         difference: first_difference(&a, &b),
     })
@@ -220,6 +290,26 @@ mod tests {
             let case = case_from_seed(seed, &cfg);
             if let Err(e) = roundtrip(&case.program) {
                 failures.push(format!("seed {seed}: {e}"));
+            }
+        }
+        assert_no_failures(&failures);
+    }
+
+    /// 3,000 generated Omron programs (text compiled by the front end) survive both round
+    /// trips: IR text, and the Omron printer's text compiled again.
+    #[test]
+    fn generated_omron_programs_survive_both_round_trips() {
+        let cfg = GenConfig::default();
+        let mut failures = Vec::new();
+        for seed in 0..3000 {
+            let mut c = crate::rng::Choices::from_seed(seed);
+            match crate::generate::omron::generate(&mut c, &cfg) {
+                Err(e) => failures.push(format!("seed {seed}: {e}")),
+                Ok(g) => {
+                    if let Err(e) = roundtrip(&g.case.program) {
+                        failures.push(format!("seed {seed}: {e}\n{}", g.source));
+                    }
+                }
             }
         }
         assert_no_failures(&failures);

@@ -5,16 +5,24 @@
 //! ops; drop runs of scans; clear HMI writes and inputs. Every candidate is repaired into a
 //! structurally sound program (indices of labels, FOR/NEXT and SCR partners remapped, edge slots
 //! and timer/counter tables rebuilt) and then judged by the caller's `fails`, which is expected to
-//! include [`crate::roundtrip::roundtrip`] (IR text and S7 front end) so that only valid programs
-//! are kept. The shrinker works on the IR alone; its result is written as IR text (`program.ir`,
-//! [`crate::repro::write_repro`]), so a shrunk case does not depend on any dialect's printer.
+//! include [`crate::roundtrip::roundtrip`] (IR text and front end) so that only valid programs
+//! are kept. Its result is written as IR text (`program.ir`, [`crate::repro::write_repro`]), so a
+//! shrunk case does not depend on any dialect's printer.
+//!
+//! Omron programs are cut at the source instead (`lines`): the program is printed as Omron
+//! text, runs of lines are dropped (halving down to single lines, then runs of three and two
+//! lines at every offset, then pairs of lines) and each candidate text is compiled again; only
+//! what the front end accepts is tried. An Omron op pattern spans several IR ops and its labels
+//! are numbered in text order, so cutting IR ops would mostly give programs no text produces.
 
 use crate::canon::canonicalize;
 use crate::generate::{Case, ScanInput};
 use crate::oracle::Finding;
 use std::collections::BTreeMap;
 use stljit_core::ir::{CounterDecl, EdgeDecl, Op, Pou, Program, TimerDecl};
-use stljit_core::{CounterId, EdgeSlot, OpIdx, PouId, TimerId};
+use stljit_core::{CounterId, EdgeSlot, Family, OpIdx, PouId, TimerId};
+
+mod lines;
 
 /// Shrinks `case`, which fails with `finding`. `fails` re-checks a candidate and returns its
 /// finding when it still fails; at most `budget` candidates are tried.
@@ -37,8 +45,12 @@ pub fn shrink(
     }
     loop {
         let before = size(&s.best);
-        s.drop_subroutines();
-        s.drop_ops();
+        if s.best.program.profile.profile().family == Family::Omron {
+            s.drop_lines();
+        } else {
+            s.drop_subroutines();
+            s.drop_ops();
+        }
         s.drop_scans();
         s.simplify_stimulus();
         if size(&s.best) >= before || s.budget == 0 {
@@ -267,16 +279,19 @@ fn drop_unused_labels(pou: &mut Pou) {
 }
 
 /// Renumbers edge slots in text order and rebuilds the timer and counter tables from the ops
-/// that remain, as the front end would.
+/// that remain, as the front end would (an Omron rising edge's memory starts ON).
 pub fn rebuild_tables(p: &mut Program) {
+    let omron = p.profile.profile().family == Family::Omron;
+    let mut inits = Vec::new();
     let mut slot = 0u16;
     let mut timers = BTreeMap::new();
     let mut counters = BTreeMap::new();
     for pou in &mut p.pous {
         for op in &mut pou.ops {
             match op {
-                Op::Edge { slot: s, .. } => {
+                Op::Edge { slot: s, falling } => {
                     *s = EdgeSlot(slot);
+                    inits.push(omron && !*falling);
                     slot += 1;
                 }
                 Op::Timer { kind, timer, .. } => {
@@ -310,7 +325,7 @@ pub fn rebuild_tables(p: &mut Program) {
             kind,
         })
         .collect();
-    p.edges = vec![EdgeDecl { init: false }; usize::from(slot)];
+    p.edges = inits.into_iter().map(|init| EdgeDecl { init }).collect();
 }
 
 #[cfg(test)]
@@ -345,6 +360,46 @@ mod tests {
         assert!(roundtrip(&small.program).is_ok());
         assert!(has_div(&small));
         assert!(small.program.op_count() <= 3, "{:#?}", small.program);
+        assert_eq!(small.stimulus.len(), 1);
+    }
+
+    /// The same for Omron programs, which shrink by source lines: a program that still holds
+    /// a `/` (division) box ends as its condition, the box and END.
+    #[test]
+    fn omron_cases_shrink_by_source_lines() {
+        use stljit_core::ir::{OmronArith, OmronBox};
+        let has_div = |c: &Case| {
+            c.program.pous.iter().flat_map(|p| &p.ops).any(|op| {
+                matches!(
+                    op,
+                    Op::Omron(OmronBox::Arith {
+                        op: OmronArith::Div,
+                        ..
+                    })
+                )
+            })
+        };
+        let case = (0..500)
+            .filter_map(|s| {
+                let mut c = crate::rng::Choices::from_seed(s);
+                crate::generate::omron::generate(&mut c, &GenConfig::default()).ok()
+            })
+            .map(|g| g.case)
+            .find(|c| has_div(c) && c.program.op_count() > 100)
+            .expect("some program has a /");
+        let finding = Finding::Build {
+            engine: "test",
+            message: "/".into(),
+        };
+        let mut fails =
+            |c: &Case| (roundtrip(&c.program).is_ok() && has_div(c)).then(|| finding.clone());
+        let (small, _) = shrink(&case, &finding, &mut fails, 5000);
+        assert!(roundtrip(&small.program).is_ok());
+        assert!(has_div(&small));
+        // Counted in lines: a condition written with `!` is more ops than lines.
+        let text = stljit_front_omron::print_program(&small.program).expect("prints");
+        let lines = text.lines().filter(|l| !l.starts_with(';')).count();
+        assert!(lines <= 3, "{text}");
         assert_eq!(small.stimulus.len(), 1);
     }
 

@@ -3,7 +3,7 @@
 //! number-reuse check E021.
 
 use crate::circuit::Class;
-use crate::immediate::{Refresh, words_of};
+use crate::immediate::{Refresh, data_refresh};
 use crate::lexer::{Line, Tok};
 use crate::lower::{DataBox, Lowerer, Written};
 use crate::resolve::Reported;
@@ -166,17 +166,15 @@ impl Lowerer<'_> {
         self.flags_changed = true;
         self.class(l, Class::Output);
         let immediate = l.options.immediate;
+        let (reads, writes) = if immediate {
+            data_refresh(&op)
+        } else {
+            (Vec::new(), Vec::new())
+        };
         self.edged(l.options, |s| {
-            let o = op.operands();
-            if immediate {
-                let sources = o.sources.iter().flatten();
-                let words: Vec<_> = sources.flat_map(|s| words_of(s, o.src_words)).collect();
-                s.refresh_inputs(&words, Refresh::WhenExecuted);
-            }
+            s.refresh_inputs(reads, Refresh::WhenExecuted);
             s.emit(Op::Omron(op));
-            if let (true, Some(dst)) = (immediate, o.dst) {
-                s.refresh_outputs(&words_of(&dst, o.dst_words), Refresh::WhenExecuted);
-            }
+            s.refresh_outputs(writes, Refresh::WhenExecuted);
         });
         Ok(())
     }

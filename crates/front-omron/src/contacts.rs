@@ -4,7 +4,7 @@
 //! `discipline`).
 
 use crate::circuit::Class;
-use crate::immediate::{Refresh, word_of_bit, words_of};
+use crate::immediate::{Refresh, reads_of_bit, reads_of_words};
 use crate::lexer::{Line, Options, Tok};
 use crate::lower::Lowerer;
 use crate::mnemonics::{self, Join};
@@ -101,7 +101,7 @@ impl Lowerer<'_> {
                 );
         }
         if l.options.immediate {
-            self.refresh_inputs(&[word_of_bit(bit)], Refresh::Always);
+            self.refresh_inputs(reads_of_bit(bit), Refresh::Always);
         }
         let contact = Contact::Bit { bit, negated };
         match (l.options.edge, join) {
@@ -142,22 +142,13 @@ impl Lowerer<'_> {
                 Class::Combine
             },
         );
-        use stljit_core::ir::CmpOp;
-        let flag = match c.op {
-            CmpOp::Eq => SystemBit::Eq,
-            CmpOp::Ne => SystemBit::Ne,
-            CmpOp::Lt => SystemBit::Lt,
-            CmpOp::Le => SystemBit::Le,
-            CmpOp::Gt => SystemBit::Gt,
-            CmpOp::Ge => SystemBit::Ge,
-        };
+        let flag = mnemonics::relation_flag(c.op);
         let on = Contact::Bit {
             bit: SystemBit::On.bit_loc(),
             negated: false,
         };
         if l.options.immediate {
-            let words: Vec<_> = [lhs, rhs].iter().flat_map(|o| words_of(o, words)).collect();
-            self.refresh_inputs(&words, Refresh::Always);
+            self.refresh_inputs(reads_of_words(&[lhs, rhs], words), Refresh::Always);
         }
         self.emit(Op::Load(on));
         self.flags_changed = true;

@@ -68,8 +68,8 @@ pub(crate) struct Control {
     /// JME numbers defined in the current POU, with where they are.
     defined: HashMap<u32, JmeSite>,
     jumps: Vec<PendingJump>,
-    /// Open JMP0s: their labels and where they are.
-    jmp0: Vec<(LabelId, Span)>,
+    /// Open JMP0s: their labels, where they are and their interlock region.
+    jmp0: Vec<(LabelId, Span, Option<u32>)>,
     /// The open FOR loops, innermost last.
     loops: Vec<OpenLoop>,
     /// The open step area.
@@ -93,6 +93,8 @@ struct OpenLoop {
     /// The jump numbers pending when the loop opened: their JME may not be inside the loop
     /// (a jump into a FOR body would reach NEXT with no FOR active).
     outside_jumps: Vec<u32>,
+    /// Whether a JMP0 was pending when the loop opened: no JME0 may then be inside the loop.
+    outside_jmp0: bool,
 }
 
 impl Lowerer<'_> {
@@ -160,7 +162,7 @@ impl Lowerer<'_> {
             let (pair, what) = (Pair::Jump(j.number), format!("{} {}", j.what, j.number));
             self.dangle(pair, true, j.span, what, Some((Code::OmrJump, msg)));
         }
-        for (_, span) in std::mem::take(&mut self.control.jmp0) {
+        for (_, span, _) in std::mem::take(&mut self.control.jmp0) {
             let msg = format!("line {}: JMP0(515) has no JME0(516)", span.line);
             let what = "JMP0(515)".into();
             self.dangle(Pair::Jmp0, true, span, what, Some((Code::OmrJmp0, msg)));
@@ -381,7 +383,8 @@ impl Lowerer<'_> {
                 self.class(l, Class::Output);
                 let label = self.new_label();
                 let span = self.head_span(l);
-                self.control.jmp0.push((label, span));
+                let interlock = self.interlock_id();
+                self.control.jmp0.push((label, span, interlock));
                 self.emit(Op::Not);
                 self.emit(Op::Jump(label));
                 self.emit(Op::Not);
@@ -393,7 +396,26 @@ impl Lowerer<'_> {
                     let span = self.head_span(l);
                     self.dangle(Pair::Jmp0, false, span, "JME0(516)".into(), None);
                 }
-                for (label, _) in std::mem::take(&mut self.control.jmp0) {
+                if self.control.loops.iter().any(|lp| lp.outside_jmp0) {
+                    self.at_head(
+                        l,
+                        Code::OmrInRegion,
+                        "JME0(516) is inside a FOR(503)–NEXT(504) loop its JMP0(515) is outside of"
+                            .into(),
+                    );
+                }
+                let here = self.interlock_id();
+                for (label, span, interlock) in std::mem::take(&mut self.control.jmp0) {
+                    if interlock != here {
+                        self.report_span(
+                            Code::OmrJump,
+                            span,
+                            format!(
+                                "line {}: JMP0(515) crosses the boundary of an IL(002)–ILC(003) region",
+                                span.line
+                            ),
+                        );
+                    }
                     self.place(label);
                 }
             }
@@ -505,11 +527,13 @@ impl Lowerer<'_> {
                 let exit = self.new_label();
                 let span = self.head_span(l);
                 let outside_jumps = self.control.jumps.iter().map(|j| j.number).collect();
+                let outside_jmp0 = !self.control.jmp0.is_empty();
                 self.control.loops.push(OpenLoop {
                     head,
                     exit,
                     span,
                     outside_jumps,
+                    outside_jmp0,
                 });
             }
             Flow::Next => {

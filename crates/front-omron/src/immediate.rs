@@ -14,7 +14,7 @@
 
 use crate::lower::Lowerer;
 use stljit_core::Area;
-use stljit_core::ir::{BitLoc, BoxOp, Contact, Loc, Op, Operand};
+use stljit_core::ir::{BitLoc, BoxOp, Contact, Loc, OmronBox, Op, Operand};
 use stljit_core::omron::{SystemBit, word_bit};
 
 /// When the refresh of an instruction happens.
@@ -27,10 +27,9 @@ pub(crate) enum Refresh {
 }
 
 impl Lowerer<'_> {
-    /// Copies the physical input words of `words` (locations of words in area I; others are
-    /// skipped) into the image.
-    pub(crate) fn refresh_inputs(&mut self, words: &[Loc], when: Refresh) {
-        let bytes: Vec<u32> = io_bytes(words, Area::I).collect();
+    /// Copies the physical input bytes `bytes` (of built-in input words; see [`reads_of_bit`],
+    /// [`reads_of_words`], [`data_refresh`]) into the image.
+    pub(crate) fn refresh_inputs(&mut self, bytes: Vec<u32>, when: Refresh) {
         self.refresh(
             when,
             bytes.into_iter().map(|b| {
@@ -45,10 +44,9 @@ impl Lowerer<'_> {
         );
     }
 
-    /// Copies the image words of `words` (locations of words in area Q; others are skipped) to
-    /// the physical outputs.
-    pub(crate) fn refresh_outputs(&mut self, words: &[Loc], when: Refresh) {
-        let bytes: Vec<u32> = io_bytes(words, Area::Q).collect();
+    /// Copies the image bytes `bytes` (of built-in output words; see [`writes_of_bit`],
+    /// [`data_refresh`]) to the physical outputs.
+    pub(crate) fn refresh_outputs(&mut self, bytes: Vec<u32>, when: Refresh) {
         self.refresh(
             when,
             bytes.into_iter().map(|b| {
@@ -84,13 +82,43 @@ impl Lowerer<'_> {
     }
 }
 
+/// The input bytes `!` refreshes for a contact on `bit`: its word's, if it is an input word.
+pub(crate) fn reads_of_bit(bit: BitLoc) -> Vec<u32> {
+    io_bytes(&[word_of_bit(bit)], Area::I)
+}
+
+/// The output bytes `!` refreshes for a coil on `bit`: its word's, if it is an output word.
+pub(crate) fn writes_of_bit(bit: BitLoc) -> Vec<u32> {
+    io_bytes(&[word_of_bit(bit)], Area::Q)
+}
+
+/// The input bytes `!` refreshes for the operands `ops` of `words` words each (a comparison
+/// contact's two sides).
+pub(crate) fn reads_of_words(ops: &[Operand], words: u32) -> Vec<u32> {
+    let locs: Vec<Loc> = ops.iter().flat_map(|o| words_of(o, words)).collect();
+    io_bytes(&locs, Area::I)
+}
+
+/// The input bytes a `!` data instruction refreshes before it executes (of its direct source
+/// words in input words) and the output bytes it refreshes after (of its destination words in
+/// output words). The lowering emits these and the printer reads them back.
+pub(crate) fn data_refresh(op: &OmronBox) -> (Vec<u32>, Vec<u32>) {
+    let o = op.operands();
+    let sources: Vec<Operand> = o.sources.iter().flatten().copied().collect();
+    let dst = o.dst.map_or_else(Vec::new, |d| words_of(&d, o.dst_words));
+    (
+        reads_of_words(&sources, o.src_words),
+        io_bytes(&dst, Area::Q),
+    )
+}
+
 /// The word a bit operand is in.
-pub(crate) fn word_of_bit(bit: BitLoc) -> Loc {
+fn word_of_bit(bit: BitLoc) -> Loc {
     word_bit(bit).0
 }
 
 /// The words of a direct word operand of `words` words (a double word is two).
-pub(crate) fn words_of(o: &Operand, words: u32) -> Vec<Loc> {
+fn words_of(o: &Operand, words: u32) -> Vec<Loc> {
     match *o {
         Operand::Mem(loc) => (0..words)
             .map(|i| Loc {
@@ -103,7 +131,7 @@ pub(crate) fn words_of(o: &Operand, words: u32) -> Vec<Loc> {
 }
 
 /// The bytes of the words in `area` among `words`, each once, in order.
-fn io_bytes(words: &[Loc], area: Area) -> impl Iterator<Item = u32> {
+fn io_bytes(words: &[Loc], area: Area) -> Vec<u32> {
     let mut bytes: Vec<u32> = words
         .iter()
         .filter(|w| w.area == area)
@@ -111,5 +139,5 @@ fn io_bytes(words: &[Loc], area: Area) -> impl Iterator<Item = u32> {
         .collect();
     bytes.sort_unstable();
     bytes.dedup();
-    bytes.into_iter()
+    bytes
 }

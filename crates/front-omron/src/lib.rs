@@ -7,7 +7,10 @@
 //! [`stljit_core::ir::Program`] with every diagnostic (codes `OMR-E…`/`OMR-W…`, §5). It never
 //! panics and never stops at the first error. [`parse_address`]/[`print_address`] read and
 //! write single addresses in Omron spelling; [`looks_like_omron`]/[`looks_like_s7`] guess a
-//! text's dialect.
+//! text's dialect. [`print_program`] prints a compiled program back as Omron text that
+//! compiles to the same IR (it reads the patterns below in reverse), and [`mnemonics::TABLE`]
+//! is the one list of the supported instructions, which the fuzzer's generator and coverage
+//! read too.
 //!
 //! Pipeline: `lexer` (one instruction per line) → `lower` (dispatch over `mnemonics::TABLE`,
 //! the circuit machine of `circuit`, operands through `operand`/`resolve`, timers and data in
@@ -97,12 +100,14 @@ mod contacts;
 mod control;
 mod detect;
 mod discipline;
+pub mod forms;
 mod immediate;
 mod lexer;
 mod lower;
-mod mnemonics;
+pub mod mnemonics;
 mod operand;
 mod options;
+mod print;
 mod regions;
 mod resolve;
 mod symbols;
@@ -111,6 +116,7 @@ mod tasks;
 pub use address::{AddressError, parse_address, print_address};
 pub use detect::{looks_like_omron, looks_like_s7};
 pub use options::{Options, TcMode};
+pub use print::{PrintError, print_program, printed_options};
 pub use stljit_source::{
     Code, Diagnostic, Encoding, Severity, SourceFile, SourceText, Sources, render_human,
     render_json,

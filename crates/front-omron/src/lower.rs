@@ -8,7 +8,7 @@ use crate::capacity::Capacity;
 use crate::circuit::{Circuit, Class};
 use crate::control::Control;
 use crate::discipline::FlagBranches;
-use crate::immediate::{Refresh, word_of_bit};
+use crate::immediate::{Refresh, writes_of_bit};
 use crate::lexer::{Line, Options, Tok};
 use crate::mnemonics::{self, Group, Join, Mnemonic};
 use crate::operand::Syn;
@@ -476,7 +476,7 @@ impl<'a> Lowerer<'a> {
             self.emit(assign);
         }
         if l.options.immediate {
-            self.refresh_outputs(&[word_of_bit(bit)], Refresh::Always);
+            self.refresh_outputs(writes_of_bit(bit), Refresh::Always);
         }
         Ok(())
     }
@@ -500,7 +500,7 @@ impl<'a> Lowerer<'a> {
         self.edged(l.options, |s| {
             s.emit(op);
             if immediate {
-                s.refresh_outputs(&[word_of_bit(bit)], Refresh::WhenExecuted);
+                s.refresh_outputs(writes_of_bit(bit), Refresh::WhenExecuted);
             }
         });
         Ok(())
@@ -517,7 +517,7 @@ impl<'a> Lowerer<'a> {
         self.emit(Op::AndBlock);
         self.emit(self.set_range(bit, true));
         if l.options.immediate {
-            self.refresh_outputs(&[word_of_bit(bit)], Refresh::Always);
+            self.refresh_outputs(writes_of_bit(bit), Refresh::Always);
         }
         Ok(())
     }
@@ -551,7 +551,7 @@ pub(crate) enum DataBox {
 }
 
 /// The circuit class of an instruction group (§2.4).
-fn class_of(group: Group) -> Class {
+pub(crate) fn class_of(group: Group) -> Class {
     use crate::mnemonics::Flow;
     match group {
         Group::Contact(Join::Load, _) => Class::Start,

@@ -4,10 +4,11 @@
 //! their text by [`compare`]) and the instructions that are recognised but not supported yet.
 
 use stljit_core::ir::{CmpOp, OmronArith, OmronCounterKind, OmronTimerKind};
+use stljit_core::omron::SystemBit;
 
 /// The lowering routine of a mnemonic.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Group {
+pub enum Group {
     /// `LD`, `AND`, `OR` and their `NOT` forms: (class, negated).
     Contact(Join, bool),
     /// `AND LD`, `OR LD`.
@@ -46,7 +47,7 @@ pub(crate) enum Group {
 
 /// How a contact or block combines with the execution condition.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Join {
+pub enum Join {
     /// `LD`: starts a block.
     Load,
     /// `AND`.
@@ -57,7 +58,7 @@ pub(crate) enum Join {
 
 /// The program-control instructions (§3.4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Flow {
+pub enum Flow {
     /// `IL(002)`.
     Il,
     /// `ILC(003)`.
@@ -100,13 +101,13 @@ pub(crate) enum Flow {
 
 /// The options an instruction accepts (spec §2.5; anything else is E012).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Allowed {
+pub struct Allowed {
     /// `@`.
-    pub(crate) up: bool,
+    pub up: bool,
     /// `%`.
-    pub(crate) down: bool,
+    pub down: bool,
     /// `!`.
-    pub(crate) immediate: bool,
+    pub immediate: bool,
 }
 
 const NONE: Allowed = Allowed {
@@ -136,7 +137,7 @@ const UP: Allowed = Allowed {
 };
 
 /// The options of the comparison contacts (`!` [uncertain]; `@`/`%` are E012, U10).
-pub(crate) const COMPARE_OPTIONS: Allowed = IMM;
+pub const COMPARE_OPTIONS: Allowed = IMM;
 
 /// The steps of a comparison contact (`LD>=` …) [uncertain].
 pub(crate) const COMPARE_STEPS: u8 = 4;
@@ -146,15 +147,15 @@ const ARITH_STEPS: u8 = 4;
 
 /// One supported mnemonic.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Mnemonic {
+pub struct Mnemonic {
     /// As written (upper case).
-    pub(crate) name: &'static str,
+    pub name: &'static str,
     /// Its function code, if it has one.
-    pub(crate) code: Option<u16>,
+    pub code: Option<u16>,
     /// Its lowering routine.
-    pub(crate) group: Group,
+    pub group: Group,
     /// The options it accepts.
-    pub(crate) allowed: Allowed,
+    pub allowed: Allowed,
     /// The user-memory steps it takes (the "number of steps" column of the CP1H instruction
     /// list; [uncertain], docs/omron.md "Program capacity"), before the extra step of each
     /// constant operand of a double-length instruction.
@@ -183,7 +184,7 @@ use OmronTimerKind as Tk;
 
 /// Every supported mnemonic except the arithmetic (named by [`OmronArith`]) and the comparison
 /// contacts ([`compare`]).
-pub(crate) const TABLE: &[Mnemonic] = &[
+pub const TABLE: &[Mnemonic] = &[
     m("LD", None, G::Contact(Join::Load, false), ALL, 1),
     m("AND", None, G::Contact(Join::And, false), ALL, 1),
     m("OR", None, G::Contact(Join::Or, false), ALL, 1),
@@ -292,8 +293,9 @@ pub(crate) const NOT_IN_FUNCTION_BLOCKS: &[&str] = &[
     "IORF", "TMHH",
 ];
 
-/// The comparison relations with their function-code offsets (§3.1: `=`(300) … `>=`(325)).
-const RELATIONS: [(&str, CmpOp, u16); 6] = [
+/// The comparison relations with their function-code offsets (§3.1: `=`(300) … `>=`(325)),
+/// longest first (the order [`compare`] tries them in).
+pub const RELATIONS: [(&str, CmpOp, u16); 6] = [
     ("<>", CmpOp::Ne, 305),
     ("<=", CmpOp::Le, 315),
     (">=", CmpOp::Ge, 325),
@@ -302,36 +304,56 @@ const RELATIONS: [(&str, CmpOp, u16); 6] = [
     (">", CmpOp::Gt, 320),
 ];
 
+/// The condition flag a comparison contact reads (U2's default: its relation's own flag); the
+/// lowering emits it and the printer reads it back.
+pub fn relation_flag(op: CmpOp) -> SystemBit {
+    match op {
+        CmpOp::Eq => SystemBit::Eq,
+        CmpOp::Ne => SystemBit::Ne,
+        CmpOp::Lt => SystemBit::Lt,
+        CmpOp::Le => SystemBit::Le,
+        CmpOp::Gt => SystemBit::Gt,
+        CmpOp::Ge => SystemBit::Ge,
+    }
+}
+
+/// How a comparison contact joins the execution condition, by its prefix.
+pub const COMPARE_JOINS: [(&str, Join); 3] =
+    [("LD", Join::Load), ("AND", Join::And), ("OR", Join::Or)];
+
+/// The comparison suffixes (§3.1): none (unsigned 16), `L` (unsigned 32), `S` (signed 16),
+/// `SL` (signed 32), as (suffix, double, signed, function-code offset).
+pub const COMPARE_SUFFIXES: [(&str, bool, bool, u16); 4] = [
+    ("", false, false, 0),
+    ("L", true, false, 1),
+    ("S", false, true, 2),
+    ("SL", true, true, 3),
+];
+
 /// A parsed comparison contact (`LD>=S`, `AND<L`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct CompareContact {
+pub struct CompareContact {
     /// How it joins the execution condition.
-    pub(crate) join: Join,
+    pub join: Join,
     /// The relation.
-    pub(crate) op: CmpOp,
+    pub op: CmpOp,
     /// `L`: 32-bit operands.
-    pub(crate) double: bool,
+    pub double: bool,
     /// `S`: signed.
-    pub(crate) signed: bool,
+    pub signed: bool,
     /// Its function code.
-    pub(crate) code: u16,
+    pub code: u16,
 }
 
 /// Reads a comparison-contact mnemonic: `LD|AND|OR` + relation + suffix none/`L`/`S`/`SL`.
-pub(crate) fn compare(mnemonic: &str) -> Option<CompareContact> {
-    let (join, rest) = [("LD", Join::Load), ("AND", Join::And), ("OR", Join::Or)]
+pub fn compare(mnemonic: &str) -> Option<CompareContact> {
+    let (join, rest) = COMPARE_JOINS
         .into_iter()
         .find_map(|(p, j)| mnemonic.strip_prefix(p).map(|r| (j, r)))?;
     let (op, base, suffix) = RELATIONS
         .into_iter()
         .find_map(|(t, op, code)| rest.strip_prefix(t).map(|s| (op, code, s)))?;
-    let (double, signed, plus) = match suffix {
-        "" => (false, false, 0),
-        "L" => (true, false, 1),
-        "S" => (false, true, 2),
-        "SL" => (true, true, 3),
-        _ => return None,
-    };
+    let (_, double, signed, plus) = COMPARE_SUFFIXES.into_iter().find(|s| s.0 == suffix)?;
     Some(CompareContact {
         join,
         op,
@@ -351,7 +373,7 @@ pub(crate) fn with_code(mnemonic: &str) -> String {
 }
 
 /// The arithmetic instruction named `mnemonic`.
-pub(crate) fn arith(mnemonic: &str) -> Option<OmronArith> {
+pub fn arith(mnemonic: &str) -> Option<OmronArith> {
     OmronArith::ALL
         .iter()
         .copied()
@@ -367,7 +389,7 @@ pub(crate) fn steps(mnemonic: &str) -> Option<u8> {
 }
 
 /// The supported instruction named `mnemonic` (arithmetic included).
-pub(crate) fn lookup(mnemonic: &str) -> Option<Mnemonic> {
+pub fn lookup(mnemonic: &str) -> Option<Mnemonic> {
     if let Some(found) = TABLE.iter().find(|m| m.name == mnemonic) {
         return Some(*found);
     }

@@ -33,7 +33,7 @@ impl TcMode {
     }
 
     /// The timer instruction a written one runs as in this mode.
-    pub(crate) fn timer(self, kind: OmronTimerKind) -> OmronTimerKind {
+    pub fn timer(self, kind: OmronTimerKind) -> OmronTimerKind {
         use OmronTimerKind::*;
         match (self, kind) {
             (TcMode::Binary, Tim) => TimX,
@@ -45,7 +45,7 @@ impl TcMode {
     }
 
     /// The counter instruction a written one runs as in this mode.
-    pub(crate) fn counter(self, kind: OmronCounterKind) -> OmronCounterKind {
+    pub fn counter(self, kind: OmronCounterKind) -> OmronCounterKind {
         use OmronCounterKind::*;
         match (self, kind) {
             (TcMode::Binary, Cnt) => CntX,

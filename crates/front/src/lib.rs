@@ -175,12 +175,24 @@ impl Dialect {
         }
     }
 
-    /// The program as text of this dialect that compiles back to the same IR; `None` for a
-    /// dialect without a printer yet (Omron).
+    /// The program as text of this dialect that compiles back to the same IR; `None` when the
+    /// program is not one this dialect's front end produces (the Omron printer refuses op
+    /// sequences no text lowers to; `stljit_front_omron::print_program` says why).
     pub fn print_program(self, program: &Program) -> Option<String> {
         match self {
             Dialect::S7 => Some(stljit_front_s7::print_program(program)),
-            Dialect::Omron => None,
+            Dialect::Omron => stljit_front_omron::print_program(program).ok(),
+        }
+    }
+
+    /// The options the text of [`Dialect::print_program`] compiles back with (an Omron
+    /// program with backward jumps needs `allow_backward_jumps`).
+    pub fn printed_options(self, program: &Program) -> Options {
+        match self {
+            Dialect::S7 => Options::default(),
+            Dialect::Omron => Options {
+                omron: stljit_front_omron::printed_options(program),
+            },
         }
     }
 }
@@ -255,7 +267,15 @@ mod tests {
                 .parse_address("W600", ProfileId::Cp1h, None)
                 .is_err()
         );
-        assert_eq!(Dialect::Omron.print_program(&p), None);
+        let text = Dialect::Omron.print_program(&p).expect("printable");
+        assert!(text.contains("LD         0.00"), "{text}");
+        assert_eq!(
+            Dialect::Omron.print_program(&Program {
+                profile: ProfileId::A5,
+                ..p
+            }),
+            None
+        );
     }
 
     #[test]

@@ -10,10 +10,12 @@
 //! The parts: [`operands`] picks operands per operand class, [`programs`] builds networks and
 //! POUs, [`params`] gives subroutines parameters and calls them with actuals, [`interrupts`] the
 //! interrupt routines and instructions, [`stimulus`] builds the per-scan inputs and scan times.
+//! Omron programs are generated as mnemonic text instead, by [`omron`] (its module says why).
 
 pub mod boxes;
 pub mod control;
 pub mod interrupts;
+pub mod omron;
 pub mod operands;
 pub mod params;
 pub mod programs;
@@ -25,20 +27,22 @@ use stljit_core::ir::{
     BitLoc, CounterDecl, CounterKind, EdgeDecl, Op, Pou, PouKind, Program, SrcLoc, TimerDecl,
     TimerKind,
 };
-use stljit_core::{CounterId, CpuProfile, LabelId, OpIdx, PouId, ProfileId, TimerId};
+use stljit_core::{CounterId, CpuProfile, Family, LabelId, OpIdx, PouId, ProfileId, TimerId};
 
 pub use stimulus::{HmiWrite, ScanInput, Stimulus};
 
 /// Knobs of the generator. The defaults aim at many small, realistic programs per second.
 #[derive(Clone, Debug)]
 pub struct GenConfig {
-    /// The profile, or `None` to pick one per program.
+    /// The profile, or `None` to pick one per program (a profile of the other dialect than
+    /// the one generated is ignored).
     pub profile: Option<ProfileId>,
     /// Upper bound on networks in the main program (the actual count is random below it).
     pub max_networks: u32,
     /// Upper bound on ordinary subroutines (a deep call chain may add more).
     pub max_subroutines: u32,
-    /// Upper bound on ops per POU; generation stops adding networks past it.
+    /// Upper bound on ops per POU (Omron: instruction lines); generation stops adding
+    /// networks past it.
     pub max_ops_per_pou: usize,
     /// Number of scans of the stimulus.
     pub scans: u32,
@@ -77,6 +81,38 @@ pub fn case_from_bytes(data: &[u8], cfg: &GenConfig) -> Case {
     generate_case(&mut c, cfg)
 }
 
+/// A generated case with the source text it was compiled from (Omron), for coverage.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Generated {
+    /// The program and its stimulus.
+    pub case: Case,
+    /// The generated source text (`None` for S7 programs, which are built as IR).
+    pub source: Option<String>,
+    /// The Omron front-end options `source` compiles with (the default for S7 programs).
+    pub options: stljit_front_omron::Options,
+}
+
+/// Generates a case of the dialect `family` (S7 programs as IR, Omron programs as text
+/// compiled by the Omron front end, whose rejection is the error).
+pub fn generate_in(
+    family: Family,
+    c: &mut Choices<'_>,
+    cfg: &GenConfig,
+) -> Result<Generated, omron::GenError> {
+    match family {
+        Family::S7 => Ok(Generated {
+            case: generate_case(c, cfg),
+            source: None,
+            options: Default::default(),
+        }),
+        Family::Omron => omron::generate(c, cfg).map(|g| Generated {
+            case: g.case,
+            source: Some(g.source),
+            options: g.options,
+        }),
+    }
+}
+
 /// Generates a case from any choice stream.
 pub fn generate_case(c: &mut Choices<'_>, cfg: &GenConfig) -> Case {
     let program = generate_program(c, cfg);
@@ -87,10 +123,10 @@ pub fn generate_case(c: &mut Choices<'_>, cfg: &GenConfig) -> Case {
 /// Generates a program from any choice stream.
 pub fn generate_program(c: &mut Choices<'_>, cfg: &GenConfig) -> Program {
     let profile = match cfg.profile {
-        Some(p) => p,
+        Some(p) if p.profile().family == Family::S7 => p,
         // The A5 is the product; the S7-200 table exercises the kind-by-number timer rules, the
         // SMART its larger areas.
-        None => [ProfileId::A5, ProfileId::S7_200, ProfileId::Smart][c.weighted(&[4, 1, 1])],
+        _ => [ProfileId::A5, ProfileId::S7_200, ProfileId::Smart][c.weighted(&[4, 1, 1])],
     };
     let mut g = Gen::new(c, cfg, profile);
     g.program()

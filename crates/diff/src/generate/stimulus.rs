@@ -3,10 +3,17 @@
 //! Inputs change the way a machine's do (a few bits per scan, now and then a whole byte); times
 //! are regular, irregular (including repeated instants) or jump far ahead, so that every timer
 //! resolution sees zero, one and many intervals per scan.
+//!
+//! Omron profiles ([`Family::Omron`]): the inputs are the CIO input words 0–1 (the profile's
+//! input bytes), scan times are 1 to 200 ms (fixed, irregular, or fixed with a rare pause of
+//! seconds), and HMI writes go to DM words (the `@D`/`*D` pointer words D100–D103 among them,
+//! with values inside and outside the DM area), work, holding, CIO work and writable auxiliary
+//! words and bits.
 
 use crate::rng::Choices;
 use stljit_core::ir::{Address, BitLoc, Loc};
-use stljit_core::{Area, ProfileId, Width};
+use stljit_core::omron::{WordArea, bit_of_word, word_loc};
+use stljit_core::{Area, Family, ProfileId, Width};
 
 /// A value written into the image before a scan, as an HMI or a debugger would.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -52,13 +59,19 @@ impl Stimulus {
 /// Generates `scans` scans of stimulus for a profile.
 pub fn generate(c: &mut Choices<'_>, profile: ProfileId, scans: u32) -> Stimulus {
     let p = profile.profile();
+    let omron = p.family == Family::Omron;
     let mut inputs: Vec<u8> = (0..p.inputs)
         .map(|_| if c.chance(1, 3) { c.bits() as u8 } else { 0 })
         .collect();
     let mut ai: Vec<u16> = (0..p.analog_inputs / 2).map(|_| 0).collect();
     // Time modes: a fixed period, irregular steps, or a fixed period with rare long pauses.
     let mode = c.below(3);
-    let period = u64::from(c.pick(&[10u32, 1, 5, 7, 20, 50, 100, 250, 1000]));
+    let periods: &[u32] = if omron {
+        &[10, 1, 2, 5, 20, 50, 100, 150, 200]
+    } else {
+        &[10, 1, 5, 7, 20, 50, 100, 250, 1000]
+    };
+    let period = u64::from(c.pick(periods));
     let mut t = if c.chance(1, 4) {
         u64::from(c.below(100_000))
     } else {
@@ -66,7 +79,9 @@ pub fn generate(c: &mut Choices<'_>, profile: ProfileId, scans: u32) -> Stimulus
     };
     let mut out = Vec::with_capacity(scans as usize);
     for k in 0..scans {
-        if k > 0 {
+        if k > 0 && omron {
+            t += omron_step(c, mode, period);
+        } else if k > 0 {
             t += match mode {
                 0 => period,
                 1 => u64::from(match c.weighted(&[2, 6, 3, 1]) {
@@ -106,7 +121,11 @@ pub fn generate(c: &mut Choices<'_>, profile: ProfileId, scans: u32) -> Stimulus
         }
         let mut writes = Vec::new();
         if c.chance(1, 12) {
-            writes.push(hmi_write(c, profile));
+            writes.push(if omron {
+                omron_hmi_write(c, profile)
+            } else {
+                hmi_write(c, profile)
+            });
         }
         out.push(ScanInput {
             t_ms: t,
@@ -159,5 +178,74 @@ fn hmi_write(c: &mut Choices<'_>, profile: ProfileId) -> HmiWrite {
             },
             value: (c.range(0, 2000) as f32 / 4.0 - 250.0).to_bits(),
         },
+    }
+}
+
+/// The time from one Omron scan to the next: 1 to 200 ms, and in mode 2 a rare pause.
+fn omron_step(c: &mut Choices<'_>, mode: u32, period: u64) -> u64 {
+    match mode {
+        0 => period,
+        1 => u64::from(match c.weighted(&[6, 3, 1]) {
+            0 => c.range(1, 10),
+            1 => c.range(10, 50),
+            _ => c.range(50, 200),
+        }),
+        _ => {
+            if c.chance(1, 40) {
+                u64::from(c.range(1000, 70_000))
+            } else {
+                period
+            }
+        }
+    }
+}
+
+/// An HMI write on an Omron profile: a word or bit of D, W, H, CIO work or A448+.
+fn omron_hmi_write(c: &mut Choices<'_>, profile: ProfileId) -> HmiWrite {
+    let p = profile.profile();
+    let (area, word) = match c.below(6) {
+        0 | 1 => {
+            let w = if c.chance(1, 2) {
+                100 + c.below(4)
+            } else {
+                c.below(32)
+            };
+            (WordArea::Dm, w)
+        }
+        2 => (WordArea::Work, c.below(8)),
+        3 => (WordArea::Holding, c.below(4)),
+        4 => (WordArea::Cio, 2 + c.below(8)),
+        _ => (WordArea::Aux, p.omron.aux_read_only + c.below(4)),
+    };
+    // Every word above exists on every Omron profile.
+    let loc = word_loc(p, area, word).unwrap_or(Loc {
+        area: Area::Dm,
+        offset: 0,
+    });
+    if area != WordArea::Dm && c.chance(1, 2) {
+        return HmiWrite {
+            addr: Address::Bit(bit_of_word(loc, c.below(16) as u8)),
+            value: c.below(2),
+        };
+    }
+    let value = match c.below(4) {
+        0 => c.below(40),
+        1 => c.pick(&[
+            0x12A4,
+            0x9999,
+            0x7FFF,
+            0x8000,
+            0xFFFF,
+            p.omron.dm - 1,
+            p.omron.dm,
+        ]),
+        _ => c.bits() & 0xFFFF,
+    };
+    HmiWrite {
+        addr: Address::Value {
+            loc,
+            width: Width::Word,
+        },
+        value,
     }
 }
