@@ -257,9 +257,10 @@ impl Image {
     /// Copies `inputs` into the physical input copy (extra bytes ignored, missing ones 0).
     pub fn set_inputs(&mut self, inputs: &[u8]) {
         let dst = self.phys_in_mut();
-        for (i, b) in dst.iter_mut().enumerate() {
-            *b = inputs.get(i).copied().unwrap_or(0);
-        }
+        let n = inputs.len().min(dst.len());
+        let (given, rest) = dst.split_at_mut(n);
+        given.copy_from_slice(&inputs[..n]);
+        rest.fill(0);
     }
 
     /// The physical output copy, as written at the end of the last scan.
