@@ -232,6 +232,8 @@ fn ext_mnemonic(b: &ExtBox) -> &'static str {
             ClockOp::WriteExt => "TODWX",
         },
         ExtBox::Pid { .. } => "PID",
+        ExtBox::HscDefine { .. } => "HDEF",
+        ExtBox::Hsc { .. } => "HSC",
     }
 }
 

@@ -14,7 +14,7 @@ use crate::block::Span;
 use crate::flags::{NOT_HEX, OVERFLOW, SmFlags, apply_flags};
 use crate::operand;
 use crate::text::{self, NumText, ParseFail};
-use crate::{pid, rtc, string, table};
+use crate::{hsc, pid, rtc, string, table};
 use stljit_core::ir::{ClockOp, ExtBox, NumType, StrArg, StrCompare};
 use stljit_core::layout::Layout;
 use stljit_core::{ErrorCode, FatalCode, Width};
@@ -254,6 +254,14 @@ pub fn execute(
             Ok(true)
         }
         ExtBox::Pid { .. } => Ok(false),
+        ExtBox::HscDefine { counter, mode } => {
+            hsc::define(img, layout, *counter, *mode)?;
+            Ok(true)
+        }
+        ExtBox::Hsc { counter } => {
+            hsc::control(img, layout, *counter)?;
+            Ok(true)
+        }
     }
 }
 
