@@ -1,5 +1,6 @@
 //! The instructions of s7-200-more §4–§7 on the image: [`execute`] runs one
-//! [`ExtBox`] (tables, ASCII and number text, strings, the clock, PID) and [`str_compare`] one
+//! [`ExtBox`] (tables, ASCII and number text, strings, the clock, PID; HDEF/HSC through
+//! [`crate::hsc`]) and [`str_compare`] one
 //! string compare contact. Both engines call exactly these (the interpreter directly, the JIT
 //! through `ffi::stljit_rt_ext` and `ffi::stljit_rt_str_compare` with a pointer to the op), so
 //! operand resolution, run checks and the rules of [`crate::table`], [`crate::text`],
