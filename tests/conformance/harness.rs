@@ -208,6 +208,8 @@ struct ScanSpec {
     status: ScanStatus,
     fatal: Option<FatalCode>,
     last_err: Option<u16>,
+    /// High-speed counter activity before the scan (`hsc = { 0 = 10 }`).
+    hsc: Vec<(u8, i32)>,
 }
 
 /// An expected value: a raw bit pattern, or a real compared by value (NaN matches NaN).
@@ -340,7 +342,12 @@ fn run(
     if let Some(start) = case.rtc_start {
         image.set_clock_start(start);
     }
-    let mut sim = Simulation::new(engine, image, case.scan_ms).map_err(|e| e.to_string())?;
+    let mut feed = super::hsc_feed::Feed {
+        inner: engine,
+        scans: case.scans.iter().map(|s| s.hsc.clone()).collect(),
+        k: 0,
+    };
+    let mut sim = Simulation::new(&mut feed, image, case.scan_ms).map_err(|e| e.to_string())?;
     let mut rec = FnObserver(|e: &ScanEvent<'_>| {
         records.push((e.status, e.image.clone()));
         Ok(())
@@ -584,7 +591,7 @@ const CASE_KEYS: &[&str] = &[
     "rtc_start",
 ];
 const SCAN_KEYS: &[&str] = &[
-    "scan", "t_ms", "inputs", "expect", "frame", "status", "fatal", "last_err",
+    "scan", "t_ms", "inputs", "expect", "frame", "status", "fatal", "last_err", "hsc",
 ];
 
 fn check_keys(t: &Table, allowed: &[&str], what: &str) -> Result<(), String> {
@@ -766,7 +773,9 @@ fn parse_scan(
         None => None,
         Some(v) => Some(u16::try_from(v).map_err(|_| "`last_err` must fit 16 bits".to_string())?),
     };
+    let hsc = super::hsc_feed::parse(&table("hsc")?)?;
     Ok(ScanSpec {
+        hsc,
         inputs,
         expect,
         frames,

@@ -53,7 +53,14 @@ code_enum! {
     /// Non-fatal run-time errors (spec §2.5): the instruction is skipped, ENO = 0, and the code
     /// is stored in `Sched::LAST_ERR`. The values are the S7-200's.
     ErrorCode: u16 {
-        /// ENI or DISI executed in an interrupt routine (s7-200-more §0.4, §3.4).
+        /// HSC executed before its HDEF (s7-200-more §0.4, §8.1).
+        HscNotDefined = 0x0001,
+        /// ATCH of an input-edge event on an input a defined high-speed counter uses (§8.3).
+        HscEdgeConflict = 0x0002,
+        /// HDEF of a counter whose inputs an attached input-edge event or another defined
+        /// counter uses (§8.3).
+        HscInputConflict = 0x0003,
+        /// ENI, DISI or HDEF executed in an interrupt routine (s7-200-more §0.4, §3.4).
         InInterrupt = 0x0004,
         /// Illegal indirect address (bad pointer, out of range, or a read-only target).
         IndirectAddress = 0x0006,
@@ -62,6 +69,8 @@ code_enum! {
         ClockData = 0x0007,
         /// Subroutine nesting exceeded.
         CallNesting = 0x0008,
+        /// HDEF of a high-speed counter that is already defined (§8.1).
+        HscRedefined = 0x000A,
         /// The CPU has no real-time clock (TODR/TODW on a profile without one, §6.2).
         NoClock = 0x000C,
         /// Operand out of range (an S/R/BM* count runs past the area end).
@@ -77,7 +86,11 @@ code_enum! {
 impl fmt::Display for ErrorCode {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let what = match self {
-            ErrorCode::InInterrupt => "ENI or DISI in an interrupt routine",
+            ErrorCode::HscNotDefined => "HSC before HDEF",
+            ErrorCode::HscEdgeConflict => "input interrupt on a high-speed counter input",
+            ErrorCode::HscInputConflict => "high-speed counter input already in use",
+            ErrorCode::InInterrupt => "ENI, DISI or HDEF in an interrupt routine",
+            ErrorCode::HscRedefined => "high-speed counter already defined",
             ErrorCode::IndirectAddress => "illegal indirect address",
             ErrorCode::ClockData => "clock data error",
             ErrorCode::CallNesting => "subroutine nesting exceeded",

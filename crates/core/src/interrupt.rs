@@ -6,6 +6,8 @@
 //! is `stljit_runtime::interrupt`, which reads these tables, and the S7 front end checks event
 //! numbers against [`InterruptProfile::has`].
 
+use crate::hsc::HscEvent;
+
 /// The three interrupt queues, highest priority first (§3.3: communication > discrete >
 /// timed). The discriminant is the group's index in [`EventGroup::ALL`] and the bit of its
 /// overflow flag in SMB4 (SM4.0–SM4.2).
@@ -66,7 +68,12 @@ pub enum EventSource {
         timer: u16,
     },
     /// A high-speed counter (§8.5).
-    HighSpeedCounter,
+    HighSpeedCounter {
+        /// The counter's number.
+        counter: u8,
+        /// Which of its events.
+        kind: HscEvent,
+    },
     /// A pulse output completing (§9).
     PulseOutput,
     /// A serial port (§10).
@@ -74,15 +81,16 @@ pub enum EventSource {
 }
 
 impl EventSource {
-    /// Whether the simulator raises events of this source. High-speed counters, pulse outputs
-    /// and communication are not simulated yet (their instructions are rejected as not
-    /// supported), so their events can be attached but never occur.
+    /// Whether the simulator raises events of this source. Pulse outputs and communication
+    /// are not simulated yet (their instructions are rejected as not supported), so their
+    /// events can be attached but never occur.
     pub fn simulated(self) -> bool {
         matches!(
             self,
             EventSource::InputEdge { .. }
                 | EventSource::Timed { .. }
                 | EventSource::TimerReached { .. }
+                | EventSource::HighSpeedCounter { .. }
         )
     }
 }
@@ -163,8 +171,20 @@ const fn timer(number: u8, pri: u8, timer: u16, what: &'static str) -> EventInfo
     )
 }
 
+/// An event of high-speed counter `counter`: the discrete group.
+const fn hsc(number: u8, pri: u8, counter: u8, kind: HscEvent, what: &'static str) -> EventInfo {
+    ev(
+        number,
+        EventGroup::Discrete,
+        pri,
+        EventSource::HighSpeedCounter { counter, kind },
+        what,
+    )
+}
+
 use EventGroup::{Communication as COMM, Discrete as IO};
-use EventSource::{Communication as PORT, HighSpeedCounter as HSC, PulseOutput as PLS};
+use EventSource::{Communication as PORT, PulseOutput as PLS};
+use HscEvent::{CvEqPv as CV, Direction as DIR, Reset as RST};
 
 /// Every event of every S7 profile, entry `n` for event `n`: the S7-200 table 6-50 (§3.1) and
 /// the S7-200 SMART additions 34–38 (§3.2, in the discrete group after the S7-200's entries,
@@ -183,13 +203,13 @@ pub const EVENTS: &[EventInfo] = &[
     ev(9, COMM, 0, PORT, "port 0 transmit complete"),
     timed(10, 0, "timed interrupt 0 (SMB34)"),
     timed(11, 1, "timed interrupt 1 (SMB35)"),
-    ev(12, IO, 10, HSC, "HSC0 CV = PV"),
-    ev(13, IO, 13, HSC, "HSC1 CV = PV"),
-    ev(14, IO, 14, HSC, "HSC1 direction changed"),
-    ev(15, IO, 15, HSC, "HSC1 external reset"),
-    ev(16, IO, 16, HSC, "HSC2 CV = PV"),
-    ev(17, IO, 17, HSC, "HSC2 direction changed"),
-    ev(18, IO, 18, HSC, "HSC2 external reset"),
+    hsc(12, 10, 0, CV, "HSC0 CV = PV"),
+    hsc(13, 13, 1, CV, "HSC1 CV = PV"),
+    hsc(14, 14, 1, DIR, "HSC1 direction changed"),
+    hsc(15, 15, 1, RST, "HSC1 external reset"),
+    hsc(16, 16, 2, CV, "HSC2 CV = PV"),
+    hsc(17, 17, 2, DIR, "HSC2 direction changed"),
+    hsc(18, 18, 2, RST, "HSC2 external reset"),
     ev(19, IO, 0, PLS, "PLS0 (Q0.0) pulse count complete"),
     ev(20, IO, 1, PLS, "PLS1 (Q0.1) pulse count complete"),
     timer(21, 2, 32, "timer T32 CT = PT"),
@@ -198,13 +218,13 @@ pub const EVENTS: &[EventInfo] = &[
     ev(24, COMM, 1, PORT, "port 1 receive message complete"),
     ev(25, COMM, 1, PORT, "port 1 receive character"),
     ev(26, COMM, 1, PORT, "port 1 transmit complete"),
-    ev(27, IO, 11, HSC, "HSC0 direction changed"),
-    ev(28, IO, 12, HSC, "HSC0 external reset"),
-    ev(29, IO, 20, HSC, "HSC4 CV = PV"),
-    ev(30, IO, 21, HSC, "HSC4 direction changed"),
-    ev(31, IO, 22, HSC, "HSC4 external reset"),
-    ev(32, IO, 19, HSC, "HSC3 CV = PV"),
-    ev(33, IO, 23, HSC, "HSC5 CV = PV"),
+    hsc(27, 11, 0, DIR, "HSC0 direction changed"),
+    hsc(28, 12, 0, RST, "HSC0 external reset"),
+    hsc(29, 20, 4, CV, "HSC4 CV = PV"),
+    hsc(30, 21, 4, DIR, "HSC4 direction changed"),
+    hsc(31, 22, 4, RST, "HSC4 external reset"),
+    hsc(32, 19, 3, CV, "HSC3 CV = PV"),
+    hsc(33, 23, 5, CV, "HSC5 CV = PV"),
     ev(34, IO, 24, PLS, "PLS2 (Q0.3) pulse count complete"),
     edge(35, 25, 8, true, "I7.0 rising edge"),
     edge(36, 26, 8, false, "I7.0 falling edge"),
@@ -216,6 +236,15 @@ pub const EVENTS: &[EventInfo] = &[
 #[inline]
 pub fn event(n: u8) -> Option<&'static EventInfo> {
     EVENTS.get(usize::from(n)).filter(|e| e.number == n)
+}
+
+/// The event `kind` of high-speed counter `counter` (none: the counter has no such event,
+/// §8.5), whatever the profile.
+pub fn hsc_event(counter: u8, kind: HscEvent) -> Option<u8> {
+    EVENTS
+        .iter()
+        .find(|e| e.source == EventSource::HighSpeedCounter { counter, kind })
+        .map(|e| e.number)
 }
 
 /// The event timed interrupt `channel` raises, read off [`EVENTS`] at compile time.

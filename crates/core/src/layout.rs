@@ -25,6 +25,8 @@ pub const SCHED_SIZE: u32 = 64;
 pub const INT_STATE_SIZE: u32 = 144;
 /// Bytes of one interrupt queue entry (see [`QueueEntry`]).
 pub const QUEUE_ENTRY_SIZE: u32 = 16;
+/// Bytes of private state per high-speed counter (see [`HscState`]).
+pub const HSC_STATE_SIZE: u32 = 40;
 /// Number of `L` frames: the main program and eight subroutine levels (frames 0–8), the
 /// running interrupt routine ([`ISR_FRAME`]) and four levels of its calls (frames 10–13),
 /// s7-200-more §1.6.
@@ -212,6 +214,43 @@ record_fields! {
     }
 }
 
+record_fields! {
+    /// Field offsets inside one high-speed counter's private state (s7-200-more §8.7, §11.1):
+    /// one record per counter of the profile's table, read and written only by
+    /// `stljit_runtime::hsc`. The current value is the program-visible HC area.
+    HscState {
+        /// 1 once HDEF defined the counter.
+        DEFINED: u8 = 0;
+        /// The mode HDEF gave it (0–12).
+        MODE: u8 = 1;
+        /// 1 while enabled (HSC with control bit 7).
+        ENABLED: u8 = 2;
+        /// The counting direction: 1 up, 0 down.
+        DIR: u8 = 3;
+        /// Control bit 0 at HDEF: the reset input is active low.
+        RESET_LOW: u8 = 4;
+        /// Control bit 1 at HDEF: the start input is active low.
+        START_LOW: u8 = 5;
+        /// Control bit 2 at HDEF: quadrature at 1x (else 4x).
+        RATE1X: u8 = 6;
+        /// The direction of the current interval's steps in modes 3–11 (1 up).
+        STEP_UP: u8 = 7;
+        /// Native-endian: the preset PV.
+        PV: i32 = 8;
+        /// Native-endian: the stimulus, the signed counting activity `n` per scan interval
+        /// (§8.4, §11.2 `hsc_steps`), written by the harness and held until it writes again.
+        RATE: i32 = 12;
+        /// Native-endian: the unit steps of the current interval (`s`).
+        STEPS: u32 = 16;
+        /// Native-endian: the steps of the current interval already applied (`j`).
+        DONE: u32 = 20;
+        /// Native-endian: the start of the current interval in µs (`T_{k−1}`).
+        T_START: u64 = 24;
+        /// Native-endian: its length in µs (`D`).
+        SPAN: u64 = 32;
+    }
+}
+
 /// Default loop budget per scan (spec §2.5).
 pub const DEFAULT_LOOP_LIMIT: u32 = 65_536;
 
@@ -240,6 +279,8 @@ pub struct Layout {
     pub queue: u32,
     /// The state of the s7-200-more instructions, see [`InstrState`].
     pub instr: u32,
+    /// The high-speed counters' private state, see [`HscState`].
+    pub hsc: u32,
     /// Total image size in bytes.
     pub size: u32,
     block_size: [u32; Block::ALL.len()],
@@ -296,6 +337,10 @@ impl Layout {
                 Family::Omron => 0,
             },
         );
+        let hsc = take(
+            Block::Hsc,
+            HSC_STATE_SIZE * profile.hsc.counters.len() as u32,
+        );
         Layout {
             profile: profile.id,
             area_base,
@@ -309,6 +354,7 @@ impl Layout {
             interrupts,
             queue,
             instr,
+            hsc,
             size: next,
             block_size,
         }
@@ -379,6 +425,13 @@ impl Layout {
         self.instr + field
     }
 
+    /// Image offset of a field (an [`HscState`] constant) of high-speed counter `n`'s private
+    /// state.
+    #[inline]
+    pub fn hsc_state(&self, n: u8, field: u32) -> u32 {
+        self.hsc + HSC_STATE_SIZE * u32::from(n) + field
+    }
+
     /// The area and in-area offset an image offset belongs to, for naming differing bytes.
     pub fn locate(&self, image_offset: u32) -> Option<(Area, u32)> {
         Area::ALL.into_iter().find_map(|area| {
@@ -405,6 +458,7 @@ impl Layout {
             Block::Interrupts => self.interrupts,
             Block::Queue => self.queue,
             Block::Instr => self.instr,
+            Block::Hsc => self.hsc,
         }
     }
 
@@ -480,11 +534,14 @@ pub enum Block {
     /// The state of the s7-200-more instructions, one [`InstrState`] record (none on Omron
     /// profiles).
     Instr,
+    /// The high-speed counters' private state, one [`HscState`] record per counter of the
+    /// profile's table.
+    Hsc,
 }
 
 impl Block {
     /// Every block, in layout order.
-    pub const ALL: [Block; 9] = [
+    pub const ALL: [Block; 10] = [
         Block::Edges,
         Block::TimerState,
         Block::CounterState,
@@ -494,6 +551,7 @@ impl Block {
         Block::Interrupts,
         Block::Queue,
         Block::Instr,
+        Block::Hsc,
     ];
 
     /// A short name for reports (`timer state`).
@@ -508,6 +566,7 @@ impl Block {
             Block::Interrupts => "interrupt state",
             Block::Queue => "interrupt queue",
             Block::Instr => "clock and PID state",
+            Block::Hsc => "high-speed counter state",
         }
     }
 
@@ -520,6 +579,7 @@ impl Block {
             Block::Interrupts => Some((INT_STATE_SIZE, IntState::FIELDS)),
             Block::Queue => Some((QUEUE_ENTRY_SIZE, QueueEntry::FIELDS)),
             Block::Instr => Some((INSTR_STATE_SIZE, InstrState::FIELDS)),
+            Block::Hsc => Some((HSC_STATE_SIZE, HscState::FIELDS)),
             Block::Edges | Block::PhysIn | Block::PhysOut => None,
         }
     }

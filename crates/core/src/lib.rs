@@ -10,6 +10,7 @@
 
 pub mod area;
 pub mod codes;
+pub mod hsc;
 pub mod index;
 pub mod instr_set;
 pub mod interrupt;

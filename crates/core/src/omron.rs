@@ -380,6 +380,7 @@ const CP1H_DATA: CpuProfile = CpuProfile {
     timer_table: OMRON_TIMERS,
     lacks: InstrSet::ALL,
     interrupts: &InterruptProfile::NONE,
+    hsc: &crate::hsc::HscProfile::NONE,
     clock: crate::profile::RealTimeClock::Absent,
 };
 

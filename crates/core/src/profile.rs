@@ -5,6 +5,7 @@
 //! the timer resolution that the front end stored in the IR.
 
 use crate::area::Area;
+use crate::hsc::{self, HscProfile};
 use crate::instr_set::InstrSet;
 use crate::interrupt::{self, InterruptProfile};
 use crate::ir::TimerKind;
@@ -273,6 +274,10 @@ pub struct CpuProfile {
     /// Interrupt events, queues and the CALL depth of interrupt routines
     /// ([`InterruptProfile::NONE`] on Omron profiles).
     pub interrupts: &'static InterruptProfile,
+    /// The high-speed counters with their inputs, modes and registers (s7-200-more §8.2;
+    /// [`HscProfile::NONE`] on Omron profiles). The HC area has
+    /// [`high_speed_counters`](Self::high_speed_counters) values whatever this table holds.
+    pub hsc: &'static HscProfile,
     /// The CPU's real-time clock (s7-200-more §6.2 `rtc_present`): without one,
     /// TODR/TODW/TODRX/TODWX fail at run time with 16#000C.
     pub clock: RealTimeClock,
@@ -375,6 +380,7 @@ pub static A5: CpuProfile = CpuProfile {
         InstrSet::IpAddress,
     ],
     interrupts: &interrupt::A5_INTERRUPTS,
+    hsc: &hsc::A5_COUNTERS,
     // "The seed does not mention a clock" (s7-200-more §6.2, Appendix A).
     clock: RealTimeClock::Absent,
 };
@@ -484,6 +490,7 @@ pub static S7_200: CpuProfile = CpuProfile {
     timer_table: SIEMENS_TIMERS,
     lacks: &[InstrSet::GetPut, InstrSet::IpAddress],
     interrupts: &interrupt::S7_200_INTERRUPTS,
+    hsc: &hsc::S7_200_COUNTERS,
     clock: RealTimeClock::Classic,
 };
 
@@ -519,6 +526,7 @@ pub static SMART: CpuProfile = CpuProfile {
     // Micro/WIN SMART rejects NETR/NETW (the corpus's instruction probe confirms it).
     lacks: &[InstrSet::NetReadWrite],
     interrupts: &interrupt::SMART_INTERRUPTS,
+    hsc: &hsc::SMART_COUNTERS,
     clock: RealTimeClock::Smart,
 };
 

@@ -151,6 +151,7 @@ mod tests {
                     inputs: vec![k as u8; 16],
                     ai: vec![0; 16],
                     writes: vec![],
+                    hsc: vec![],
                 })
                 .collect(),
         }

@@ -74,6 +74,15 @@ pub enum Place {
         /// Byte inside the field.
         byte: u32,
     },
+    /// A field of high-speed counter `n`'s state, and the byte inside it.
+    Hsc {
+        /// Counter number.
+        n: u32,
+        /// Field name.
+        field: &'static str,
+        /// Byte inside the field.
+        byte: u32,
+    },
     /// Alignment padding.
     Padding(u32),
 }
@@ -123,9 +132,15 @@ impl Place {
                 field: at.name.unwrap_or("(unused)"),
                 byte: at.byte,
             },
+            (Block::Hsc, Some(at)) => Place::Hsc {
+                n: at.record,
+                field: at.name.unwrap_or("(pad)"),
+                byte: at.byte,
+            },
             // Record blocks always name their bytes; a block without fields is matched above.
             (
-                Block::TimerState
+                Block::Hsc
+                | Block::TimerState
                 | Block::CounterState
                 | Block::Sched
                 | Block::Interrupts
@@ -202,6 +217,7 @@ impl fmt::Display for Place {
             Place::PhysIn(n) => write!(f, "physical input byte {n}"),
             Place::PhysOut(n) => write!(f, "physical output byte {n}"),
             Place::Instr { field, byte } => write!(f, "InstrState.{field} byte {byte}"),
+            Place::Hsc { n, field, byte } => write!(f, "HSC{n} HscState.{field} byte {byte}"),
             Place::Padding(o) => write!(f, "padding at {o:#x}"),
         }
     }

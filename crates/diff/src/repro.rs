@@ -7,6 +7,7 @@
 //! stimulus.csv   inputs, analog inputs and HMI writes per scan, in stljit_sim's CSV format,
 //!                addresses spelled in the program's dialect (Omron: input words `0`, `1`)
 //! meta           key = value lines: profile, seed, engines, loop limit, the time of every scan
+//!                and (`hscN = …`) high-speed counter N's activity per scan
 //! README.txt     what failed: the scan, the first differing bytes with both values, the seed
 //! ```
 //! `stimulus.csv` uses scan numbers; scan times need not be regular, so they are listed in
@@ -202,7 +203,46 @@ pub fn meta_text(meta: &Meta, s: &Stimulus) -> String {
     let _ = writeln!(out, "scans = {}", s.len());
     let times: Vec<String> = s.scans.iter().map(|x| x.t_ms.to_string()).collect();
     let _ = writeln!(out, "times = {}", times.join(" "));
+    // High-speed counter activity per scan (not a CSV column: stljit_sim has none for it).
+    let counters = s.scans.iter().map(|x| x.hsc.len()).max().unwrap_or(0);
+    for n in 0..counters {
+        let v: Vec<i32> = s
+            .scans
+            .iter()
+            .map(|x| x.hsc.get(n).copied().unwrap_or(0))
+            .collect();
+        if v.iter().any(|&x| x != 0) {
+            let v: Vec<String> = v.iter().map(i32::to_string).collect();
+            let _ = writeln!(out, "hsc{n} = {}", v.join(" "));
+        }
+    }
     out
+}
+
+/// The high-speed counter activity of a `meta` file: per scan, one value per counter of the
+/// profile (as the generator gives it).
+fn parse_hsc(text: &str, scans: usize, counters: usize) -> Result<Vec<Vec<i32>>, ReproError> {
+    let mut out = vec![vec![0; counters]; scans];
+    for (k, v) in text.lines().filter_map(|l| l.split_once('=')) {
+        let Some(n) = k.trim().strip_prefix("hsc") else {
+            continue;
+        };
+        let n: usize = n
+            .parse()
+            .map_err(|_| ReproError::Meta(format!("bad `{}`", k.trim())))?;
+        for (scan, x) in v.split_whitespace().enumerate() {
+            let x: i32 = x
+                .parse()
+                .map_err(|_| ReproError::Meta(format!("bad hsc value `{x}`")))?;
+            if let Some(row) = out.get_mut(scan) {
+                if row.len() <= n {
+                    row.resize(n + 1, 0);
+                }
+                row[n] = x;
+            }
+        }
+    }
+    Ok(out)
 }
 
 /// Writes a reproducer directory (created if missing).
@@ -373,6 +413,7 @@ pub fn parse_stimulus(
             inputs: inputs.clone(),
             ai: ai.clone(),
             writes,
+            hsc: Vec::new(),
         });
     }
     Ok(Stimulus { scans })
@@ -389,7 +430,12 @@ pub fn read_case(dir: &Path) -> Result<(Case, Meta), ReproError> {
             program.profile.name()
         )));
     }
-    let stimulus = parse_stimulus(meta.profile, &read(dir, "stimulus.csv")?, &times)?;
+    let mut stimulus = parse_stimulus(meta.profile, &read(dir, "stimulus.csv")?, &times)?;
+    let counters = meta.profile.profile().hsc.counters.len();
+    let hsc = parse_hsc(&read(dir, "meta")?, stimulus.scans.len(), counters)?;
+    for (scan, h) in stimulus.scans.iter_mut().zip(hsc) {
+        scan.hsc = h;
+    }
     Ok((Case { program, stimulus }, meta))
 }
 

@@ -522,6 +522,8 @@ pub(crate) fn print_ext(x: &ExtBox) -> String {
             format!("{m} {}", b(*buf))
         }
         ExtBox::Pid { table, lp } => format!("PID {}, {lp}", b(*table)),
+        ExtBox::HscDefine { counter, mode } => format!("HDEF {counter}, {mode}"),
+        ExtBox::Hsc { counter } => format!("HSC {counter}"),
     }
 }
 

@@ -17,6 +17,7 @@ mod classes;
 mod control;
 mod data_block;
 mod ext;
+mod hsc;
 mod interrupts;
 mod lexer;
 pub mod locals;

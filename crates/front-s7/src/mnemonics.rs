@@ -69,6 +69,8 @@ pub(crate) enum Group {
     Ext,
     /// The string compare contacts `LDS=` … `OS<>` (s7-200-more §5.6).
     StrCompare,
+    /// `HDEF`, `HSC` (s7-200-more §8), lowered by `Lowerer::hsc`.
+    Hsc,
 }
 
 /// The program-control routines (spec §4.13).
@@ -341,6 +343,8 @@ pub(crate) const TABLE: &[(&str, Group)] = &[
     ("TODRX", Group::Ext),
     ("TODWX", Group::Ext),
     ("PID", Group::Ext),
+    ("HDEF", Group::Hsc),
+    ("HSC", Group::Hsc),
     ("LDS=", Group::StrCompare),
     ("LDS<>", Group::StrCompare),
     ("AS=", Group::StrCompare),
@@ -408,8 +412,8 @@ pub(crate) fn not_yet(set: InstrSet) -> &'static str {
         | InstrSet::Ascii
         | InstrSet::Strings
         | InstrSet::Clock
-        | InstrSet::Pid => "this instruction is not implemented yet",
-        InstrSet::HighSpeedCounters => "high-speed counters are not simulated yet (s7-200-more §8)",
+        | InstrSet::Pid
+        | InstrSet::HighSpeedCounters => "this instruction is not implemented yet",
         InstrSet::PulseOutputs => "pulse outputs are not simulated yet (s7-200-more §9)",
         InstrSet::Freeport
         | InstrSet::PortAddress
@@ -557,6 +561,8 @@ mod tests {
         "SBR0",
         "INT0, 10",
         "10",
+        "0",
+        "1, 0",
     ];
 
     /// Mnemonics that lower to the same IR as another one, which the printer uses.
@@ -651,7 +657,7 @@ mod tests {
         assert_eq!(group("NOPE"), None);
     }
 
-    /// Every mnemonic of the families issue 13 part C implements is lowered, so none of them
+    /// Every mnemonic of the families issue 13 parts C and D implement is lowered, so none of them
     /// reaches "not supported yet".
     #[test]
     fn implemented_families_are_complete() {
@@ -663,6 +669,7 @@ mod tests {
                     | InstrSet::Strings
                     | InstrSet::Clock
                     | InstrSet::Pid
+                    | InstrSet::HighSpeedCounters
             ) {
                 for m in *ms {
                     assert!(group(m).is_some(), "{m} is not lowered");

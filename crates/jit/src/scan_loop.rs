@@ -31,9 +31,9 @@ use stljit_core::{Area, Family, ScanStatus};
 use stljit_runtime::scan::{self, Begin, ScanPlan};
 
 /// Whether scans of `plan`'s program may take the inline path at all (the interrupt
-/// machinery could act in a program with interrupt routines).
+/// machinery could act in a program with interrupt routines or high-speed counters).
 fn inline_path(plan: &ScanPlan) -> bool {
-    plan.family() == Family::S7 && plan.clock_timers().is_empty() && !plan.has_interrupts()
+    plan.family() == Family::S7 && plan.clock_timers().is_empty() && !plan.has_events()
 }
 
 /// The loop, with the signature `build::run_signature`:

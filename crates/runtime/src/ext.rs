@@ -1,5 +1,6 @@
 //! The instructions of s7-200-more §4–§7 on the image: [`execute`] runs one
-//! [`ExtBox`] (tables, ASCII and number text, strings, the clock, PID) and [`str_compare`] one
+//! [`ExtBox`] (tables, ASCII and number text, strings, the clock, PID; HDEF/HSC through
+//! [`crate::hsc`]) and [`str_compare`] one
 //! string compare contact. Both engines call exactly these (the interpreter directly, the JIT
 //! through `ffi::stljit_rt_ext` and `ffi::stljit_rt_str_compare` with a pointer to the op), so
 //! operand resolution, run checks and the rules of [`crate::table`], [`crate::text`],
@@ -14,7 +15,7 @@ use crate::block::Span;
 use crate::flags::{NOT_HEX, OVERFLOW, SmFlags, apply_flags};
 use crate::operand;
 use crate::text::{self, NumText, ParseFail};
-use crate::{pid, rtc, string, table};
+use crate::{hsc, pid, rtc, string, table};
 use stljit_core::ir::{ClockOp, ExtBox, NumType, StrArg, StrCompare};
 use stljit_core::layout::Layout;
 use stljit_core::{ErrorCode, FatalCode, Width};
@@ -254,6 +255,14 @@ pub fn execute(
             Ok(true)
         }
         ExtBox::Pid { .. } => Ok(false),
+        ExtBox::HscDefine { counter, mode } => {
+            hsc::define(img, layout, *counter, *mode)?;
+            Ok(true)
+        }
+        ExtBox::Hsc { counter } => {
+            hsc::control(img, layout, *counter)?;
+            Ok(true)
+        }
     }
 }
 

@@ -263,6 +263,13 @@ impl Image {
         rest.fill(0);
     }
 
+    /// Sets high-speed counter `n`'s counting activity per scan interval (s7-200-more §8.4,
+    /// §11.2 `hsc_steps`): the harness's stimulus, held until set again
+    /// ([`crate::hsc::set_rate`]).
+    pub fn set_hsc_rate(&mut self, n: u8, steps: i32) {
+        crate::hsc::set_rate(&mut self.bytes, &self.layout, n, steps);
+    }
+
     /// The physical output copy, as written at the end of the last scan.
     pub fn phys_out(&self) -> &[u8] {
         let (at, n) = (

@@ -27,6 +27,7 @@ pub mod engine;
 pub mod ext;
 pub mod ffi;
 pub mod flags;
+pub mod hsc;
 pub mod image;
 pub mod interrupt;
 pub mod mem;

@@ -2,7 +2,7 @@
 //! resets of step 5, [`end`] does steps 6–8. Both engines call exactly these two functions, so
 //! time, SMB0, the clock-driven timer refresh and the output copy exist once.
 //!
-//! A program with interrupt routines runs the event phases of s7-200-more §3.6.2 inside
+//! A program with interrupt routines or high-speed counters runs the event phases of s7-200-more §3.6.2 inside
 //! [`begin`] ([`crate::interrupt`]): E1 after the time step and the resets (before the inputs
 //! are read), E2 after the clock refresh. The engine passes an [`Isr`] that runs a routine's
 //! body; a fatal error in a routine aborts the scan ([`Begin::Fatal`]).
@@ -78,9 +78,10 @@ pub struct ScanPlan {
     family: Family,
     /// The timers step 4 refreshes from the clock, in ascending number.
     clock_timers: Box<[u16]>,
-    /// The interrupt routines by number (empty: the program has none, and the scan runs no
-    /// event phase).
+    /// The interrupt routines by number (empty: the program has none).
     routines: Box<[Option<PouId>]>,
+    /// The program defines a high-speed counter, whose steps the event phases apply.
+    hsc: bool,
 }
 
 impl ScanPlan {
@@ -118,13 +119,20 @@ impl ScanPlan {
             family: profile.family,
             clock_timers: clock_timers.into(),
             routines: routines.into(),
+            hsc: program.defines_hsc(),
         }
     }
 
-    /// Whether the program has interrupt routines: then [`begin`] runs the event phases, and
-    /// an engine's inline scan path (which has none) must not be taken.
+    /// Whether the program has interrupt routines.
     pub fn has_interrupts(&self) -> bool {
         !self.routines.is_empty()
+    }
+
+    /// Whether [`begin`] runs the event phases: the program has interrupt routines or
+    /// high-speed counters. An engine's inline scan path (which has no phases) must not be
+    /// taken then.
+    pub fn has_events(&self) -> bool {
+        self.has_interrupts() || self.hsc
     }
 
     /// The interrupt routines by number.
@@ -155,6 +163,7 @@ impl ScanPlan {
             family,
             clock_timers: (0..n).collect(),
             routines: Box::new([]),
+            hsc: false,
         }
     }
 }
@@ -262,7 +271,7 @@ pub fn begin(
 
     // E1 (s7-200-more §3.6.2 step 2): the interval since the previous scan; none in scan 0.
     let routines = plan.routines();
-    if plan.has_interrupts()
+    if plan.has_events()
         && !first
         && interrupt::interval_phase(img, layout, routines, isr, micros(t_prev), micros(t_ms))
             .is_err()
@@ -298,7 +307,7 @@ pub fn begin(
         }
     }
     // E2 (§3.6.2 step 5): the events of the scan instant.
-    if plan.has_interrupts()
+    if plan.has_events()
         && interrupt::instant_phase(img, layout, routines, isr, micros(t_ms)).is_err()
     {
         return Begin::Fatal;

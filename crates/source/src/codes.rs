@@ -136,6 +136,10 @@ codes! {
     PidLoopTwice = "E060", Error, "two PID instructions use the same loop number";
     /// A data block entry that cannot be loaded.
     DataBlock = "E061", Error, "a DATA_BLOCK line is malformed, or its value does not fit its address";
+    /// High-speed counter number not on the CPU.
+    HscNumber = "E070", Error, "the high-speed counter does not exist on the selected CPU";
+    /// HDEF mode the counter does not have.
+    HscMode = "E071", Error, "the high-speed counter does not support this mode on the selected CPU";
     /// Contact or stack operation consuming an unloaded level.
     StackUnderflow = "W001", Warning, "a contact or ALD/OLD/LPP/LRD consumes a stack level that nothing loaded";
     /// Too many live stack levels.
@@ -147,9 +151,11 @@ codes! {
     /// `Symbol:Address` with a symbol no table defines.
     UncheckedSymbol = "W005", Warning, "in a `symbol:address` operand the symbol is not defined; the address is used";
     /// An attached event the simulation never raises.
-    EventNotSimulated = "W050", Warning, "the attached event never occurs in the simulation: its source (high-speed counter, pulse output, port) is not simulated yet";
+    EventNotSimulated = "W050", Warning, "the attached event never occurs in the simulation: its source (pulse output, port) is not simulated yet";
     /// ENI/DISI in an interrupt routine.
     EnableInInterrupt = "W051", Warning, "ENI or DISI in an interrupt routine has no effect (run-time error 16#0004)";
+    /// HDEF in an interrupt routine.
+    HdefInInterrupt = "W070", Warning, "HDEF in an interrupt routine has no effect (run-time error 16#0004)";
     /// Two data block values for one V byte.
     DataOverlap = "W060", Warning, "a DATA_BLOCK value sets V bytes an earlier value already set; the later one wins";
     /// A clock instruction on a CPU without a clock.

@@ -1,7 +1,8 @@
 //! The instructions of s7-200-more §4–§7 that work on runs of memory: tables, ASCII and
 //! number-to-text conversions, strings, the real-time clock and PID ([`ExtBox`], the payload of
 //! [`Op::Ext`](super::Op::Ext)), and the string compare contacts ([`StrCompare`], the payload of
-//! [`Op::StrCompare`](super::Op::StrCompare)).
+//! [`Op::StrCompare`](super::Op::StrCompare)); and the high-speed counter instructions of §8
+//! (HDEF, HSC), which share the path: one runtime function both engines call with the op.
 //!
 //! They are their own ops rather than [`BoxOp`](super::BoxOp) variants because a string input
 //! may be a constant string (bytes that are no [`Operand`]), so they are boxed like a call's
@@ -222,6 +223,19 @@ pub enum ExtBox {
         table: Operand,
         /// LOOP, 0..=7.
         lp: u8,
+    },
+    /// `HDEF HSC, MODE` (§8.1): define high-speed counter `counter` with `mode`, reading
+    /// bits 0–2 of its control byte now. The runtime's `hsc` module is its semantics.
+    HscDefine {
+        /// HSC, a counter of the profile's table.
+        counter: u8,
+        /// MODE, one the counter accepts.
+        mode: u8,
+    },
+    /// `HSC N` (§8.1): apply counter `counter`'s control byte.
+    Hsc {
+        /// N, a counter of the profile's table.
+        counter: u8,
     },
 }
 

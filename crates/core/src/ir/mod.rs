@@ -88,6 +88,15 @@ impl Program {
         self.pous.iter().any(|p| p.kind.interrupt().is_some())
     }
 
+    /// Whether the program defines a high-speed counter (then the scan runs the event phases,
+    /// which count its steps, whether or not it has interrupt routines).
+    pub fn defines_hsc(&self) -> bool {
+        self.pous
+            .iter()
+            .flat_map(|p| &p.ops)
+            .any(|op| matches!(op, Op::Ext(b) if matches!(**b, ExtBox::HscDefine { .. })))
+    }
+
     /// Total number of IR ops over all POUs.
     pub fn op_count(&self) -> usize {
         self.pous.iter().map(|p| p.ops.len()).sum()

@@ -236,6 +236,8 @@ impl ExtBox {
                 ClockOp::Write | ClockOp::WriteExt => vec![read(*buf, Byte)],
             },
             ExtBox::Pid { table, .. } => vec![update(*table, DWord)],
+            // Fixed registers (the control byte, SMD, HC), no operands.
+            ExtBox::HscDefine { .. } | ExtBox::Hsc { .. } => vec![],
         };
         Uses::of(&list)
     }

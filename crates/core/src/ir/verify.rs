@@ -134,6 +134,10 @@ pub enum OpRule {
     WrongFamily,
     /// A PID loop number above 7.
     PidLoop,
+    /// HDEF/HSC of a counter the profile does not have.
+    HscNumber,
+    /// HDEF with a mode the counter does not accept.
+    HscMode,
     /// A constant string longer than [`super::MAX_STRING`] bytes.
     StringTooLong,
 }
@@ -203,6 +207,8 @@ impl fmt::Display for VerifyError {
                         f.write_str("op of another PLC family than the program's profile")
                     }
                     OpRule::PidLoop => f.write_str("PID loop number above 7"),
+                    OpRule::HscNumber => f.write_str("no such high-speed counter on the CPU"),
+                    OpRule::HscMode => f.write_str("a mode the high-speed counter does not accept"),
                     OpRule::StringTooLong => f.write_str("constant string longer than 254 bytes"),
                 }
             }
@@ -490,6 +496,7 @@ fn locations(program: &Program, layout: &Layout, op: &Op) -> Result<(), OpRule> 
             if matches!(**b, super::ExtBox::Pid { lp, .. } if lp > 7) {
                 return Err(OpRule::PidLoop);
             }
+            hsc_operands(b, layout.profile.profile())?;
             constant_strings(b.strings())?;
             true
         }
@@ -503,6 +510,21 @@ fn locations(program: &Program, layout: &Layout, op: &Op) -> Result<(), OpRule> 
         Ok(())
     } else {
         Err(OpRule::UndeclaredObject)
+    }
+}
+
+/// HDEF and HSC name a counter of the profile's table, HDEF a mode that counter accepts (the
+/// runtime indexes its state by the number).
+fn hsc_operands(b: &super::ExtBox, profile: &crate::CpuProfile) -> Result<(), OpRule> {
+    let (counter, mode) = match *b {
+        super::ExtBox::HscDefine { counter, mode } => (counter, Some(mode)),
+        super::ExtBox::Hsc { counter } => (counter, None),
+        _ => return Ok(()),
+    };
+    let info = profile.hsc.get(counter).ok_or(OpRule::HscNumber)?;
+    match mode {
+        Some(m) if !info.has_mode(m) => Err(OpRule::HscMode),
+        _ => Ok(()),
     }
 }
 

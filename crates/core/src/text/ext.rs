@@ -133,6 +133,8 @@ pub(super) fn write_ext(out: &mut String, b: &ExtBox) -> fmt::Result {
         ),
         ExtBox::Clock { op, buf } => write!(out, "clock op={op:?} buf={}", Opd(*buf)),
         ExtBox::Pid { table, lp } => write!(out, "pid table={} loop={lp}", Opd(*table)),
+        ExtBox::HscDefine { counter, mode } => write!(out, "hsc_define hsc={counter} mode={mode}"),
+        ExtBox::Hsc { counter } => write!(out, "hsc hsc={counter}"),
     }
 }
 
@@ -245,6 +247,13 @@ pub(super) fn parse_ext(line: &mut Line<'_>) -> Result<ExtBox> {
         "pid" => ExtBox::Pid {
             table: opd(line, "table")?,
             lp: line.field("loop")?.number("PID loop")?,
+        },
+        "hsc_define" => ExtBox::HscDefine {
+            counter: line.field("hsc")?.number("counter")?,
+            mode: line.field("mode")?.number("HSC mode")?,
+        },
+        "hsc" => ExtBox::Hsc {
+            counter: line.field("hsc")?.number("counter")?,
         },
         _ => return Err(key.unknown("ext op")),
     })

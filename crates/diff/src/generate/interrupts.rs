@@ -107,8 +107,9 @@ impl Gen<'_, '_> {
         self.emit(Op::Interrupt(op));
     }
 
-    /// An event of the profile: mostly an input edge, a timed interrupt or (S7-200) a timer
-    /// event, which the simulation raises; one in ten any other.
+    /// An event of the profile: mostly an input edge, a timed interrupt, (S7-200) a timer
+    /// event or an event of a counter the program defines, which the simulation raises; now
+    /// and then any other.
     fn event(&mut self) -> u8 {
         let ints = self.p.interrupts;
         let pick = |c: &mut crate::rng::Choices<'_>, f: &dyn Fn(EventSource) -> bool| {
@@ -119,11 +120,17 @@ impl Gen<'_, '_> {
                 .collect();
             (!all.is_empty()).then(|| all[c.below(all.len() as u32) as usize])
         };
-        let choice = match self.c.weighted(&[4, 4, 1, 1]) {
+        let hsc = self.hsc_counters.clone();
+        let hsc_weight = if hsc.is_empty() { 0 } else { 4 };
+        let choice = match self.c.weighted(&[4, 4, 1, 1, hsc_weight]) {
             0 => pick(self.c, &|s| matches!(s, EventSource::InputEdge { .. })),
             1 => pick(self.c, &|s| matches!(s, EventSource::Timed { .. })),
             2 => pick(self.c, &|s| matches!(s, EventSource::TimerReached { .. })),
-            _ => pick(self.c, &|_| true),
+            3 => pick(self.c, &|_| true),
+            _ => pick(
+                self.c,
+                &|s| matches!(s, EventSource::HighSpeedCounter { counter, .. } if hsc.contains(&counter)),
+            ),
         };
         choice.unwrap_or_else(|| ints.events.first().copied().unwrap_or(0))
     }

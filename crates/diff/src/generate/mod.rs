@@ -14,6 +14,7 @@
 
 pub mod boxes;
 pub mod control;
+pub mod hsc;
 pub mod interrupts;
 pub mod omron;
 pub mod operands;
@@ -173,6 +174,8 @@ pub(crate) struct Gen<'c, 'a> {
     pub(crate) in_interrupt: bool,
     /// The program's interrupt routines, `(POU, number)`.
     pub(crate) int_routines: Vec<(PouId, u16)>,
+    /// The high-speed counters the program defines.
+    pub(crate) hsc_counters: Vec<u8>,
     /// Wild-jump labels of the current POU not yet placed.
     pub(crate) pending_wild: Vec<LabelId>,
     /// Wild-jump labels of the current POU already placed (targets of backward jumps).
@@ -200,6 +203,7 @@ impl<'c, 'a> Gen<'c, 'a> {
             room_limit: cfg.max_ops_per_pou,
             in_interrupt: false,
             int_routines: Vec::new(),
+            hsc_counters: Vec::new(),
             pending_wild: Vec::new(),
             placed_wild: Vec::new(),
             params: Vec::new(),
@@ -278,6 +282,7 @@ impl<'c, 'a> Gen<'c, 'a> {
             self.params[i] = self.signature();
         }
         self.int_routines = self.plan_interrupts(1 + plan.len());
+        self.hsc_counters = self.plan_hsc();
         let mut pous = Vec::with_capacity(self.n_pous as usize);
         self.pou = Program::MAIN;
         self.main_body(&plan);

@@ -18,6 +18,9 @@ impl Gen<'_, '_> {
     /// start every deep call chain.
     pub(crate) fn main_body(&mut self, plan: &[SubPlan]) {
         let ctx = Ctx::default();
+        if !self.hsc_counters.is_empty() {
+            self.hsc_setup();
+        }
         if !self.int_routines.is_empty() {
             self.interrupt_setup();
         }
@@ -113,6 +116,7 @@ impl Gen<'_, '_> {
                 0
             }, // wild jump
             if self.int_routines.is_empty() { 0 } else { 3 }, // interrupt instruction
+            if self.hsc_counters.is_empty() { 0 } else { 3 }, // high-speed counter
         ];
         self.place_wild(ctx);
         match self.c.weighted(&weights) {
@@ -148,7 +152,8 @@ impl Gen<'_, '_> {
             12 => self.immediate_io(),
             13 => self.flag_network(),
             14 => self.wild_jump(),
-            _ => self.interrupt_network(),
+            15 => self.interrupt_network(),
+            _ => self.hsc_network(),
         }
     }
 

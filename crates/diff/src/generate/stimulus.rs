@@ -35,6 +35,9 @@ pub struct ScanInput {
     pub ai: Vec<u16>,
     /// Writes applied before the scan starts.
     pub writes: Vec<HmiWrite>,
+    /// High-speed counter activity in the interval before the scan, by counter number
+    /// (s7-200-more §8.4; missing counters: 0).
+    pub hsc: Vec<i32>,
 }
 
 /// The stimulus of a whole run.
@@ -64,6 +67,7 @@ pub fn generate(c: &mut Choices<'_>, profile: ProfileId, scans: u32) -> Stimulus
         .map(|_| if c.chance(1, 3) { c.bits() as u8 } else { 0 })
         .collect();
     let mut ai: Vec<u16> = (0..p.analog_inputs / 2).map(|_| 0).collect();
+    let mut hsc: Vec<i32> = vec![0; p.hsc.counters.len()];
     // Time modes: a fixed period, irregular steps, or a fixed period with rare long pauses.
     let mode = c.below(3);
     let periods: &[u32] = if omron {
@@ -127,11 +131,24 @@ pub fn generate(c: &mut Choices<'_>, profile: ProfileId, scans: u32) -> Stimulus
                 hmi_write(c, profile)
             });
         }
+        // Counting activity: mostly a few steps either way, so CV meets small presets and
+        // changes direction; now and then a burst.
+        if c.chance(1, 4) {
+            let n = c.below(p.hsc.counters.len().max(1) as u32) as usize;
+            if n < hsc.len() {
+                hsc[n] = match c.weighted(&[2, 6, 1]) {
+                    0 => 0,
+                    1 => c.range(0, 24) as i32 - 12,
+                    _ => c.range(0, 400) as i32 - 200,
+                };
+            }
+        }
         out.push(ScanInput {
             t_ms: t,
             inputs: inputs.clone(),
             ai: ai.clone(),
             writes,
+            hsc: hsc.clone(),
         });
     }
     Stimulus { scans: out }

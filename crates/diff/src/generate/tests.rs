@@ -251,3 +251,40 @@ fn interrupt_routines_run() {
         "{raised} of {programs} queued an event"
     );
 }
+
+/// The stimulus drives the counters the programs define: in many programs with HDEF some
+/// counter's value moves.
+#[test]
+fn high_speed_counters_count() {
+    use crate::engines::EngineKind;
+    use crate::oracle::{RunOptions, apply_stimulus, start_image};
+    use stljit_core::Area;
+    let cfg = GenConfig::default();
+    let (mut programs, mut counted) = (0, 0);
+    for seed in 0..400 {
+        let case = case_from_seed(seed, &cfg);
+        if !case.program.defines_hsc() {
+            continue;
+        }
+        programs += 1;
+        let mut e = EngineKind::Interp.build(&case.program).expect("builds");
+        let mut img = start_image(&case.program, &RunOptions::default());
+        let hc = img.layout().base(Area::HC) as usize;
+        let n = img.layout().area_size(Area::HC) as usize;
+        let mut moved = false;
+        for s in &case.stimulus.scans {
+            apply_stimulus(&mut img, s);
+            let before = img.bytes()[hc..hc + n].to_vec();
+            if e.scan(&mut img, s.t_ms) != stljit_core::ScanStatus::Ok {
+                break;
+            }
+            moved |= img.bytes()[hc..hc + n] != before[..];
+        }
+        counted += usize::from(moved);
+    }
+    assert!(
+        programs > 30,
+        "{programs} programs with high-speed counters"
+    );
+    assert!(3 * counted > programs, "{counted} of {programs} counted");
+}

@@ -34,6 +34,7 @@ pub mod sources;
 #[cfg(test)]
 mod tests;
 
+pub(crate) use queue::raise;
 pub use service::{Isr, NoIsr, PhaseFatal, instant_phase, interval_phase};
 
 use crate::mem;
@@ -113,13 +114,20 @@ impl Action {
 }
 
 /// Executes an interrupt instruction whose power flow is on (§3.4). ENI and DISI in an
-/// interrupt routine are error 0x0004 and change nothing; the others cannot fail.
+/// interrupt routine are error 0x0004 and change nothing; ATCH of an input-edge event on an
+/// input of a defined high-speed counter is 0x0002 and attaches nothing (§8.3); the others
+/// cannot fail.
 pub fn execute(img: &mut [u8], layout: &Layout, action: Action) -> Result<(), ErrorCode> {
     match action {
         Action::Attach { routine, event } => {
             let Some(slot) = attach_slot(layout, event) else {
                 return Ok(());
             };
+            if interrupt::event(event)
+                .is_some_and(|e| crate::hsc::edge_conflict(img, layout, e.source))
+            {
+                return Err(ErrorCode::HscEdgeConflict);
+            }
             mem::set_u8(img, slot, u8::try_from(routine + 1).unwrap_or(0));
             if let Some(EventSource::Timed { channel }) = interrupt::event(event).map(|e| e.source)
             {

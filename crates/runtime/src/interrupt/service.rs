@@ -69,6 +69,7 @@ pub fn interval_phase(
 ) -> Result<(), PhaseFatal> {
     let mut s = Service { routines, isr };
     swap_inputs(img, layout);
+    sources::start_interval(img, layout, ta, tb);
     let r = (|| {
         sources::poll_timers(img, layout, ta);
         s.service(img, layout, ta)?;

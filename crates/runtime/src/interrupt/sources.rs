@@ -18,6 +18,7 @@
 //! [`instant`] between the edges and the timers. Then mark its `EventSource` simulated in core.
 
 use super::{attached, queue};
+use crate::hsc::{self, Counter};
 use crate::mem;
 use crate::timer::TofPhase;
 use stljit_core::interrupt::{self, EventSource};
@@ -82,9 +83,16 @@ impl Happening for TimedInterrupt {
     }
 }
 
-/// The happening sources in `source_rank` order (§3.6.3). The HSCs, pulse outputs and ports
-/// come before the timed interrupts when they are simulated.
+/// The happening sources in `source_rank` order (§3.6.3): the high-speed counters HSC0–HSC5
+/// (`crate::hsc`), then the timed interrupts. The ports and pulse outputs come before the
+/// counters when they are simulated.
 pub static HAPPENINGS: &[&dyn Happening] = &[
+    &Counter { n: 0 },
+    &Counter { n: 1 },
+    &Counter { n: 2 },
+    &Counter { n: 3 },
+    &Counter { n: 4 },
+    &Counter { n: 5 },
     &TimedInterrupt { channel: 0 },
     &TimedInterrupt { channel: 1 },
 ];
@@ -100,15 +108,30 @@ pub(crate) fn next_due(img: &[u8], layout: &Layout, until: u64) -> Option<(u64, 
         .min()
 }
 
-/// The instant sources at `T_k` (§3.6.2 step 5): input edges, then T32/T96.
+/// The start of the interval `(ta, tb]` (µs): the sources whose happenings depend on the
+/// harness's activity in it (the high-speed counters' steps) plan them.
+pub(crate) fn start_interval(img: &mut [u8], layout: &Layout, ta: u64, tb: u64) {
+    hsc::start_interval(img, layout, ta, tb);
+}
+
+/// The instant sources at `T_k` (§3.6.2 step 5): input edges, the high-speed counters' reset
+/// inputs, then T32/T96; `PREV_IN` takes the new inputs after the first two compared them.
 pub(crate) fn instant(img: &mut [u8], layout: &Layout, tau: u64) {
     input_edges(img, layout, tau);
+    hsc::instant(img, layout, layout.int_state(IntState::PREV_IN), tau);
+    let n = layout.area_size(Area::I) as usize;
+    let (from, to) = (
+        layout.phys_in as usize,
+        layout.int_state(IntState::PREV_IN) as usize,
+    );
+    if from + n <= img.len() && to + n <= img.len() {
+        img.copy_within(from..from + n, to);
+    }
     poll_timers(img, layout, tau);
 }
 
 /// Input edges (§3.5.2): each edge event of the profile whose input bit differs between the
-/// physical inputs and those of the last scan instant (`PREV_IN`) in its direction; then
-/// `PREV_IN` takes the new inputs.
+/// physical inputs and those of the last scan instant (`PREV_IN`) in its direction.
 fn input_edges(img: &mut [u8], layout: &Layout, tau: u64) {
     let prev = layout.int_state(IntState::PREV_IN);
     let ints = layout.profile.profile().interrupts;
@@ -120,11 +143,6 @@ fn input_edges(img: &mut [u8], layout: &Layout, tau: u64) {
                 queue::raise(img, layout, info.number, tau);
             }
         }
-    }
-    let n = layout.area_size(Area::I) as usize;
-    let (from, to) = (layout.phys_in as usize, prev as usize);
-    if from + n <= img.len() && to + n <= img.len() {
-        img.copy_within(from..from + n, to);
     }
 }
 

@@ -1,0 +1,363 @@
+//! High-speed counters (s7-200-more.md §8), once for both engines: HDEF and HSC
+//! ([`define`], [`control`], which `ext::execute` runs for the interpreter and for the JIT's
+//! `stljit_rt_ext`), the count steps as a happening source of the interrupt machinery
+//! ([`Counter`], in `interrupt::sources::HAPPENINGS`), and the reset input at the scan instant
+//! ([`instant`]). The state is in the image: the current value in the HC area (big-endian
+//! DINT), the status byte in SM, the rest in the counter's `HscState` record.
+//!
+//! **The counting model (§8.4, normative).** The harness gives each counter a signed activity
+//! `n` per scan interval ([`set_rate`]: the `RATE` field, held until it writes again). At the
+//! start of the interval phase ([`start_interval`]) it becomes `s` unit steps (`|n|`, times 4
+//! for a quadrature counter at 4x; none in mode 12, whose pulses come from a pulse output
+//! that is not simulated), step `j` at `T_{k−1} + ⌊j·D/s⌋`. Each step is a happening: the
+//! interval phase applies the steps of every source in time order and services the queues
+//! after each, so a CV = PV routine runs at the step that reached the preset, before the next.
+//! A step counts only while the counter is enabled and not held by its reset input, and (modes
+//! 2, 5, 8, 11) while its start input is active; the levels are those of the previous scan
+//! instant, which is what the physical inputs hold while the interval phase runs.
+//!
+//! Rules the spec leaves open, fixed here [design]:
+//! * HDEF sets the counting direction to up ([`DIRECTION_AT_HDEF`]); HSC with control bit 4
+//!   sets it (modes 0–2) or its initial value (3–11).
+//! * CV wraps at the ends of the DINT range (§8.4 [uncertain: wrap]).
+//! * The status byte's bits 0–4 are kept; HSC with bit 7 clear only disables (§8.1).
+
+use crate::interrupt::{self, sources::Happening};
+use crate::mem;
+use stljit_core::hsc::{HscEvent, HscInfo, InputBit, Mode};
+use stljit_core::interrupt::{EventSource, hsc_event};
+use stljit_core::layout::{HscState, IntState, Layout};
+use stljit_core::{Area, ErrorCode};
+
+/// The counting direction HDEF gives a counter (1 = up) [design: the manual does not say;
+/// HSC with control bit 4 sets it].
+pub const DIRECTION_AT_HDEF: u8 = 1;
+
+/// Status byte bits (§8.1): current direction up, CV = PV, CV > PV.
+const STATUS_UP: u8 = 1 << 5;
+const STATUS_EQ: u8 = 1 << 6;
+const STATUS_GT: u8 = 1 << 7;
+
+/// Control byte bits (§8.1).
+const CTRL_RESET_LOW: u8 = 1 << 0;
+const CTRL_START_LOW: u8 = 1 << 1;
+const CTRL_RATE_1X: u8 = 1 << 2;
+const CTRL_UP: u8 = 1 << 3;
+const CTRL_WRITE_DIR: u8 = 1 << 4;
+const CTRL_WRITE_PV: u8 = 1 << 5;
+const CTRL_WRITE_CV: u8 = 1 << 6;
+const CTRL_ENABLE: u8 = 1 << 7;
+
+/// Counter `n` of the image's profile, if it has it.
+fn info(layout: &Layout, n: u8) -> Option<&'static HscInfo> {
+    layout.profile.profile().hsc.get(n)
+}
+
+fn get(img: &[u8], layout: &Layout, n: u8, field: u32) -> u8 {
+    mem::get_u8(img, layout.hsc_state(n, field))
+}
+
+fn set(img: &mut [u8], layout: &Layout, n: u8, field: u32, v: u8) {
+    mem::set_u8(img, layout.hsc_state(n, field), v);
+}
+
+fn get_u32(img: &[u8], layout: &Layout, n: u8, field: u32) -> u32 {
+    mem::get_u32_ne(img, layout.hsc_state(n, field))
+}
+
+fn set_u32(img: &mut [u8], layout: &Layout, n: u8, field: u32, v: u32) {
+    mem::set_u32_ne(img, layout.hsc_state(n, field), v);
+}
+
+/// The SM byte `smb`.
+fn sm(layout: &Layout, smb: u32) -> u32 {
+    layout.base(Area::SM) + smb
+}
+
+/// Image offset of `HCn`.
+fn hc(layout: &Layout, n: u8) -> u32 {
+    layout.base(Area::HC) + 4 * u32::from(n)
+}
+
+/// The current value `HCn`.
+pub fn current(img: &[u8], layout: &Layout, n: u8) -> i32 {
+    mem::get_be(img, hc(layout, n), stljit_core::Width::DWord) as i32
+}
+
+fn set_current(img: &mut [u8], layout: &Layout, n: u8, cv: i32) {
+    mem::set_be(img, hc(layout, n), stljit_core::Width::DWord, cv as u32);
+}
+
+/// The mode of a defined counter (`None`: not defined).
+fn mode(img: &[u8], layout: &Layout, n: u8) -> Option<Mode> {
+    (get(img, layout, n, HscState::DEFINED) != 0).then(|| Mode(get(img, layout, n, HscState::MODE)))
+}
+
+/// Writes the status byte's direction, CV = PV and CV > PV bits from the counter's state.
+fn update_status(img: &mut [u8], layout: &Layout, info: &HscInfo) {
+    let n = info.number;
+    let cv = current(img, layout, n);
+    let pv = get_u32(img, layout, n, HscState::PV) as i32;
+    let mut bits = 0;
+    if get(img, layout, n, HscState::DIR) != 0 {
+        bits |= STATUS_UP;
+    }
+    if cv == pv {
+        bits |= STATUS_EQ;
+    }
+    if cv > pv {
+        bits |= STATUS_GT;
+    }
+    let at = sm(layout, info.status_smb);
+    let keep = mem::get_u8(img, at) & !(STATUS_UP | STATUS_EQ | STATUS_GT);
+    mem::set_u8(img, at, keep | bits);
+}
+
+/// Whether input `bit` is used by a defined counter other than `except` (§8.3).
+fn used_by_counter(img: &[u8], layout: &Layout, bit: InputBit, except: Option<u8>) -> bool {
+    layout.profile.profile().hsc.iter().any(|c| {
+        Some(c.number) != except
+            && mode(img, layout, c.number).is_some_and(|m| c.inputs_used(m).any(|u| u == bit))
+    })
+}
+
+/// Whether an ATCH of input-edge event source `source` conflicts with a defined counter
+/// (§8.3: error 0x0002, the attachment is not made).
+pub(crate) fn edge_conflict(img: &[u8], layout: &Layout, source: EventSource) -> bool {
+    match source {
+        EventSource::InputEdge { byte, bit, .. } => used_by_counter(img, layout, (byte, bit), None),
+        _ => false,
+    }
+}
+
+/// Whether an input-edge event on `bit` is attached.
+fn edge_attached(img: &[u8], layout: &Layout, bit: InputBit) -> bool {
+    layout.profile.profile().interrupts.infos().any(|e| {
+        matches!(e.source, EventSource::InputEdge { byte, bit: b, .. } if (byte, b) == bit)
+            && interrupt::attached(img, layout, e.number) != 0
+    })
+}
+
+/// `HDEF counter, mode` with power flow (§8.1): defines the counter, disabled, reading bits
+/// 0–2 of its control byte now. Errors (nothing changes): 0x0004 in an interrupt routine,
+/// 0x000A already defined, 0x0003 an input of the mode used by another defined counter or by
+/// an attached input-edge event; a counter or mode outside the profile's table (which the
+/// verifier rejects) is 0x0091.
+pub fn define(img: &mut [u8], layout: &Layout, counter: u8, m: u8) -> Result<(), ErrorCode> {
+    let info = info(layout, counter)
+        .filter(|c| c.has_mode(m))
+        .ok_or(ErrorCode::OperandRange)?;
+    if interrupt::get(img, layout, IntState::IN_ISR) != 0 {
+        return Err(ErrorCode::InInterrupt);
+    }
+    if mode(img, layout, counter).is_some() {
+        return Err(ErrorCode::HscRedefined);
+    }
+    let conflict = info.inputs_used(Mode(m)).any(|bit| {
+        used_by_counter(img, layout, bit, Some(counter)) || edge_attached(img, layout, bit)
+    });
+    if conflict {
+        return Err(ErrorCode::HscInputConflict);
+    }
+    let ctrl = mem::get_u8(img, sm(layout, info.control_smb()));
+    let flag = |bit: u8| u8::from(ctrl & bit != 0);
+    set(img, layout, counter, HscState::DEFINED, 1);
+    set(img, layout, counter, HscState::MODE, m);
+    set(img, layout, counter, HscState::ENABLED, 0);
+    set(img, layout, counter, HscState::DIR, DIRECTION_AT_HDEF);
+    set(
+        img,
+        layout,
+        counter,
+        HscState::RESET_LOW,
+        flag(CTRL_RESET_LOW),
+    );
+    set(
+        img,
+        layout,
+        counter,
+        HscState::START_LOW,
+        flag(CTRL_START_LOW),
+    );
+    set(img, layout, counter, HscState::RATE1X, flag(CTRL_RATE_1X));
+    Ok(())
+}
+
+/// `HSC counter` with power flow (§8.1): applies the control byte. Bit 7 clear disables the
+/// counter and nothing else; else it is enabled and bits 4–6 write the direction, the preset
+/// (SMD 6 bytes after the status byte) and the current value (SMD 2 bytes after it), and the
+/// status bits are updated. No CV = PV event comes from an update. Not defined: 0x0001.
+pub fn control(img: &mut [u8], layout: &Layout, counter: u8) -> Result<(), ErrorCode> {
+    let info = info(layout, counter).ok_or(ErrorCode::OperandRange)?;
+    if mode(img, layout, counter).is_none() {
+        return Err(ErrorCode::HscNotDefined);
+    }
+    let ctrl = mem::get_u8(img, sm(layout, info.control_smb()));
+    if ctrl & CTRL_ENABLE == 0 {
+        set(img, layout, counter, HscState::ENABLED, 0);
+        return Ok(());
+    }
+    set(img, layout, counter, HscState::ENABLED, 1);
+    if ctrl & CTRL_WRITE_DIR != 0 {
+        set(
+            img,
+            layout,
+            counter,
+            HscState::DIR,
+            u8::from(ctrl & CTRL_UP != 0),
+        );
+    }
+    let dword = |img: &[u8], smb| mem::get_be(img, sm(layout, smb), stljit_core::Width::DWord);
+    if ctrl & CTRL_WRITE_PV != 0 {
+        let pv = dword(img, info.new_pv_smb());
+        set_u32(img, layout, counter, HscState::PV, pv);
+    }
+    if ctrl & CTRL_WRITE_CV != 0 {
+        let cv = dword(img, info.new_cv_smb());
+        set_current(img, layout, counter, cv as i32);
+    }
+    update_status(img, layout, info);
+    Ok(())
+}
+
+/// The harness's counting activity of counter `n` per scan interval (§11.2 `hsc_steps`):
+/// held until set again. Nothing for a counter the profile does not have.
+pub fn set_rate(img: &mut [u8], layout: &Layout, n: u8, steps: i32) {
+    if info(layout, n).is_some() {
+        set_u32(img, layout, n, HscState::RATE, steps as u32);
+    }
+}
+
+/// The counting activity of counter `n` per scan interval (0 for a counter the profile lacks).
+pub fn rate(img: &[u8], layout: &Layout, n: u8) -> i32 {
+    if info(layout, n).is_some() {
+        get_u32(img, layout, n, HscState::RATE) as i32
+    } else {
+        0
+    }
+}
+
+/// The start of the interval `(ta, tb]` (µs): every defined counter turns its activity into
+/// this interval's unit steps (module doc). An empty interval has none.
+pub(crate) fn start_interval(img: &mut [u8], layout: &Layout, ta: u64, tb: u64) {
+    for c in layout.profile.profile().hsc.iter() {
+        let n = c.number;
+        let activity = rate(img, layout, n);
+        let steps = match mode(img, layout, n) {
+            Some(m) if tb > ta && m.0 != stljit_core::hsc::PULSE_MODE => {
+                let x4 = m.quadrature() && get(img, layout, n, HscState::RATE1X) == 0;
+                activity
+                    .unsigned_abs()
+                    .saturating_mul(if x4 { 4 } else { 1 })
+            }
+            _ => 0,
+        };
+        set_u32(img, layout, n, HscState::STEPS, steps);
+        set_u32(img, layout, n, HscState::DONE, 0);
+        set(img, layout, n, HscState::STEP_UP, u8::from(activity > 0));
+        mem::set_u64_ne(img, layout.hsc_state(n, HscState::T_START), ta);
+        mem::set_u64_ne(
+            img,
+            layout.hsc_state(n, HscState::SPAN),
+            tb.saturating_sub(ta),
+        );
+    }
+}
+
+/// Whether the input `bit` is at its active level (`low`: active low) in the physical inputs.
+fn active(img: &[u8], layout: &Layout, bit: InputBit, low: bool) -> bool {
+    mem::get_bit(img, layout.phys_in + bit.0, bit.1) != low
+}
+
+/// High-speed counter `n` as a happening source: its count steps.
+pub(crate) struct Counter {
+    /// The counter's number.
+    pub(crate) n: u8,
+}
+
+impl Happening for Counter {
+    fn next(&self, img: &[u8], layout: &Layout) -> Option<u64> {
+        info(layout, self.n)?;
+        let n = self.n;
+        let steps = get_u32(img, layout, n, HscState::STEPS);
+        let done = get_u32(img, layout, n, HscState::DONE);
+        (done < steps).then(|| {
+            let ta = mem::get_u64_ne(img, layout.hsc_state(n, HscState::T_START));
+            let d = mem::get_u64_ne(img, layout.hsc_state(n, HscState::SPAN));
+            let off = u128::from(done + 1) * u128::from(d) / u128::from(steps);
+            ta.saturating_add(u64::try_from(off).unwrap_or(u64::MAX))
+        })
+    }
+
+    /// One unit step (§8.4): only while enabled, not held by reset and (with a start input)
+    /// started; the levels are the physical inputs, which hold the previous scan instant's
+    /// while the interval phase runs.
+    fn apply(&self, img: &mut [u8], layout: &Layout, tau: u64) {
+        let n = self.n;
+        let done = get_u32(img, layout, n, HscState::DONE);
+        set_u32(img, layout, n, HscState::DONE, done.saturating_add(1));
+        let (Some(info), Some(m)) = (info(layout, n), mode(img, layout, n)) else {
+            return;
+        };
+        if get(img, layout, n, HscState::ENABLED) == 0 {
+            return;
+        }
+        let low = |field| get(img, layout, n, field) != 0;
+        if let Some(r) = info.reset_input(m)
+            && active(img, layout, r, low(HscState::RESET_LOW))
+        {
+            return;
+        }
+        if let Some(s) = info.start_input(m)
+            && !active(img, layout, s, low(HscState::START_LOW))
+        {
+            return;
+        }
+        let mut up = get(img, layout, n, HscState::DIR) != 0;
+        if !m.internal_direction() {
+            let step_up = get(img, layout, n, HscState::STEP_UP) != 0;
+            if step_up != up {
+                up = step_up;
+                set(img, layout, n, HscState::DIR, u8::from(up));
+                raise(img, layout, n, HscEvent::Direction, tau);
+            }
+        }
+        let cv = current(img, layout, n);
+        let cv = if up {
+            cv.wrapping_add(1)
+        } else {
+            cv.wrapping_sub(1)
+        };
+        set_current(img, layout, n, cv);
+        update_status(img, layout, info);
+        if cv == get_u32(img, layout, n, HscState::PV) as i32 {
+            raise(img, layout, n, HscEvent::CvEqPv, tau);
+        }
+    }
+}
+
+/// Raises counter `n`'s event `kind` at `tau`, if the counter has that event.
+fn raise(img: &mut [u8], layout: &Layout, n: u8, kind: HscEvent, tau: u64) {
+    if let Some(e) = hsc_event(n, kind).filter(|&e| layout.profile.profile().interrupts.has(e)) {
+        interrupt::raise(img, layout, e, tau);
+    }
+}
+
+/// The reset inputs at the scan instant `tau` (§8.4, E2): a defined counter whose reset input
+/// became active since the last instant (`prev_in`: the physical inputs then) is cleared and
+/// raises "external reset". Called before `prev_in` takes the new inputs.
+pub(crate) fn instant(img: &mut [u8], layout: &Layout, prev_in: u32, tau: u64) {
+    for c in layout.profile.profile().hsc.iter() {
+        let n = c.number;
+        let Some(r) = mode(img, layout, n).and_then(|m| c.reset_input(m)) else {
+            continue;
+        };
+        let low = get(img, layout, n, HscState::RESET_LOW) != 0;
+        let was = mem::get_bit(img, prev_in + r.0, r.1) != low;
+        if !was && active(img, layout, r, low) {
+            set_current(img, layout, n, 0);
+            update_status(img, layout, c);
+            raise(img, layout, n, HscEvent::Reset, tau);
+        }
+    }
+}
