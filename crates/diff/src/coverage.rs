@@ -4,13 +4,13 @@
 use std::collections::BTreeMap;
 use stljit_core::ir::{
     BoxOp, ClockOp, CmpType, Contact, Conversion, ExtBox, FindRel, IntOp, NumType, Op, Operand,
-    Program, StackForm,
+    Program, StackForm, StrArg,
 };
 use stljit_core::{Area, Width};
 use stljit_front_s7::spelling::{area_prefix, counter_mnemonic, timer_mnemonic};
 
 /// Counts per mnemonic (`LD`, `LDW>=`, `MOVD`, `TONR`, ...) and per operand kind (`V`, `*VD`, `&`,
-/// `const`, ...).
+/// `const`, `"str"` for a constant string, ...).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Coverage {
     /// Generated instructions per mnemonic.
@@ -28,6 +28,18 @@ impl Coverage {
                 for_each_operand(op, |o| {
                     *self.operands.entry(operand_kind(o)).or_default() += 1;
                 });
+                // A constant string is no operand (its bytes are in the op), so it is counted
+                // here, as kind `"str"`.
+                let strings = match op {
+                    Op::Ext(b) => b.strings(),
+                    Op::StrCompare(c) => vec![&c.lhs, &c.rhs],
+                    _ => vec![],
+                };
+                for s in strings {
+                    if let StrArg::Const(_) = s {
+                        *self.operands.entry("\"str\"".into()).or_default() += 1;
+                    }
+                }
             }
         }
     }

@@ -195,7 +195,7 @@ fn every_mnemonic_is_generated() {
     let missing = cov.missing();
     assert!(missing.is_empty(), "never generated: {missing:?}");
     for kind in [
-        "*V", "*L", "*AC", "&V", "&T", "const", "AC", "L", "HC", "AI", "AQ", "T", "C",
+        "*V", "*L", "*AC", "&V", "&T", "const", "AC", "L", "HC", "AI", "AQ", "T", "C", "\"str\"",
     ] {
         assert!(
             cov.operands.contains_key(kind),
