@@ -302,7 +302,10 @@ fn compile_errors_carry_the_rendered_diagnostics() {
     .unwrap_err();
     // cp1h is an Omron profile: an S7 text names the S7 profiles (whatever they are) and not it.
     let text = e.to_string();
-    assert!(text.starts_with("unknown cpu `cp1h` (known: a5, s7-200"), "{text}");
+    assert!(
+        text.starts_with("unknown cpu `cp1h` (known: a5, s7-200"),
+        "{text}"
+    );
     match &e {
         Error::UnknownCpu { known, .. } => {
             assert!(known.iter().all(|k| !k.starts_with("cp1")), "{known:?}")
