@@ -195,7 +195,7 @@ impl Gen<'_, '_> {
     /// (rarely so when `safe`: an unreadable string is fatal in a compare).
     fn string_mem(&mut self, safe: bool) -> Operand {
         let rare = u32::from(!safe);
-        match self.c.weighted(&[14, 2, 2 * rare, 2 * rare, 1]) {
+        match self.c.weighted(&[14, 2, 2 * rare, 2 * rare, rare]) {
             0 => {
                 let at = STRING_BASE + STRING_STRIDE * self.c.below(STRING_SLOTS);
                 if !self.has_data(at) {

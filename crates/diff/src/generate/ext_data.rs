@@ -181,7 +181,7 @@ impl Gen<'_, '_> {
             0,
             self.c.range(1, 7) as u8,
         ];
-        if self.c.chance(1, 6) {
+        if self.c.chance(1, 4) {
             // One bad field: a non-BCD digit, month 13, day 30 of February, hour 24, day 0.
             match self.c.below(5) {
                 0 => b[self.c.below(6) as usize] |= 0x0A,

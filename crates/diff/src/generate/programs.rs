@@ -273,9 +273,9 @@ impl Gen<'_, '_> {
         }
     }
 
-    /// `op`, or one time in twenty a string compare contact of the same form instead.
+    /// `op`, or one time in fifty a string compare contact of the same form instead.
     fn maybe_str_compare(&mut self, form: StackForm, op: Op) -> Op {
-        if !self.c.chance(1, 20) {
+        if !self.c.chance(1, 50) {
             return op;
         }
         self.str_compare(form).unwrap_or(op)
