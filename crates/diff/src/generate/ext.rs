@@ -51,6 +51,9 @@ impl Gen<'_, '_> {
     /// that reads the flags they set (SM1.1, SM1.4, SM1.5, SM1.7) or SM4.3.
     pub(crate) fn ext_network(&mut self) {
         self.expr(1);
+        if self.c.chance(1, 4) {
+            self.touch_slot();
+        }
         for _ in 0..self.c.weighted(&[0, 5, 1]) {
             let Some(b) = self.ext_box() else { break };
             self.emit(Op::Ext(Box::new(b)));
@@ -66,6 +69,39 @@ impl Gen<'_, '_> {
             self.emit(Op::Load(on(sm(byte, bit))));
             self.assign_out();
         }
+    }
+
+    /// A plain move into or out of a slot, as programs clear a table's EC, set a string's
+    /// length or read a loop output: the boxes' memory is shared with ordinary instructions
+    /// (and the JIT's view of it with the runtime's).
+    fn touch_slot(&mut self) {
+        let (at, w) = match self.c.below(5) {
+            0 => (
+                TABLE_BASE + TABLE_STRIDE * self.c.below(TABLE_SLOTS) + 2,
+                Width::Word,
+            ),
+            1 => (
+                TABLE_BASE + TABLE_STRIDE * self.c.below(TABLE_SLOTS),
+                Width::Word,
+            ),
+            2 => (
+                STRING_BASE + STRING_STRIDE * self.c.below(STRING_SLOTS),
+                Width::Byte,
+            ),
+            3 => (CLOCK_BASE + self.c.below(8), Width::Byte),
+            _ => (PID_BASE + 8 * self.c.below(2), Width::DWord),
+        };
+        let (src, dst) = if self.c.chance(1, 2) {
+            (v(at), self.value(w, Class::OUT))
+        } else {
+            let src = if self.c.chance(1, 2) {
+                Operand::Const(self.c.below(30))
+            } else {
+                self.value(w, Class::IN)
+            };
+            (src, v(at))
+        };
+        self.emit(Op::Box(BoxOp::Move { width: w, src, dst }));
     }
 
     /// A string compare contact of form `form` (`LDS=`, `AS<>`, …), when the profile has strings.
