@@ -588,6 +588,16 @@ impl CpuProfile {
         !self.lacks.contains(&set)
     }
 
+    /// The bytes of a PID loop table that must fit in V (s7-200-more §7.1): 36, or 80 on the
+    /// SMART, whose table has the auto-tuning area.
+    pub fn pid_table_bytes(&self) -> u32 {
+        if self.clock == RealTimeClock::Smart {
+            80
+        } else {
+            36
+        }
+    }
+
     /// The deepest L frame a CALL made from frame `depth` may enter (the callee runs in frame
     /// `depth + 1`, allowed iff that is at most this): the main program's chain (frames 0 to
     /// [`ISR_FRAME`] − 1) nests `max_call_depth` levels, an interrupt routine runs in

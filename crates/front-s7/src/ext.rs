@@ -34,16 +34,6 @@ const TABLE: Val = Val {
     ..Val::output(Word)
 };
 
-/// The bytes of the loop table the PID needs inside V (s7-200-more §7.1: 36 bytes; 80 on the
-/// SMART, whose table has the auto-tuning area).
-fn pid_table_bytes(profile: &stljit_core::CpuProfile) -> u32 {
-    if profile.clock == stljit_core::profile::RealTimeClock::Smart {
-        80
-    } else {
-        36
-    }
-}
-
 impl<'s> Lowerer<'s> {
     /// A string operand: a string in V or L memory (`VB100`, `LB4`, `*VD8`), or for an input
     /// (`out` false) a constant string `"…"`, stored in the bytes of its file's encoding.
@@ -318,7 +308,7 @@ impl<'s> Lowerer<'s> {
                 width: Byte,
                 offset,
             }) => {
-                let need = pid_table_bytes(self.cx.profile);
+                let need = self.cx.profile.pid_table_bytes();
                 let size = self.cx.profile.area_size(Area::V);
                 if offset.saturating_add(need) > size {
                     return Err(self.cx.report(

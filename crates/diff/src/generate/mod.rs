@@ -9,11 +9,15 @@
 //!
 //! The parts: [`operands`] picks operands per operand class, [`programs`] builds networks and
 //! POUs, [`params`] gives subroutines parameters and calls them with actuals, [`interrupts`] the
-//! interrupt routines and instructions, [`stimulus`] builds the per-scan inputs and scan times.
-//! Omron programs are generated as mnemonic text instead, by [`omron`] (its module says why).
+//! interrupt routines and instructions, [`hsc`] the high-speed counters, [`ext`] the table,
+//! text, string, clock and PID instructions of s7-200-more §4–§7 (their memory in
+//! [`ext_data`]), [`stimulus`] builds the per-scan inputs and scan times. Omron programs are
+//! generated as mnemonic text instead, by [`omron`] (its module says why).
 
 pub mod boxes;
 pub mod control;
+pub mod ext;
+pub mod ext_data;
 pub mod hsc;
 pub mod interrupts;
 pub mod omron;
@@ -182,6 +186,10 @@ pub(crate) struct Gen<'c, 'a> {
     pub(crate) placed_wild: Vec<LabelId>,
     /// Each POU's parameters (empty for the main program and most subroutines), by POU index.
     pub(crate) params: Vec<Vec<params::Param>>,
+    /// PID loop numbers already used (bit n: loop n); a loop number belongs to one PID.
+    pub(crate) pid_loops: u8,
+    /// Initial V bytes, the program's data block.
+    pub(crate) data: BTreeMap<u32, u8>,
 }
 
 impl<'c, 'a> Gen<'c, 'a> {
@@ -207,6 +215,8 @@ impl<'c, 'a> Gen<'c, 'a> {
             pending_wild: Vec::new(),
             placed_wild: Vec::new(),
             params: Vec::new(),
+            pid_loops: 0,
+            data: BTreeMap::new(),
         }
     }
 
@@ -331,7 +341,7 @@ impl<'c, 'a> Gen<'c, 'a> {
             edges: vec![EdgeDecl { init: false }; usize::from(self.edges)],
             logic_stack_depth: 9,
             files: vec!["fuzz.stl".into()],
-            data: Vec::new(),
+            data: ext_data::data_runs(&self.data),
         };
         crate::canon::canonicalize(&mut program);
         program

@@ -9,7 +9,8 @@
 use super::operands::Class;
 use super::{Ctx, Gen, SubPlan};
 use stljit_core::ir::{
-    ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, CounterKind, Loc, Op, Operand, TimerKind,
+    ArithOp, BitLoc, BoxOp, CmpOp, CmpType, Contact, CounterKind, Loc, Op, Operand, StackForm,
+    TimerKind,
 };
 use stljit_core::{Area, CounterId, PouId, TimerId, Width};
 
@@ -117,6 +118,7 @@ impl Gen<'_, '_> {
             }, // wild jump
             if self.int_routines.is_empty() { 0 } else { 3 }, // interrupt instruction
             if self.hsc_counters.is_empty() { 0 } else { 3 }, // high-speed counter
+            if self.has_ext() { 6 } else { 0 }, // tables, text, strings, clock, PID
         ];
         self.place_wild(ctx);
         match self.c.weighted(&weights) {
@@ -153,7 +155,8 @@ impl Gen<'_, '_> {
             13 => self.flag_network(),
             14 => self.wild_jump(),
             15 => self.interrupt_network(),
-            _ => self.hsc_network(),
+            16 => self.hsc_network(),
+            _ => self.ext_network(),
         }
     }
 
@@ -230,14 +233,16 @@ impl Gen<'_, '_> {
         match self.c.weighted(&[6, if depth < 3 { 2 } else { 0 }, 1]) {
             0 => {
                 let c = self.contact();
-                self.emit(Op::Load(c));
+                let op = self.maybe_str_compare(StackForm::Load, Op::Load(c));
+                self.emit(op);
                 for _ in 0..self.c.below(4) {
                     let c = self.contact();
-                    let op = if self.c.chance(2, 3) {
-                        Op::And(c)
+                    let (op, form) = if self.c.chance(2, 3) {
+                        (Op::And(c), StackForm::And)
                     } else {
-                        Op::Or(c)
+                        (Op::Or(c), StackForm::Or)
                     };
+                    let op = self.maybe_str_compare(form, op);
                     self.emit(op);
                 }
             }
@@ -271,6 +276,14 @@ impl Gen<'_, '_> {
             }
             _ => {}
         }
+    }
+
+    /// `op`, or one time in fifty a string compare contact of the same form instead.
+    fn maybe_str_compare(&mut self, form: StackForm, op: Op) -> Op {
+        if !self.c.chance(1, 50) {
+            return op;
+        }
+        self.str_compare(form).unwrap_or(op)
     }
 
     /// One to three consumers of the power flow.
@@ -369,7 +382,7 @@ impl Gen<'_, '_> {
     }
 
     /// `= bit` to a fresh output bit (not immediate).
-    fn assign_out(&mut self) {
+    pub(crate) fn assign_out(&mut self) {
         let bit = self.bit_out(false);
         self.emit(Op::Assign {
             bit,

@@ -195,7 +195,7 @@ fn every_mnemonic_is_generated() {
     let missing = cov.missing();
     assert!(missing.is_empty(), "never generated: {missing:?}");
     for kind in [
-        "*V", "*L", "*AC", "&V", "&T", "const", "AC", "L", "HC", "AI", "AQ", "T", "C",
+        "*V", "*L", "*AC", "&V", "&T", "const", "AC", "L", "HC", "AI", "AQ", "T", "C", "\"str\"",
     ] {
         assert!(
             cov.operands.contains_key(kind),
@@ -287,4 +287,37 @@ fn high_speed_counters_count() {
         "{programs} programs with high-speed counters"
     );
     assert!(3 * counted > programs, "{counted} of {programs} counted");
+}
+
+/// The §4–§7 instructions reach their error paths in generated programs: a table or string
+/// past its area (0x0091), an index 0 (0x009B), a clock write with a bad date (0x0007), a clock
+/// on the A5, which has none (0x000C), and a bad pointer (0x0006).
+#[test]
+fn ext_error_paths_are_reached() {
+    use crate::engines::EngineKind;
+    use crate::oracle::{RunOptions, apply_stimulus, start_image};
+    let cfg = GenConfig::default();
+    let mut codes = std::collections::BTreeSet::new();
+    for seed in 0..3000 {
+        let case = case_from_seed(seed, &cfg);
+        let ext = |op: &Op| matches!(op, Op::Ext(_));
+        if !case.program.pous.iter().flat_map(|q| &q.ops).any(ext) {
+            continue;
+        }
+        let mut e = EngineKind::Interp.build(&case.program).expect("builds");
+        let mut img = start_image(&case.program, &RunOptions::default());
+        for s in &case.stimulus.scans {
+            apply_stimulus(&mut img, s);
+            if e.scan(&mut img, s.t_ms) != stljit_core::ScanStatus::Ok {
+                break;
+            }
+            codes.insert(img.last_error());
+        }
+    }
+    for code in [0x0006, 0x0007, 0x000C, 0x0091, 0x009B] {
+        assert!(
+            codes.contains(&code),
+            "error {code:#06x} never raised: {codes:x?}"
+        );
+    }
 }
