@@ -33,7 +33,8 @@ pub(crate) struct Input {
     /// mnemonics). Omitted: detected from the files' content (a note says which was chosen).
     #[arg(long)]
     pub(crate) dialect: Option<String>,
-    /// CPU profile: a5 (the s7 default) or s7-200; cp1h (the omron default) or cp1e.
+    /// CPU profile: a5 (the s7 default), s7-200 or smart (S7-200 SMART); cp1h (the omron
+    /// default) or cp1e.
     #[arg(long)]
     pub(crate) cpu: Option<String>,
     /// Symbol table: MicroWIN (name<TAB>address[<TAB>comment], or CSV) or CX-Programmer
