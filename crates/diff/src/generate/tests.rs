@@ -219,18 +219,22 @@ fn fuzzer_bytes_never_panic_and_run_out_small() {
     }
 }
 
-/// The stimulus raises the events the programs attach: most programs with interrupt routines
-/// queue events (input edges, timed interrupts, T32/T96) and run routines.
-#[test]
-fn interrupt_routines_run() {
+/// Runs the generated cases of seeds `seeds` whose program `wanted` on the interpreter, with
+/// their stimulus, until a scan ends other than OK; `after_scan(image, before)` sees the image
+/// after every OK scan and the bytes it had before it. Returns how many cases ran.
+fn run_generated(
+    seeds: std::ops::Range<u64>,
+    wanted: impl Fn(&Program) -> bool,
+    mut after_scan: impl FnMut(&stljit_runtime::Image, &[u8]),
+    mut after_case: impl FnMut(&stljit_runtime::Image),
+) -> usize {
     use crate::engines::EngineKind;
     use crate::oracle::{RunOptions, apply_stimulus, start_image};
-    use stljit_core::layout::IntState;
     let cfg = GenConfig::default();
-    let (mut programs, mut raised) = (0, 0);
-    for seed in 0..300 {
+    let mut programs = 0;
+    for seed in seeds {
         let case = case_from_seed(seed, &cfg);
-        if !case.program.has_interrupts() {
+        if !wanted(&case.program) {
             continue;
         }
         programs += 1;
@@ -238,13 +242,32 @@ fn interrupt_routines_run() {
         let mut img = start_image(&case.program, &RunOptions::default());
         for s in &case.stimulus.scans {
             apply_stimulus(&mut img, s);
+            let before = img.bytes().to_vec();
             if e.scan(&mut img, s.t_ms) != stljit_core::ScanStatus::Ok {
                 break;
             }
+            after_scan(&img, &before);
         }
-        let seq = img.layout().int_state(IntState::SEQ) as usize;
-        raised += usize::from(img.bytes()[seq..seq + 4] != [0; 4]);
+        after_case(&img);
     }
+    programs
+}
+
+/// The stimulus raises the events the programs attach: most programs with interrupt routines
+/// queue events (input edges, timed interrupts, T32/T96) and run routines.
+#[test]
+fn interrupt_routines_run() {
+    use stljit_core::layout::IntState;
+    let mut raised = 0;
+    let programs = run_generated(
+        0..300,
+        Program::has_interrupts,
+        |_, _| {},
+        |img| {
+            let seq = img.layout().int_state(IntState::SEQ) as usize;
+            raised += usize::from(img.bytes()[seq..seq + 4] != [0; 4]);
+        },
+    );
     assert!(programs > 50, "{programs} programs with interrupt routines");
     assert!(
         2 * raised > programs,
@@ -256,32 +279,18 @@ fn interrupt_routines_run() {
 /// counter's value moves.
 #[test]
 fn high_speed_counters_count() {
-    use crate::engines::EngineKind;
-    use crate::oracle::{RunOptions, apply_stimulus, start_image};
     use stljit_core::Area;
-    let cfg = GenConfig::default();
-    let (mut programs, mut counted) = (0, 0);
-    for seed in 0..400 {
-        let case = case_from_seed(seed, &cfg);
-        if !case.program.defines_hsc() {
-            continue;
-        }
-        programs += 1;
-        let mut e = EngineKind::Interp.build(&case.program).expect("builds");
-        let mut img = start_image(&case.program, &RunOptions::default());
-        let hc = img.layout().base(Area::HC) as usize;
-        let n = img.layout().area_size(Area::HC) as usize;
-        let mut moved = false;
-        for s in &case.stimulus.scans {
-            apply_stimulus(&mut img, s);
-            let before = img.bytes()[hc..hc + n].to_vec();
-            if e.scan(&mut img, s.t_ms) != stljit_core::ScanStatus::Ok {
-                break;
-            }
-            moved |= img.bytes()[hc..hc + n] != before[..];
-        }
-        counted += usize::from(moved);
-    }
+    let (mut counted, moved) = (0, std::cell::Cell::new(false));
+    let programs = run_generated(
+        0..400,
+        Program::defines_hsc,
+        |img, before| {
+            let hc = img.layout().base(Area::HC) as usize;
+            let n = img.layout().area_size(Area::HC) as usize;
+            moved.set(moved.get() | (img.bytes()[hc..hc + n] != before[hc..hc + n]));
+        },
+        |_| counted += usize::from(moved.replace(false)),
+    );
     assert!(
         programs > 30,
         "{programs} programs with high-speed counters"
@@ -294,26 +303,19 @@ fn high_speed_counters_count() {
 /// on the A5, which has none (0x000C), and a bad pointer (0x0006).
 #[test]
 fn ext_error_paths_are_reached() {
-    use crate::engines::EngineKind;
-    use crate::oracle::{RunOptions, apply_stimulus, start_image};
-    let cfg = GenConfig::default();
     let mut codes = std::collections::BTreeSet::new();
-    for seed in 0..3000 {
-        let case = case_from_seed(seed, &cfg);
-        let ext = |op: &Op| matches!(op, Op::Ext(_));
-        if !case.program.pous.iter().flat_map(|q| &q.ops).any(ext) {
-            continue;
-        }
-        let mut e = EngineKind::Interp.build(&case.program).expect("builds");
-        let mut img = start_image(&case.program, &RunOptions::default());
-        for s in &case.stimulus.scans {
-            apply_stimulus(&mut img, s);
-            if e.scan(&mut img, s.t_ms) != stljit_core::ScanStatus::Ok {
-                break;
-            }
-            codes.insert(img.last_error());
-        }
-    }
+    let ext = |p: &Program| {
+        p.pous
+            .iter()
+            .flat_map(|q| &q.ops)
+            .any(|op| matches!(op, Op::Ext(_)))
+    };
+    run_generated(
+        0..3000,
+        ext,
+        |img, _| _ = codes.insert(img.last_error()),
+        |_| {},
+    );
     for code in [0x0006, 0x0007, 0x000C, 0x0091, 0x009B] {
         assert!(
             codes.contains(&code),
