@@ -16,6 +16,7 @@
 pub(crate) mod frames;
 pub(crate) mod harness;
 pub(crate) mod hsc_feed;
+pub(crate) mod phys_out;
 
 use harness::{ENGINES, Failure, HarnessError, run_case_text, run_dir};
 use std::path::PathBuf;

@@ -210,6 +210,8 @@ struct ScanSpec {
     last_err: Option<u16>,
     /// High-speed counter activity before the scan (`hsc = { 0 = 10 }`).
     hsc: Vec<(u8, i32)>,
+    /// Physical output bits after the scan (`phys_q = { "Q0.0" = 1 }`).
+    phys_q: Vec<(String, u32, u8, bool)>,
 }
 
 /// An expected value: a raw bit pattern, or a real compared by value (NaN matches NaN).
@@ -232,8 +234,7 @@ struct Case {
     known_failure: Option<String>,
 }
 
-/// The program, profile and front-end options of a case given as text (what [`run_case_text`]
-/// compiles).
+/// The program, profile and front-end options of a case given as text ([`run_case_text`]'s).
 pub(crate) fn case_program(
     text: &str,
 ) -> Result<(String, ProfileId, stljit_front::Options), String> {
@@ -384,6 +385,7 @@ fn check_scan(image: &Image, status: ScanStatus, spec: &ScanSpec) -> Vec<(String
         ));
     }
     out.extend(super::frames::check(image, &spec.frames));
+    out.extend(super::phys_out::check(image, &spec.phys_q));
     for (watch, want) in &spec.expect {
         let Some(raw) = watch.read(image) else {
             out.push((watch.text.clone(), "address outside the image".to_string()));
@@ -591,7 +593,7 @@ const CASE_KEYS: &[&str] = &[
     "rtc_start",
 ];
 const SCAN_KEYS: &[&str] = &[
-    "scan", "t_ms", "inputs", "expect", "frame", "status", "fatal", "last_err", "hsc",
+    "scan", "t_ms", "inputs", "expect", "frame", "status", "fatal", "last_err", "hsc", "phys_q",
 ];
 
 fn check_keys(t: &Table, allowed: &[&str], what: &str) -> Result<(), String> {
@@ -776,6 +778,7 @@ fn parse_scan(
     let hsc = super::hsc_feed::parse(&table("hsc")?)?;
     Ok(ScanSpec {
         hsc,
+        phys_q: super::phys_out::parse(&table("phys_q")?)?,
         inputs,
         expect,
         frames,

@@ -71,6 +71,11 @@ code_enum! {
         CallNesting = 0x0008,
         /// HDEF of a high-speed counter that is already defined (§8.1).
         HscRedefined = 0x000A,
+        /// PLS changing a running pulse output's mode or time base, or a profile while one
+        /// runs (s7-200-more §9.2).
+        PulseRedefined = 0x000D,
+        /// PLS of a multi-segment PTO profile with 0 segments (§9.2).
+        PulseNoSegments = 0x000E,
         /// The CPU has no real-time clock (TODR/TODW on a profile without one, §6.2).
         NoClock = 0x000C,
         /// Operand out of range (an S/R/BM* count runs past the area end).
@@ -91,6 +96,8 @@ impl fmt::Display for ErrorCode {
             ErrorCode::HscInputConflict => "high-speed counter input already in use",
             ErrorCode::InInterrupt => "ENI, DISI or HDEF in an interrupt routine",
             ErrorCode::HscRedefined => "high-speed counter already defined",
+            ErrorCode::PulseRedefined => "pulse output redefined while active",
+            ErrorCode::PulseNoSegments => "PTO profile with 0 segments",
             ErrorCode::IndirectAddress => "illegal indirect address",
             ErrorCode::ClockData => "clock data error",
             ErrorCode::CallNesting => "subroutine nesting exceeded",

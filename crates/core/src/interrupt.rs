@@ -74,16 +74,19 @@ pub enum EventSource {
         /// Which of its events.
         kind: HscEvent,
     },
-    /// A pulse output completing (§9).
-    PulseOutput,
+    /// A pulse output's PTO completing (§9.3).
+    PulseOutput {
+        /// The channel number (`PLS Q`).
+        channel: u8,
+    },
     /// A serial port (§10).
     Communication,
 }
 
 impl EventSource {
-    /// Whether the simulator raises events of this source. Pulse outputs and communication
-    /// are not simulated yet (their instructions are rejected as not supported), so their
-    /// events can be attached but never occur.
+    /// Whether the simulator raises events of this source. Communication is not simulated
+    /// yet (its instructions are rejected as not supported), so its events can be attached but
+    /// never occur.
     pub fn simulated(self) -> bool {
         matches!(
             self,
@@ -91,6 +94,7 @@ impl EventSource {
                 | EventSource::Timed { .. }
                 | EventSource::TimerReached { .. }
                 | EventSource::HighSpeedCounter { .. }
+                | EventSource::PulseOutput { .. }
         )
     }
 }
@@ -183,7 +187,8 @@ const fn hsc(number: u8, pri: u8, counter: u8, kind: HscEvent, what: &'static st
 }
 
 use EventGroup::{Communication as COMM, Discrete as IO};
-use EventSource::{Communication as PORT, PulseOutput as PLS};
+use EventSource::Communication as PORT;
+use EventSource::PulseOutput as PLS;
 use HscEvent::{CvEqPv as CV, Direction as DIR, Reset as RST};
 
 /// Every event of every S7 profile, entry `n` for event `n`: the S7-200 table 6-50 (§3.1) and
@@ -210,8 +215,20 @@ pub const EVENTS: &[EventInfo] = &[
     hsc(16, 16, 2, CV, "HSC2 CV = PV"),
     hsc(17, 17, 2, DIR, "HSC2 direction changed"),
     hsc(18, 18, 2, RST, "HSC2 external reset"),
-    ev(19, IO, 0, PLS, "PLS0 (Q0.0) pulse count complete"),
-    ev(20, IO, 1, PLS, "PLS1 (Q0.1) pulse count complete"),
+    ev(
+        19,
+        IO,
+        0,
+        PLS { channel: 0 },
+        "PLS0 (Q0.0) pulse count complete",
+    ),
+    ev(
+        20,
+        IO,
+        1,
+        PLS { channel: 1 },
+        "PLS1 (Q0.1) pulse count complete",
+    ),
     timer(21, 2, 32, "timer T32 CT = PT"),
     timer(22, 3, 96, "timer T96 CT = PT"),
     ev(23, COMM, 0, PORT, "port 0 receive message complete"),
@@ -225,7 +242,13 @@ pub const EVENTS: &[EventInfo] = &[
     hsc(31, 22, 4, RST, "HSC4 external reset"),
     hsc(32, 19, 3, CV, "HSC3 CV = PV"),
     hsc(33, 23, 5, CV, "HSC5 CV = PV"),
-    ev(34, IO, 24, PLS, "PLS2 (Q0.3) pulse count complete"),
+    ev(
+        34,
+        IO,
+        24,
+        PLS { channel: 2 },
+        "PLS2 (Q0.3) pulse count complete",
+    ),
     edge(35, 25, 8, true, "I7.0 rising edge"),
     edge(36, 26, 8, false, "I7.0 falling edge"),
     edge(37, 27, 9, true, "I7.1 rising edge"),
@@ -244,6 +267,14 @@ pub fn hsc_event(counter: u8, kind: HscEvent) -> Option<u8> {
     EVENTS
         .iter()
         .find(|e| e.source == EventSource::HighSpeedCounter { counter, kind })
+        .map(|e| e.number)
+}
+
+/// The PTO-complete event of pulse channel `channel` (§9.3), whatever the profile.
+pub fn pulse_event(channel: u8) -> Option<u8> {
+    EVENTS
+        .iter()
+        .find(|e| e.source == EventSource::PulseOutput { channel })
         .map(|e| e.number)
 }
 

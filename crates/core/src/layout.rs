@@ -27,6 +27,8 @@ pub const INT_STATE_SIZE: u32 = 144;
 pub const QUEUE_ENTRY_SIZE: u32 = 16;
 /// Bytes of private state per high-speed counter (see [`HscState`]).
 pub const HSC_STATE_SIZE: u32 = 40;
+/// Bytes of private state per pulse output channel (see [`PulseState`]).
+pub const PULSE_STATE_SIZE: u32 = 64;
 /// Number of `L` frames: the main program and eight subroutine levels (frames 0–8), the
 /// running interrupt routine ([`ISR_FRAME`]) and four levels of its calls (frames 10–13),
 /// s7-200-more §1.6.
@@ -77,6 +79,10 @@ macro_rules! record_fields {
         }
     };
 }
+
+// The peripherals' records (s7-200-more §8, §9), beside this file to keep it short.
+mod periph;
+pub use periph::{HscState, PulseState};
 
 record_fields! {
     /// Field offsets inside one timer's private state block.
@@ -214,43 +220,6 @@ record_fields! {
     }
 }
 
-record_fields! {
-    /// Field offsets inside one high-speed counter's private state (s7-200-more §8.7, §11.1):
-    /// one record per counter of the profile's table, read and written only by
-    /// `stljit_runtime::hsc`. The current value is the program-visible HC area.
-    HscState {
-        /// 1 once HDEF defined the counter.
-        DEFINED: u8 = 0;
-        /// The mode HDEF gave it (0–12).
-        MODE: u8 = 1;
-        /// 1 while enabled (HSC with control bit 7).
-        ENABLED: u8 = 2;
-        /// The counting direction: 1 up, 0 down.
-        DIR: u8 = 3;
-        /// Control bit 0 at HDEF: the reset input is active low.
-        RESET_LOW: u8 = 4;
-        /// Control bit 1 at HDEF: the start input is active low.
-        START_LOW: u8 = 5;
-        /// Control bit 2 at HDEF: quadrature at 1x (else 4x).
-        RATE1X: u8 = 6;
-        /// The direction of the current interval's steps in modes 3–11 (1 up).
-        STEP_UP: u8 = 7;
-        /// Native-endian: the preset PV.
-        PV: i32 = 8;
-        /// Native-endian: the stimulus, the signed counting activity `n` per scan interval
-        /// (§8.4, §11.2 `hsc_steps`), written by the harness and held until it writes again.
-        RATE: i32 = 12;
-        /// Native-endian: the unit steps of the current interval (`s`).
-        STEPS: u32 = 16;
-        /// Native-endian: the steps of the current interval already applied (`j`).
-        DONE: u32 = 20;
-        /// Native-endian: the start of the current interval in µs (`T_{k−1}`).
-        T_START: u64 = 24;
-        /// Native-endian: its length in µs (`D`).
-        SPAN: u64 = 32;
-    }
-}
-
 /// Default loop budget per scan (spec §2.5).
 pub const DEFAULT_LOOP_LIMIT: u32 = 65_536;
 
@@ -281,6 +250,8 @@ pub struct Layout {
     pub instr: u32,
     /// The high-speed counters' private state, see [`HscState`].
     pub hsc: u32,
+    /// The pulse output channels' private state, see [`PulseState`].
+    pub pulse: u32,
     /// Total image size in bytes.
     pub size: u32,
     block_size: [u32; Block::ALL.len()],
@@ -341,6 +312,10 @@ impl Layout {
             Block::Hsc,
             HSC_STATE_SIZE * profile.hsc.counters.len() as u32,
         );
+        let pulse = take(
+            Block::Pulse,
+            PULSE_STATE_SIZE * profile.pulse.channels.len() as u32,
+        );
         Layout {
             profile: profile.id,
             area_base,
@@ -355,6 +330,7 @@ impl Layout {
             queue,
             instr,
             hsc,
+            pulse,
             size: next,
             block_size,
         }
@@ -432,6 +408,13 @@ impl Layout {
         self.hsc + HSC_STATE_SIZE * u32::from(n) + field
     }
 
+    /// Image offset of a field (a [`PulseState`] constant) of pulse channel `n`'s private
+    /// state.
+    #[inline]
+    pub fn pulse_state(&self, n: u8, field: u32) -> u32 {
+        self.pulse + PULSE_STATE_SIZE * u32::from(n) + field
+    }
+
     /// The area and in-area offset an image offset belongs to, for naming differing bytes.
     pub fn locate(&self, image_offset: u32) -> Option<(Area, u32)> {
         Area::ALL.into_iter().find_map(|area| {
@@ -459,6 +442,7 @@ impl Layout {
             Block::Queue => self.queue,
             Block::Instr => self.instr,
             Block::Hsc => self.hsc,
+            Block::Pulse => self.pulse,
         }
     }
 
@@ -537,11 +521,14 @@ pub enum Block {
     /// The high-speed counters' private state, one [`HscState`] record per counter of the
     /// profile's table.
     Hsc,
+    /// The pulse output channels' private state, one [`PulseState`] record per channel of
+    /// the profile's table.
+    Pulse,
 }
 
 impl Block {
     /// Every block, in layout order.
-    pub const ALL: [Block; 10] = [
+    pub const ALL: [Block; 11] = [
         Block::Edges,
         Block::TimerState,
         Block::CounterState,
@@ -552,6 +539,7 @@ impl Block {
         Block::Queue,
         Block::Instr,
         Block::Hsc,
+        Block::Pulse,
     ];
 
     /// A short name for reports (`timer state`).
@@ -567,6 +555,7 @@ impl Block {
             Block::Queue => "interrupt queue",
             Block::Instr => "clock and PID state",
             Block::Hsc => "high-speed counter state",
+            Block::Pulse => "pulse output state",
         }
     }
 
@@ -580,6 +569,7 @@ impl Block {
             Block::Queue => Some((QUEUE_ENTRY_SIZE, QueueEntry::FIELDS)),
             Block::Instr => Some((INSTR_STATE_SIZE, InstrState::FIELDS)),
             Block::Hsc => Some((HSC_STATE_SIZE, HscState::FIELDS)),
+            Block::Pulse => Some((PULSE_STATE_SIZE, PulseState::FIELDS)),
             Block::Edges | Block::PhysIn | Block::PhysOut => None,
         }
     }

@@ -18,6 +18,7 @@ pub mod ir;
 pub mod layout;
 pub mod omron;
 pub mod profile;
+pub mod pulse;
 pub mod text;
 
 pub use area::{Area, Width};

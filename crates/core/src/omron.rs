@@ -381,6 +381,7 @@ const CP1H_DATA: CpuProfile = CpuProfile {
     lacks: InstrSet::ALL,
     interrupts: &InterruptProfile::NONE,
     hsc: &crate::hsc::HscProfile::NONE,
+    pulse: &crate::pulse::PulseProfile::NONE,
     clock: crate::profile::RealTimeClock::Absent,
 };
 

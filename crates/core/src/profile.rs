@@ -10,6 +10,7 @@ use crate::instr_set::InstrSet;
 use crate::interrupt::{self, InterruptProfile};
 use crate::ir::TimerKind;
 use crate::layout::ISR_FRAME;
+use crate::pulse::{self, PulseProfile};
 use std::fmt;
 
 /// Which built-in profile a program was compiled for.
@@ -278,6 +279,9 @@ pub struct CpuProfile {
     /// [`HscProfile::NONE`] on Omron profiles). The HC area has
     /// [`high_speed_counters`](Self::high_speed_counters) values whatever this table holds.
     pub hsc: &'static HscProfile,
+    /// The pulse output channels with their outputs and registers (s7-200-more §9.1;
+    /// [`PulseProfile::NONE`] where the CPU has none).
+    pub pulse: &'static PulseProfile,
     /// The CPU's real-time clock (s7-200-more §6.2 `rtc_present`): without one,
     /// TODR/TODW/TODRX/TODWX fail at run time with 16#000C.
     pub clock: RealTimeClock,
@@ -381,6 +385,7 @@ pub static A5: CpuProfile = CpuProfile {
     ],
     interrupts: &interrupt::A5_INTERRUPTS,
     hsc: &hsc::A5_COUNTERS,
+    pulse: &PulseProfile::NONE,
     // "The seed does not mention a clock" (s7-200-more §6.2, Appendix A).
     clock: RealTimeClock::Absent,
 };
@@ -491,6 +496,7 @@ pub static S7_200: CpuProfile = CpuProfile {
     lacks: &[InstrSet::GetPut, InstrSet::IpAddress],
     interrupts: &interrupt::S7_200_INTERRUPTS,
     hsc: &hsc::S7_200_COUNTERS,
+    pulse: &pulse::S7_200_PULSE,
     clock: RealTimeClock::Classic,
 };
 
@@ -527,6 +533,7 @@ pub static SMART: CpuProfile = CpuProfile {
     lacks: &[InstrSet::NetReadWrite],
     interrupts: &interrupt::SMART_INTERRUPTS,
     hsc: &hsc::SMART_COUNTERS,
+    pulse: &pulse::SMART_PULSE,
     clock: RealTimeClock::Smart,
 };
 

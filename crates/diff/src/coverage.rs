@@ -129,7 +129,7 @@ pub const ALL_MNEMONICS: &[&str] = &[
     "NEXT", "LSCR", "SCRT", "CSCRE", "SCRE", "ATCH", "DTCH", "ENI", "DISI", "CEVNT", "ATT", "FIFO",
     "LIFO", "FND=", "FND<>", "FND<", "FND>", "ATH", "HTA", "ITA", "DTA", "RTA", "ITS", "DTS",
     "RTS", "STI", "STD", "STR", "SLEN", "SCPY", "SCAT", "SSCPY", "SFND", "CFND", "TODR", "TODW",
-    "TODRX", "TODWX", "PID", "LDS=", "LDS<>", "AS=", "AS<>", "OS=", "OS<>", "HDEF", "HSC",
+    "TODRX", "TODWX", "PID", "LDS=", "LDS<>", "AS=", "AS<>", "OS=", "OS<>", "HDEF", "HSC", "PLS",
 ];
 
 fn contact_mnemonic(prefix: usize, c: &Contact) -> &'static str {
@@ -296,6 +296,7 @@ fn ext_mnemonic(b: &ExtBox) -> &'static str {
         ExtBox::Pid { .. } => "PID",
         ExtBox::HscDefine { .. } => "HDEF",
         ExtBox::Hsc { .. } => "HSC",
+        ExtBox::Pls { .. } => "PLS",
     }
 }
 

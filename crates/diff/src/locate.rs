@@ -83,6 +83,15 @@ pub enum Place {
         /// Byte inside the field.
         byte: u32,
     },
+    /// A field of pulse output channel `n`'s state, and the byte inside it.
+    Pulse {
+        /// Channel number.
+        n: u32,
+        /// Field name.
+        field: &'static str,
+        /// Byte inside the field.
+        byte: u32,
+    },
     /// Alignment padding.
     Padding(u32),
 }
@@ -137,9 +146,15 @@ impl Place {
                 field: at.name.unwrap_or("(pad)"),
                 byte: at.byte,
             },
+            (Block::Pulse, Some(at)) => Place::Pulse {
+                n: at.record,
+                field: at.name.unwrap_or("(pad)"),
+                byte: at.byte,
+            },
             // Record blocks always name their bytes; a block without fields is matched above.
             (
                 Block::Hsc
+                | Block::Pulse
                 | Block::TimerState
                 | Block::CounterState
                 | Block::Sched
@@ -218,6 +233,9 @@ impl fmt::Display for Place {
             Place::PhysOut(n) => write!(f, "physical output byte {n}"),
             Place::Instr { field, byte } => write!(f, "InstrState.{field} byte {byte}"),
             Place::Hsc { n, field, byte } => write!(f, "HSC{n} HscState.{field} byte {byte}"),
+            Place::Pulse { n, field, byte } => {
+                write!(f, "PLS{n} PulseState.{field} byte {byte}")
+            }
             Place::Padding(o) => write!(f, "padding at {o:#x}"),
         }
     }

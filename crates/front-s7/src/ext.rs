@@ -514,6 +514,7 @@ pub(crate) fn print_ext(x: &ExtBox) -> String {
         ExtBox::Pid { table, lp } => format!("PID {}, {lp}", b(*table)),
         ExtBox::HscDefine { counter, mode } => format!("HDEF {counter}, {mode}"),
         ExtBox::Hsc { counter } => format!("HSC {counter}"),
+        ExtBox::Pls { channel } => format!("PLS {channel}"),
     }
 }
 

@@ -28,6 +28,7 @@ mod operand;
 mod params;
 mod print;
 mod program;
+mod pulse;
 pub mod spelling;
 mod stack;
 mod structure;

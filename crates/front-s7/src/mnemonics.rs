@@ -71,6 +71,8 @@ pub(crate) enum Group {
     StrCompare,
     /// `HDEF`, `HSC` (s7-200-more §8), lowered by `Lowerer::hsc`.
     Hsc,
+    /// `PLS` (s7-200-more §9), lowered by `Lowerer::pls`.
+    Pls,
 }
 
 /// The program-control routines (spec §4.13).
@@ -345,6 +347,7 @@ pub(crate) const TABLE: &[(&str, Group)] = &[
     ("PID", Group::Ext),
     ("HDEF", Group::Hsc),
     ("HSC", Group::Hsc),
+    ("PLS", Group::Pls),
     ("LDS=", Group::StrCompare),
     ("LDS<>", Group::StrCompare),
     ("AS=", Group::StrCompare),
@@ -413,8 +416,8 @@ pub(crate) fn not_yet(set: InstrSet) -> &'static str {
         | InstrSet::Strings
         | InstrSet::Clock
         | InstrSet::Pid
-        | InstrSet::HighSpeedCounters => "this instruction is not implemented yet",
-        InstrSet::PulseOutputs => "pulse outputs are not simulated yet (s7-200-more §9)",
+        | InstrSet::HighSpeedCounters
+        | InstrSet::PulseOutputs => "this instruction is not implemented yet",
         InstrSet::Freeport
         | InstrSet::PortAddress
         | InstrSet::NetReadWrite
@@ -584,10 +587,14 @@ mod tests {
     fn every_entry_lowers() {
         for &(m, group) in TABLE {
             let mut clean = false;
-            'search: for (before, after) in CONTEXTS {
+            // The A5 first; PLS exists on the Siemens CPUs only.
+            'search: for (before, after, cpu) in CONTEXTS
+                .iter()
+                .flat_map(|&(b, a)| [(b, a, ProfileId::A5), (b, a, ProfileId::S7_200)])
+            {
                 for ops in OPERANDS {
                     let text = format!("{before}{m} {ops}\n{after}");
-                    let c = compile_str("t.stl", &text, ProfileId::A5);
+                    let c = compile_str("t.stl", &text, cpu);
                     for d in &c.diagnostics {
                         assert!(
                             !matches!(d.code, Code::UnknownMnemonic | Code::Unsupported),
@@ -670,6 +677,7 @@ mod tests {
                     | InstrSet::Clock
                     | InstrSet::Pid
                     | InstrSet::HighSpeedCounters
+                    | InstrSet::PulseOutputs
             ) {
                 for m in *ms {
                     assert!(group(m).is_some(), "{m} is not lowered");

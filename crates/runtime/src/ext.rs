@@ -15,7 +15,7 @@ use crate::block::Span;
 use crate::flags::{NOT_HEX, OVERFLOW, SmFlags, apply_flags};
 use crate::operand;
 use crate::text::{self, NumText, ParseFail};
-use crate::{hsc, pid, rtc, string, table};
+use crate::{hsc, pid, pulse, rtc, string, table};
 use stljit_core::ir::{ClockOp, ExtBox, NumType, StrArg, StrCompare};
 use stljit_core::layout::Layout;
 use stljit_core::{ErrorCode, FatalCode, Width};
@@ -261,6 +261,10 @@ pub fn execute(
         }
         ExtBox::Hsc { counter } => {
             hsc::control(img, layout, *counter)?;
+            Ok(true)
+        }
+        ExtBox::Pls { channel } => {
+            pulse::execute(img, layout, *channel)?;
             Ok(true)
         }
     }

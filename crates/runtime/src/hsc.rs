@@ -8,8 +8,8 @@
 //! **The counting model (§8.4, normative).** The harness gives each counter a signed activity
 //! `n` per scan interval ([`set_rate`]: the `RATE` field, held until it writes again). At the
 //! start of the interval phase ([`start_interval`]) it becomes `s` unit steps (`|n|`, times 4
-//! for a quadrature counter at 4x; none in mode 12, whose pulses come from a pulse output
-//! that is not simulated), step `j` at `T_{k−1} + ⌊j·D/s⌋`. Each step is a happening: the
+//! for a quadrature counter at 4x; none in mode 12, whose steps are the pulses of its pulse
+//! output, [`count_pulse`]), step `j` at `T_{k−1} + ⌊j·D/s⌋`. Each step is a happening: the
 //! interval phase applies the steps of every source in time order and services the queues
 //! after each, so a CV = PV routine runs at the step that reached the preset, before the next.
 //! A step counts only while the counter is enabled and not held by its reset input, and (modes
@@ -322,17 +322,37 @@ impl Happening for Counter {
                 raise(img, layout, n, HscEvent::Direction, tau);
             }
         }
-        let cv = current(img, layout, n);
-        let cv = if up {
-            cv.wrapping_add(1)
-        } else {
-            cv.wrapping_sub(1)
-        };
-        set_current(img, layout, n, cv);
-        update_status(img, layout, info);
-        if cv == get_u32(img, layout, n, HscState::PV) as i32 {
-            raise(img, layout, n, HscEvent::CvEqPv, tau);
-        }
+        step(img, layout, info, up, tau);
+    }
+}
+
+/// One unit step of counter `info` in direction `up` at `tau`: CV, status, CV = PV event.
+fn step(img: &mut [u8], layout: &Layout, info: &HscInfo, up: bool, tau: u64) {
+    let n = info.number;
+    let cv = current(img, layout, n);
+    let cv = if up {
+        cv.wrapping_add(1)
+    } else {
+        cv.wrapping_sub(1)
+    };
+    set_current(img, layout, n, cv);
+    update_status(img, layout, info);
+    if cv == get_u32(img, layout, n, HscState::PV) as i32 {
+        raise(img, layout, n, HscEvent::CvEqPv, tau);
+    }
+}
+
+/// A PTO pulse of the channel counter `n` watches completed at `tau` (§8.4 mode 12, §9.3):
+/// one step in the counter's direction, if it is defined in mode 12 and enabled.
+pub(crate) fn count_pulse(img: &mut [u8], layout: &Layout, n: u8, tau: u64) {
+    let Some(info) = info(layout, n) else {
+        return;
+    };
+    let counting = mode(img, layout, n).is_some_and(|m| m.0 == stljit_core::hsc::PULSE_MODE)
+        && get(img, layout, n, HscState::ENABLED) != 0;
+    if counting {
+        let up = get(img, layout, n, HscState::DIR) != 0;
+        step(img, layout, info, up, tau);
     }
 }
 

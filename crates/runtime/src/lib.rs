@@ -37,6 +37,7 @@ pub mod omron_written;
 pub mod operand;
 pub mod pid;
 pub mod pointer;
+pub mod pulse;
 pub mod rtc;
 pub mod rules;
 pub mod scan;

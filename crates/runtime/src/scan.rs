@@ -82,6 +82,8 @@ pub struct ScanPlan {
     routines: Box<[Option<PouId>]>,
     /// The program defines a high-speed counter, whose steps the event phases apply.
     hsc: bool,
+    /// The program has a PLS, whose pulse trains the event phases advance.
+    pulse: bool,
 }
 
 impl ScanPlan {
@@ -120,6 +122,7 @@ impl ScanPlan {
             clock_timers: clock_timers.into(),
             routines: routines.into(),
             hsc: program.defines_hsc(),
+            pulse: program.uses_pulse(),
         }
     }
 
@@ -128,11 +131,11 @@ impl ScanPlan {
         !self.routines.is_empty()
     }
 
-    /// Whether [`begin`] runs the event phases: the program has interrupt routines or
-    /// high-speed counters. An engine's inline scan path (which has no phases) must not be
-    /// taken then.
+    /// Whether [`begin`] runs the event phases: the program has interrupt routines,
+    /// high-speed counters or pulse outputs. An engine's inline scan path (which has no phases)
+    /// must not be taken then.
     pub fn has_events(&self) -> bool {
-        self.has_interrupts() || self.hsc
+        self.has_interrupts() || self.hsc || self.pulse
     }
 
     /// The interrupt routines by number.
@@ -164,6 +167,7 @@ impl ScanPlan {
             clock_timers: (0..n).collect(),
             routines: Box::new([]),
             hsc: false,
+            pulse: false,
         }
     }
 }
@@ -269,6 +273,10 @@ pub fn begin(
     let scan_no = sched.u64(Sched::SCAN_NO);
     let lost = sched.u8(Sched::RETENTIVE_LOST) != 0;
 
+    if first && plan.family == Family::S7 {
+        // RUN entry (s7-200-more §9.2): the pulse outputs are idle.
+        crate::pulse::run_entry(img, layout);
+    }
     // E1 (s7-200-more §3.6.2 step 2): the interval since the previous scan; none in scan 0.
     let routines = plan.routines();
     if plan.has_events()
@@ -392,6 +400,9 @@ pub fn end(img: &mut [u8], layout: &Layout, status: ScanStatus) -> ScanStatus {
             layout.phys_out,
             layout.area_size(Area::Q),
         );
+        // §3.6.2 step 7: active pulse generators drive their outputs (§9.5).
+        let t_us = micros(mem::get_u64_ne(img, layout.sched(Sched::T_NOW)));
+        crate::pulse::override_outputs(img, layout, t_us);
     }
     let Some(mut sched) = SchedBlock::of(img, layout) else {
         return ScanStatus::Fatal;

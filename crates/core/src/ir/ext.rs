@@ -2,7 +2,7 @@
 //! number-to-text conversions, strings, the real-time clock and PID ([`ExtBox`], the payload of
 //! [`Op::Ext`](super::Op::Ext)), and the string compare contacts ([`StrCompare`], the payload of
 //! [`Op::StrCompare`](super::Op::StrCompare)); and the high-speed counter instructions of §8
-//! (HDEF, HSC), which share the path: one runtime function both engines call with the op.
+//! (HDEF, HSC) and the pulse output of §9 (PLS), which share the path: one runtime function both engines call with the op.
 //!
 //! They are their own ops rather than [`BoxOp`](super::BoxOp) variants because a string input
 //! may be a constant string (bytes that are no [`Operand`]), so they are boxed like a call's
@@ -236,6 +236,12 @@ pub enum ExtBox {
     Hsc {
         /// N, a counter of the profile's table.
         counter: u8,
+    },
+    /// `PLS Q` (§9.2): apply pulse channel `channel`'s control byte (start, stop or update
+    /// its PTO/PWM generator). The runtime's `pulse` module is its semantics.
+    Pls {
+        /// Q, a channel of the profile's table.
+        channel: u8,
     },
 }
 

@@ -97,6 +97,15 @@ impl Program {
             .any(|op| matches!(op, Op::Ext(b) if matches!(**b, ExtBox::HscDefine { .. })))
     }
 
+    /// Whether the program has a PLS (then the scan runs the event phases, which advance its
+    /// pulse trains).
+    pub fn uses_pulse(&self) -> bool {
+        self.pous
+            .iter()
+            .flat_map(|p| &p.ops)
+            .any(|op| matches!(op, Op::Ext(b) if matches!(**b, ExtBox::Pls { .. })))
+    }
+
     /// Total number of IR ops over all POUs.
     pub fn op_count(&self) -> usize {
         self.pous.iter().map(|p| p.ops.len()).sum()

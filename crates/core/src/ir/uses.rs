@@ -237,7 +237,7 @@ impl ExtBox {
             },
             ExtBox::Pid { table, .. } => vec![update(*table, DWord)],
             // Fixed registers (the control byte, SMD, HC), no operands.
-            ExtBox::HscDefine { .. } | ExtBox::Hsc { .. } => vec![],
+            ExtBox::HscDefine { .. } | ExtBox::Hsc { .. } | ExtBox::Pls { .. } => vec![],
         };
         Uses::of(&list)
     }

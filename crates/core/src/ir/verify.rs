@@ -138,6 +138,8 @@ pub enum OpRule {
     HscNumber,
     /// HDEF with a mode the counter does not accept.
     HscMode,
+    /// PLS of a pulse channel the profile does not have.
+    PulseChannel,
     /// A constant string longer than [`super::MAX_STRING`] bytes.
     StringTooLong,
 }
@@ -209,6 +211,7 @@ impl fmt::Display for VerifyError {
                     OpRule::PidLoop => f.write_str("PID loop number above 7"),
                     OpRule::HscNumber => f.write_str("no such high-speed counter on the CPU"),
                     OpRule::HscMode => f.write_str("a mode the high-speed counter does not accept"),
+                    OpRule::PulseChannel => f.write_str("no such pulse output on the CPU"),
                     OpRule::StringTooLong => f.write_str("constant string longer than 254 bytes"),
                 }
             }
@@ -513,12 +516,18 @@ fn locations(program: &Program, layout: &Layout, op: &Op) -> Result<(), OpRule> 
     }
 }
 
-/// HDEF and HSC name a counter of the profile's table, HDEF a mode that counter accepts (the
-/// runtime indexes its state by the number).
+/// HDEF and HSC name a counter of the profile's table, HDEF a mode that counter accepts, PLS
+/// a pulse channel of it (the runtime indexes their state by the number).
 fn hsc_operands(b: &super::ExtBox, profile: &crate::CpuProfile) -> Result<(), OpRule> {
     let (counter, mode) = match *b {
         super::ExtBox::HscDefine { counter, mode } => (counter, Some(mode)),
         super::ExtBox::Hsc { counter } => (counter, None),
+        super::ExtBox::Pls { channel } => {
+            return match profile.pulse.get(channel) {
+                Some(_) => Ok(()),
+                None => Err(OpRule::PulseChannel),
+            };
+        }
         _ => return Ok(()),
     };
     let info = profile.hsc.get(counter).ok_or(OpRule::HscNumber)?;

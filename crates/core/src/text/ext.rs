@@ -135,6 +135,7 @@ pub(super) fn write_ext(out: &mut String, b: &ExtBox) -> fmt::Result {
         ExtBox::Pid { table, lp } => write!(out, "pid table={} loop={lp}", Opd(*table)),
         ExtBox::HscDefine { counter, mode } => write!(out, "hsc_define hsc={counter} mode={mode}"),
         ExtBox::Hsc { counter } => write!(out, "hsc hsc={counter}"),
+        ExtBox::Pls { channel } => write!(out, "pls q={channel}"),
     }
 }
 
@@ -254,6 +255,9 @@ pub(super) fn parse_ext(line: &mut Line<'_>) -> Result<ExtBox> {
         },
         "hsc" => ExtBox::Hsc {
             counter: line.field("hsc")?.number("counter")?,
+        },
+        "pls" => ExtBox::Pls {
+            channel: line.field("q")?.number("pulse channel")?,
         },
         _ => return Err(key.unknown("ext op")),
     })

@@ -108,8 +108,8 @@ impl Gen<'_, '_> {
     }
 
     /// An event of the profile: mostly an input edge, a timed interrupt, (S7-200) a timer
-    /// event or an event of a counter the program defines, which the simulation raises; now
-    /// and then any other.
+    /// event or an event of a counter or pulse output the program uses, which the simulation
+    /// raises; now and then any other.
     fn event(&mut self) -> u8 {
         let ints = self.p.interrupts;
         let pick = |c: &mut crate::rng::Choices<'_>, f: &dyn Fn(EventSource) -> bool| {
@@ -122,11 +122,17 @@ impl Gen<'_, '_> {
         };
         let hsc = self.hsc_counters.clone();
         let hsc_weight = if hsc.is_empty() { 0 } else { 4 };
-        let choice = match self.c.weighted(&[4, 4, 1, 1, hsc_weight]) {
+        let pulse = self.pulse_channels.clone();
+        let pulse_weight = if pulse.is_empty() { 0 } else { 3 };
+        let choice = match self.c.weighted(&[4, 4, 1, 1, hsc_weight, pulse_weight]) {
             0 => pick(self.c, &|s| matches!(s, EventSource::InputEdge { .. })),
             1 => pick(self.c, &|s| matches!(s, EventSource::Timed { .. })),
             2 => pick(self.c, &|s| matches!(s, EventSource::TimerReached { .. })),
             3 => pick(self.c, &|_| true),
+            5 => pick(
+                self.c,
+                &|s| matches!(s, EventSource::PulseOutput { channel } if pulse.contains(&channel)),
+            ),
             _ => pick(
                 self.c,
                 &|s| matches!(s, EventSource::HighSpeedCounter { counter, .. } if hsc.contains(&counter)),

@@ -24,6 +24,7 @@ pub mod omron;
 pub mod operands;
 pub mod params;
 pub mod programs;
+pub mod pulse;
 pub mod stimulus;
 
 use crate::rng::Choices;
@@ -180,6 +181,8 @@ pub(crate) struct Gen<'c, 'a> {
     pub(crate) int_routines: Vec<(PouId, u16)>,
     /// The high-speed counters the program defines.
     pub(crate) hsc_counters: Vec<u8>,
+    /// The pulse output channels the program drives.
+    pub(crate) pulse_channels: Vec<u8>,
     /// Wild-jump labels of the current POU not yet placed.
     pub(crate) pending_wild: Vec<LabelId>,
     /// Wild-jump labels of the current POU already placed (targets of backward jumps).
@@ -212,6 +215,7 @@ impl<'c, 'a> Gen<'c, 'a> {
             in_interrupt: false,
             int_routines: Vec::new(),
             hsc_counters: Vec::new(),
+            pulse_channels: Vec::new(),
             pending_wild: Vec::new(),
             placed_wild: Vec::new(),
             params: Vec::new(),
@@ -293,6 +297,7 @@ impl<'c, 'a> Gen<'c, 'a> {
         }
         self.int_routines = self.plan_interrupts(1 + plan.len());
         self.hsc_counters = self.plan_hsc();
+        self.pulse_channels = self.plan_pulse();
         let mut pous = Vec::with_capacity(self.n_pous as usize);
         self.pou = Program::MAIN;
         self.main_body(&plan);

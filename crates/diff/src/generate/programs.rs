@@ -22,6 +22,9 @@ impl Gen<'_, '_> {
         if !self.hsc_counters.is_empty() {
             self.hsc_setup();
         }
+        if !self.pulse_channels.is_empty() {
+            self.pulse_setup();
+        }
         if !self.int_routines.is_empty() {
             self.interrupt_setup();
         }
@@ -118,6 +121,7 @@ impl Gen<'_, '_> {
             }, // wild jump
             if self.int_routines.is_empty() { 0 } else { 3 }, // interrupt instruction
             if self.hsc_counters.is_empty() { 0 } else { 3 }, // high-speed counter
+            if self.pulse_channels.is_empty() { 0 } else { 3 }, // pulse output
             if self.has_ext() { 6 } else { 0 }, // tables, text, strings, clock, PID
         ];
         self.place_wild(ctx);
@@ -156,6 +160,7 @@ impl Gen<'_, '_> {
             14 => self.wild_jump(),
             15 => self.interrupt_network(),
             16 => self.hsc_network(),
+            17 => self.pulse_network(),
             _ => self.ext_network(),
         }
     }

@@ -20,6 +20,7 @@
 use super::{attached, queue};
 use crate::hsc::{self, Counter};
 use crate::mem;
+use crate::pulse::Generator;
 use crate::timer::TofPhase;
 use stljit_core::interrupt::{self, EventSource};
 use stljit_core::ir::TimerKind;
@@ -83,10 +84,13 @@ impl Happening for TimedInterrupt {
     }
 }
 
-/// The happening sources in `source_rank` order (§3.6.3): the high-speed counters HSC0–HSC5
-/// (`crate::hsc`), then the timed interrupts. The ports and pulse outputs come before the
-/// counters when they are simulated.
+/// The happening sources in `source_rank` order (§3.6.3): the pulse outputs PTO0–PTO2
+/// (`crate::pulse`), the high-speed counters HSC0–HSC5 (`crate::hsc`), then the timed
+/// interrupts. The ports come first when they are simulated.
 pub static HAPPENINGS: &[&dyn Happening] = &[
+    &Generator { n: 0 },
+    &Generator { n: 1 },
+    &Generator { n: 2 },
     &Counter { n: 0 },
     &Counter { n: 1 },
     &Counter { n: 2 },
