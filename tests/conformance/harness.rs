@@ -210,6 +210,8 @@ struct ScanSpec {
     last_err: Option<u16>,
     /// High-speed counter activity before the scan (`hsc = { 0 = 10 }`).
     hsc: Vec<(u8, i32)>,
+    /// Bytes arriving on a serial port in the interval before the scan (`rx = { 0 = [79] }`).
+    rx: Vec<(u8, Vec<u8>)>,
 }
 
 /// An expected value: a raw bit pattern, or a real compared by value (NaN matches NaN).
@@ -345,6 +347,7 @@ fn run(
     let mut feed = super::hsc_feed::Feed {
         inner: engine,
         scans: case.scans.iter().map(|s| s.hsc.clone()).collect(),
+        rx: case.scans.iter().map(|s| s.rx.clone()).collect(),
         k: 0,
     };
     let mut sim = Simulation::new(&mut feed, image, case.scan_ms).map_err(|e| e.to_string())?;
@@ -591,7 +594,7 @@ const CASE_KEYS: &[&str] = &[
     "rtc_start",
 ];
 const SCAN_KEYS: &[&str] = &[
-    "scan", "t_ms", "inputs", "expect", "frame", "status", "fatal", "last_err", "hsc",
+    "scan", "t_ms", "inputs", "expect", "frame", "status", "fatal", "last_err", "hsc", "rx",
 ];
 
 fn check_keys(t: &Table, allowed: &[&str], what: &str) -> Result<(), String> {
@@ -773,9 +776,9 @@ fn parse_scan(
         None => None,
         Some(v) => Some(u16::try_from(v).map_err(|_| "`last_err` must fit 16 bits".to_string())?),
     };
-    let hsc = super::hsc_feed::parse(&table("hsc")?)?;
     Ok(ScanSpec {
-        hsc,
+        hsc: super::hsc_feed::parse(&table("hsc")?)?,
+        rx: super::hsc_feed::parse_rx(&table("rx")?)?,
         inputs,
         expect,
         frames,

@@ -81,9 +81,9 @@ pub enum EventSource {
 }
 
 impl EventSource {
-    /// Whether the simulator raises events of this source. Pulse outputs and communication
-    /// are not simulated yet (their instructions are rejected as not supported), so their
-    /// events can be attached but never occur.
+    /// Whether the simulator raises events of this source. Pulse outputs are not simulated
+    /// yet (their instructions are rejected as not supported), so their events can be
+    /// attached but never occur.
     pub fn simulated(self) -> bool {
         matches!(
             self,
@@ -91,6 +91,7 @@ impl EventSource {
                 | EventSource::Timed { .. }
                 | EventSource::TimerReached { .. }
                 | EventSource::HighSpeedCounter { .. }
+                | EventSource::Communication
         )
     }
 }

@@ -251,6 +251,9 @@ record_fields! {
     }
 }
 
+mod comm_records; // the §10 records, offsets and sizes
+pub use comm_records::{NET_JOB_SIZE, NetJob, PORT_STATE_SIZE, PortState};
+
 /// Default loop budget per scan (spec §2.5).
 pub const DEFAULT_LOOP_LIMIT: u32 = 65_536;
 
@@ -281,6 +284,10 @@ pub struct Layout {
     pub instr: u32,
     /// The high-speed counters' private state, see [`HscState`].
     pub hsc: u32,
+    /// The serial ports' state ([`PortState`]) and the network job slots ([`NetJob`]).
+    pub ports: u32,
+    /// The network job slots ([`NetJob`]).
+    pub net_jobs: u32,
     /// Total image size in bytes.
     pub size: u32,
     block_size: [u32; Block::ALL.len()],
@@ -341,6 +348,7 @@ impl Layout {
             Block::Hsc,
             HSC_STATE_SIZE * profile.hsc.counters.len() as u32,
         );
+        let (ports, net_jobs) = comm_records::take_blocks(profile, &mut take);
         Layout {
             profile: profile.id,
             area_base,
@@ -355,6 +363,8 @@ impl Layout {
             queue,
             instr,
             hsc,
+            ports,
+            net_jobs,
             size: next,
             block_size,
         }
@@ -459,6 +469,8 @@ impl Layout {
             Block::Queue => self.queue,
             Block::Instr => self.instr,
             Block::Hsc => self.hsc,
+            Block::Ports => self.ports,
+            Block::NetJobs => self.net_jobs,
         }
     }
 
@@ -537,11 +549,15 @@ pub enum Block {
     /// The high-speed counters' private state, one [`HscState`] record per counter of the
     /// profile's table.
     Hsc,
+    /// The serial ports' [`PortState`] and the [`NetJob`] slots (none on Omron profiles).
+    Ports,
+    /// The network job slots.
+    NetJobs,
 }
 
 impl Block {
     /// Every block, in layout order.
-    pub const ALL: [Block; 10] = [
+    pub const ALL: [Block; 12] = [
         Block::Edges,
         Block::TimerState,
         Block::CounterState,
@@ -552,6 +568,8 @@ impl Block {
         Block::Queue,
         Block::Instr,
         Block::Hsc,
+        Block::Ports,
+        Block::NetJobs,
     ];
 
     /// A short name for reports (`timer state`).
@@ -567,6 +585,8 @@ impl Block {
             Block::Queue => "interrupt queue",
             Block::Instr => "clock and PID state",
             Block::Hsc => "high-speed counter state",
+            Block::Ports => "serial port state",
+            Block::NetJobs => "network jobs",
         }
     }
 
@@ -580,6 +600,8 @@ impl Block {
             Block::Queue => Some((QUEUE_ENTRY_SIZE, QueueEntry::FIELDS)),
             Block::Instr => Some((INSTR_STATE_SIZE, InstrState::FIELDS)),
             Block::Hsc => Some((HSC_STATE_SIZE, HscState::FIELDS)),
+            Block::Ports => Some((PORT_STATE_SIZE, PortState::FIELDS)),
+            Block::NetJobs => Some((NET_JOB_SIZE, NetJob::FIELDS)),
             Block::Edges | Block::PhysIn | Block::PhysOut => None,
         }
     }

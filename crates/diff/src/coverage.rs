@@ -296,6 +296,7 @@ fn ext_mnemonic(b: &ExtBox) -> &'static str {
         ExtBox::Pid { .. } => "PID",
         ExtBox::HscDefine { .. } => "HDEF",
         ExtBox::Hsc { .. } => "HSC",
+        ExtBox::Comm { op, .. } => op.mnemonic(),
     }
 }
 

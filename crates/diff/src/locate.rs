@@ -74,6 +74,15 @@ pub enum Place {
         /// Byte inside the field.
         byte: u32,
     },
+    /// A field of serial port `n`'s state or of network job slot `n`, and the byte inside it.
+    Comm {
+        /// Port or job slot number.
+        n: u32,
+        /// Field name.
+        field: &'static str,
+        /// Byte inside the field.
+        byte: u32,
+    },
     /// A field of high-speed counter `n`'s state, and the byte inside it.
     Hsc {
         /// Counter number.
@@ -137,9 +146,16 @@ impl Place {
                 field: at.name.unwrap_or("(pad)"),
                 byte: at.byte,
             },
+            (Block::Ports | Block::NetJobs, Some(at)) => Place::Comm {
+                n: at.record,
+                field: at.name.unwrap_or("(pad)"),
+                byte: at.byte,
+            },
             // Record blocks always name their bytes; a block without fields is matched above.
             (
                 Block::Hsc
+                | Block::Ports
+                | Block::NetJobs
                 | Block::TimerState
                 | Block::CounterState
                 | Block::Sched
@@ -218,6 +234,7 @@ impl fmt::Display for Place {
             Place::PhysOut(n) => write!(f, "physical output byte {n}"),
             Place::Instr { field, byte } => write!(f, "InstrState.{field} byte {byte}"),
             Place::Hsc { n, field, byte } => write!(f, "HSC{n} HscState.{field} byte {byte}"),
+            Place::Comm { n, field, byte } => write!(f, "port/job {n} {field} byte {byte}"),
             Place::Padding(o) => write!(f, "padding at {o:#x}"),
         }
     }

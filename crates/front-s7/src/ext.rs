@@ -16,7 +16,7 @@ use stljit_core::ir::{
 use stljit_source::{Code, clip};
 
 /// A byte address starting a run (buffer, clock buffer): no constants or accumulators.
-const fn run(out: bool) -> Val {
+pub(crate) const fn run(out: bool) -> Val {
     let v = if out {
         Val::output(Byte)
     } else {
@@ -514,6 +514,10 @@ pub(crate) fn print_ext(x: &ExtBox) -> String {
         ExtBox::Pid { table, lp } => format!("PID {}, {lp}", b(*table)),
         ExtBox::HscDefine { counter, mode } => format!("HDEF {counter}, {mode}"),
         ExtBox::Hsc { counter } => format!("HSC {counter}"),
+        ExtBox::Comm { op, table, port } if op.has_port() => {
+            format!("{} {}, {port}", op.mnemonic(), b(*table))
+        }
+        ExtBox::Comm { op, table, .. } => format!("{} {}", op.mnemonic(), b(*table)),
     }
 }
 

@@ -89,9 +89,9 @@ impl Lowerer<'_> {
                 t,
                 format!("event {n} ({}) never occurs in the simulation", info.what),
                 Some(
-                    "pulse outputs and ports are not simulated yet; only input edges \
-                     (0-7), timed interrupts (10, 11), T32/T96 (21, 22) and the high-speed \
-                     counters raise events"
+                    "pulse outputs are not simulated yet; only input edges (0-7), timed \
+                     interrupts (10, 11), T32/T96 (21, 22), the high-speed counters and the \
+                     serial ports raise events"
                         .into(),
                 ),
             );

@@ -488,6 +488,7 @@ impl<'s> Lowerer<'s> {
             Group::Interrupt => return self.interrupt(ps, m, line),
             Group::Ext => return self.ext(ps, m, line),
             Group::Hsc => return self.hsc(ps, m, line),
+            Group::Comm => return self.comm(ps, m, line),
             Group::StrCompare => return self.str_compare(ps, m, line),
         };
         self.emit(ps, op);

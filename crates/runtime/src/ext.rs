@@ -263,6 +263,9 @@ pub fn execute(
             hsc::control(img, layout, *counter)?;
             Ok(true)
         }
+        ExtBox::Comm { op, table, port } => {
+            crate::comm::execute(img, layout, *op, table, *port, frame)
+        }
     }
 }
 

@@ -2,7 +2,7 @@
 //! resets of step 5, [`end`] does steps 6–8. Both engines call exactly these two functions, so
 //! time, SMB0, the clock-driven timer refresh and the output copy exist once.
 //!
-//! A program with interrupt routines or high-speed counters runs the event phases of s7-200-more §3.6.2 inside
+//! A program with interrupt routines, high-speed counters or communication runs the event phases of s7-200-more §3.6.2 inside
 //! [`begin`] ([`crate::interrupt`]): E1 after the time step and the resets (before the inputs
 //! are read), E2 after the clock refresh. The engine passes an [`Isr`] that runs a routine's
 //! body; a fatal error in a routine aborts the scan ([`Begin::Fatal`]).
@@ -82,6 +82,9 @@ pub struct ScanPlan {
     routines: Box<[Option<PouId>]>,
     /// The program defines a high-speed counter, whose steps the event phases apply.
     hsc: bool,
+    /// The program starts communication (XMT, RCV, network jobs), which the event phases
+    /// complete.
+    ports: bool,
 }
 
 impl ScanPlan {
@@ -120,6 +123,7 @@ impl ScanPlan {
             clock_timers: clock_timers.into(),
             routines: routines.into(),
             hsc: program.defines_hsc(),
+            ports: program.uses_ports(),
         }
     }
 
@@ -128,11 +132,11 @@ impl ScanPlan {
         !self.routines.is_empty()
     }
 
-    /// Whether [`begin`] runs the event phases: the program has interrupt routines or
-    /// high-speed counters. An engine's inline scan path (which has no phases) must not be
+    /// Whether [`begin`] runs the event phases: the program has interrupt routines,
+    /// high-speed counters or communication. An engine's inline scan path (which has no phases) must not be
     /// taken then.
     pub fn has_events(&self) -> bool {
-        self.has_interrupts() || self.hsc
+        self.has_interrupts() || self.hsc || self.ports
     }
 
     /// The interrupt routines by number.
@@ -164,6 +168,7 @@ impl ScanPlan {
             clock_timers: (0..n).collect(),
             routines: Box::new([]),
             hsc: false,
+            ports: false,
         }
     }
 }
@@ -307,6 +312,9 @@ pub fn begin(
         }
     }
     // E2 (§3.6.2 step 5): the events of the scan instant.
+    if plan.ports {
+        crate::comm::instant(img, layout);
+    }
     if plan.has_events()
         && interrupt::instant_phase(img, layout, routines, isr, micros(t_ms)).is_err()
     {

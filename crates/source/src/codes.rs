@@ -140,6 +140,8 @@ codes! {
     HscNumber = "E070", Error, "the high-speed counter does not exist on the selected CPU";
     /// HDEF mode the counter does not have.
     HscMode = "E071", Error, "the high-speed counter does not support this mode on the selected CPU";
+    /// Port number not on the CPU.
+    PortNumber = "E080", Error, "the communication port does not exist on the selected CPU, or its SM area lacks the port's registers";
     /// Contact or stack operation consuming an unloaded level.
     StackUnderflow = "W001", Warning, "a contact or ALD/OLD/LPP/LRD consumes a stack level that nothing loaded";
     /// Too many live stack levels.

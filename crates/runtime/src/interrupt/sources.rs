@@ -18,6 +18,7 @@
 //! [`instant`] between the edges and the timers. Then mark its `EventSource` simulated in core.
 
 use super::{attached, queue};
+use crate::comm::{self, NetJobs, Port};
 use crate::hsc::{self, Counter};
 use crate::mem;
 use crate::timer::TofPhase;
@@ -83,10 +84,13 @@ impl Happening for TimedInterrupt {
     }
 }
 
-/// The happening sources in `source_rank` order (§3.6.3): the high-speed counters HSC0–HSC5
-/// (`crate::hsc`), then the timed interrupts. The ports and pulse outputs come before the
-/// counters when they are simulated.
+/// The happening sources in `source_rank` order (§3.6.3): the serial ports 0 and 1
+/// (`crate::comm`, each receive before transmit), the high-speed counters HSC0–HSC5
+/// (`crate::hsc`), the timed interrupts, then the network jobs. The pulse outputs come
+/// between the ports and the counters when they are simulated.
 pub static HAPPENINGS: &[&dyn Happening] = &[
+    &Port { n: 0 },
+    &Port { n: 1 },
     &Counter { n: 0 },
     &Counter { n: 1 },
     &Counter { n: 2 },
@@ -95,6 +99,7 @@ pub static HAPPENINGS: &[&dyn Happening] = &[
     &Counter { n: 5 },
     &TimedInterrupt { channel: 0 },
     &TimedInterrupt { channel: 1 },
+    &NetJobs,
 ];
 
 /// The pending happening with the smallest `(τ, rank)` due at or before `until`: its time and
@@ -112,6 +117,7 @@ pub(crate) fn next_due(img: &[u8], layout: &Layout, until: u64) -> Option<(u64, 
 /// harness's activity in it (the high-speed counters' steps) plan them.
 pub(crate) fn start_interval(img: &mut [u8], layout: &Layout, ta: u64, tb: u64) {
     hsc::start_interval(img, layout, ta, tb);
+    comm::start_rx(img, layout, ta);
 }
 
 /// The instant sources at `T_k` (§3.6.2 step 5): input edges, the high-speed counters' reset
