@@ -22,6 +22,9 @@ impl Gen<'_, '_> {
         if !self.hsc_counters.is_empty() {
             self.hsc_setup();
         }
+        if self.comm {
+            self.comm_setup();
+        }
         if !self.int_routines.is_empty() {
             self.interrupt_setup();
         }
@@ -119,6 +122,7 @@ impl Gen<'_, '_> {
             if self.int_routines.is_empty() { 0 } else { 3 }, // interrupt instruction
             if self.hsc_counters.is_empty() { 0 } else { 3 }, // high-speed counter
             if self.has_ext() { 6 } else { 0 }, // tables, text, strings, clock, PID
+            if self.comm { 4 } else { 0 },  // communication
         ];
         self.place_wild(ctx);
         match self.c.weighted(&weights) {
@@ -156,7 +160,8 @@ impl Gen<'_, '_> {
             14 => self.wild_jump(),
             15 => self.interrupt_network(),
             16 => self.hsc_network(),
-            _ => self.ext_network(),
+            17 => self.ext_network(),
+            _ => self.comm_network(),
         }
     }
 
