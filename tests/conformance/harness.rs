@@ -208,8 +208,8 @@ struct ScanSpec {
     status: ScanStatus,
     fatal: Option<FatalCode>,
     last_err: Option<u16>,
-    /// High-speed counter activity before the scan (`hsc = { 0 = 10 }`).
-    hsc: Vec<(u8, i32)>,
+    /// Counter activity and received bytes before the scan (`hsc = …`, `rx = …`).
+    feed: super::hsc_feed::ScanFeed,
     /// Physical output bits after the scan (`phys_q = { "Q0.0" = 1 }`).
     phys_q: Vec<(String, u32, u8, bool)>,
 }
@@ -345,7 +345,7 @@ fn run(
     }
     let mut feed = super::hsc_feed::Feed {
         inner: engine,
-        scans: case.scans.iter().map(|s| s.hsc.clone()).collect(),
+        scans: case.scans.iter().map(|s| s.feed.clone()).collect(),
         k: 0,
     };
     let mut sim = Simulation::new(&mut feed, image, case.scan_ms).map_err(|e| e.to_string())?;
@@ -593,7 +593,7 @@ const CASE_KEYS: &[&str] = &[
     "rtc_start",
 ];
 const SCAN_KEYS: &[&str] = &[
-    "scan", "t_ms", "inputs", "expect", "frame", "status", "fatal", "last_err", "hsc", "phys_q",
+    "scan", "t_ms", "inputs", "expect", "frame", "status", "fatal", "last_err", "phys_q",
 ];
 
 fn check_keys(t: &Table, allowed: &[&str], what: &str) -> Result<(), String> {
@@ -705,7 +705,7 @@ fn parse_scan(
     resolve: &dyn Fn(&str) -> Result<Address, String>,
     family: Family,
 ) -> Result<ScanSpec, String> {
-    check_keys(row, SCAN_KEYS, "scan")?;
+    check_keys(row, &[SCAN_KEYS, super::hsc_feed::KEYS].concat(), "scan")?;
     if let Some(n) = uint(row, "scan", "scan")?
         && n != k as u64
     {
@@ -775,9 +775,8 @@ fn parse_scan(
         None => None,
         Some(v) => Some(u16::try_from(v).map_err(|_| "`last_err` must fit 16 bits".to_string())?),
     };
-    let hsc = super::hsc_feed::parse(&table("hsc")?)?;
     Ok(ScanSpec {
-        hsc,
+        feed: super::hsc_feed::ScanFeed::parse(row)?,
         phys_q: super::phys_out::parse(&table("phys_q")?)?,
         inputs,
         expect,

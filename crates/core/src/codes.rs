@@ -69,15 +69,19 @@ code_enum! {
         ClockData = 0x0007,
         /// Subroutine nesting exceeded.
         CallNesting = 0x0008,
+        /// XMT or RCV on port 0 while the port transmits or receives (s7-200-more §10.2).
+        PortBusy0 = 0x0009,
         /// HDEF of a high-speed counter that is already defined (§8.1).
         HscRedefined = 0x000A,
+        /// XMT or RCV on port 1 while the port transmits or receives (§10.2).
+        PortBusy1 = 0x000B,
+        /// The CPU has no real-time clock (TODR/TODW on a profile without one, §6.2).
+        NoClock = 0x000C,
         /// PLS changing a running pulse output's mode or time base, or a profile while one
         /// runs (s7-200-more §9.2).
         PulseRedefined = 0x000D,
         /// PLS of a multi-segment PTO profile with 0 segments (§9.2).
         PulseNoSegments = 0x000E,
-        /// The CPU has no real-time clock (TODR/TODW on a profile without one, §6.2).
-        NoClock = 0x000C,
         /// Operand out of range (an S/R/BM* count runs past the area end).
         OperandRange = 0x0091,
         /// Bad count field (SHRB length 0 or above 64). Block-move and FILL counts use
@@ -98,6 +102,8 @@ impl fmt::Display for ErrorCode {
             ErrorCode::HscRedefined => "high-speed counter already defined",
             ErrorCode::PulseRedefined => "pulse output redefined while active",
             ErrorCode::PulseNoSegments => "PTO profile with 0 segments",
+            ErrorCode::PortBusy0 => "simultaneous XMT/RCV on port 0",
+            ErrorCode::PortBusy1 => "simultaneous XMT/RCV on port 1",
             ErrorCode::IndirectAddress => "illegal indirect address",
             ErrorCode::ClockData => "clock data error",
             ErrorCode::CallNesting => "subroutine nesting exceeded",

@@ -83,22 +83,6 @@ pub enum EventSource {
     Communication,
 }
 
-impl EventSource {
-    /// Whether the simulator raises events of this source. Communication is not simulated
-    /// yet (its instructions are rejected as not supported), so its events can be attached but
-    /// never occur.
-    pub fn simulated(self) -> bool {
-        matches!(
-            self,
-            EventSource::InputEdge { .. }
-                | EventSource::Timed { .. }
-                | EventSource::TimerReached { .. }
-                | EventSource::HighSpeedCounter { .. }
-                | EventSource::PulseOutput { .. }
-        )
-    }
-}
-
 /// One interrupt event.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct EventInfo {

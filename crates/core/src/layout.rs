@@ -80,8 +80,11 @@ macro_rules! record_fields {
     };
 }
 
-// The peripherals' records (s7-200-more §8, §9), beside this file to keep it short.
+// The peripherals' records (s7-200-more §8, §9) and the communication records (§10), beside
+// this file to keep it short.
+mod comm_records;
 mod periph;
+pub use comm_records::{NET_JOB_SIZE, NetJob, PORT_STATE_SIZE, PortState};
 pub use periph::{HscState, PulseState};
 
 record_fields! {
@@ -252,6 +255,10 @@ pub struct Layout {
     pub hsc: u32,
     /// The pulse output channels' private state, see [`PulseState`].
     pub pulse: u32,
+    /// The serial ports' state, one [`PortState`] per port.
+    pub ports: u32,
+    /// The network job slots ([`NetJob`]).
+    pub net_jobs: u32,
     /// Total image size in bytes.
     pub size: u32,
     block_size: [u32; Block::ALL.len()],
@@ -316,6 +323,7 @@ impl Layout {
             Block::Pulse,
             PULSE_STATE_SIZE * profile.pulse.channels.len() as u32,
         );
+        let (ports, net_jobs) = comm_records::take_blocks(profile, &mut take);
         Layout {
             profile: profile.id,
             area_base,
@@ -331,6 +339,8 @@ impl Layout {
             instr,
             hsc,
             pulse,
+            ports,
+            net_jobs,
             size: next,
             block_size,
         }
@@ -443,6 +453,8 @@ impl Layout {
             Block::Instr => self.instr,
             Block::Hsc => self.hsc,
             Block::Pulse => self.pulse,
+            Block::Ports => self.ports,
+            Block::NetJobs => self.net_jobs,
         }
     }
 
@@ -524,11 +536,16 @@ pub enum Block {
     /// The pulse output channels' private state, one [`PulseState`] record per channel of
     /// the profile's table.
     Pulse,
+    /// The serial ports' private state, one [`PortState`] record per port (none on Omron
+    /// profiles).
+    Ports,
+    /// The network job slots, one [`NetJob`] record each (none on Omron profiles).
+    NetJobs,
 }
 
 impl Block {
     /// Every block, in layout order.
-    pub const ALL: [Block; 11] = [
+    pub const ALL: [Block; 13] = [
         Block::Edges,
         Block::TimerState,
         Block::CounterState,
@@ -540,6 +557,8 @@ impl Block {
         Block::Instr,
         Block::Hsc,
         Block::Pulse,
+        Block::Ports,
+        Block::NetJobs,
     ];
 
     /// A short name for reports (`timer state`).
@@ -556,6 +575,8 @@ impl Block {
             Block::Instr => "clock and PID state",
             Block::Hsc => "high-speed counter state",
             Block::Pulse => "pulse output state",
+            Block::Ports => "serial port state",
+            Block::NetJobs => "network jobs",
         }
     }
 
@@ -570,6 +591,8 @@ impl Block {
             Block::Instr => Some((INSTR_STATE_SIZE, InstrState::FIELDS)),
             Block::Hsc => Some((HSC_STATE_SIZE, HscState::FIELDS)),
             Block::Pulse => Some((PULSE_STATE_SIZE, PulseState::FIELDS)),
+            Block::Ports => Some((PORT_STATE_SIZE, PortState::FIELDS)),
+            Block::NetJobs => Some((NET_JOB_SIZE, NetJob::FIELDS)),
             Block::Edges | Block::PhysIn | Block::PhysOut => None,
         }
     }

@@ -10,6 +10,7 @@
 
 pub mod area;
 pub mod codes;
+pub mod comm;
 pub mod hsc;
 pub mod index;
 pub mod instr_set;

@@ -297,6 +297,7 @@ fn ext_mnemonic(b: &ExtBox) -> &'static str {
         ExtBox::HscDefine { .. } => "HDEF",
         ExtBox::Hsc { .. } => "HSC",
         ExtBox::Pls { .. } => "PLS",
+        ExtBox::Comm { op, .. } => op.mnemonic(),
     }
 }
 

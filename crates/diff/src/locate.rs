@@ -74,6 +74,15 @@ pub enum Place {
         /// Byte inside the field.
         byte: u32,
     },
+    /// A field of serial port `n`'s state or of network job slot `n`, and the byte inside it.
+    Comm {
+        /// Port or job slot number.
+        n: u32,
+        /// Field name.
+        field: &'static str,
+        /// Byte inside the field.
+        byte: u32,
+    },
     /// A field of high-speed counter `n`'s state, and the byte inside it.
     Hsc {
         /// Counter number.
@@ -151,10 +160,17 @@ impl Place {
                 field: at.name.unwrap_or("(pad)"),
                 byte: at.byte,
             },
+            (Block::Ports | Block::NetJobs, Some(at)) => Place::Comm {
+                n: at.record,
+                field: at.name.unwrap_or("(pad)"),
+                byte: at.byte,
+            },
             // Record blocks always name their bytes; a block without fields is matched above.
             (
                 Block::Hsc
                 | Block::Pulse
+                | Block::Ports
+                | Block::NetJobs
                 | Block::TimerState
                 | Block::CounterState
                 | Block::Sched
@@ -236,6 +252,7 @@ impl fmt::Display for Place {
             Place::Pulse { n, field, byte } => {
                 write!(f, "PLS{n} PulseState.{field} byte {byte}")
             }
+            Place::Comm { n, field, byte } => write!(f, "port/job {n} {field} byte {byte}"),
             Place::Padding(o) => write!(f, "padding at {o:#x}"),
         }
     }

@@ -16,7 +16,7 @@ use stljit_core::ir::{
 use stljit_source::{Code, clip};
 
 /// A byte address starting a run (buffer, clock buffer): no constants or accumulators.
-const fn run(out: bool) -> Val {
+pub(crate) const fn run(out: bool) -> Val {
     let v = if out {
         Val::output(Byte)
     } else {
@@ -515,6 +515,10 @@ pub(crate) fn print_ext(x: &ExtBox) -> String {
         ExtBox::HscDefine { counter, mode } => format!("HDEF {counter}, {mode}"),
         ExtBox::Hsc { counter } => format!("HSC {counter}"),
         ExtBox::Pls { channel } => format!("PLS {channel}"),
+        ExtBox::Comm { op, table, port } if op.has_port() => {
+            format!("{} {}, {port}", op.mnemonic(), b(*table))
+        }
+        ExtBox::Comm { op, table, .. } => format!("{} {}", op.mnemonic(), b(*table)),
     }
 }
 

@@ -1,9 +1,9 @@
 //! The interrupt instructions (s7-200-more §3.4): `ATCH INT, EVNT`, `DTCH EVNT`, `CEVNT EVNT`,
 //! `ENI` and `DISI`, with their operand checks: the routine by number, `INTn`, MicroWIN's
 //! default symbol `INT_n`, its block name or a symbol naming `INTn` (E050 for anything else);
-//! the event a constant among the selected CPU's (E051, Appendix A); a warning for an attached
-//! event the simulation never raises (W050) and for ENI/DISI directly in an interrupt routine
-//! (W051: run-time error 0x0004). `RETI`/`CRETI` are program control (`control.rs`).
+//! the event a constant among the selected CPU's (E051, Appendix A); a warning for ENI/DISI
+//! directly in an interrupt routine (W051: run-time error 0x0004). Every event source is
+//! simulated, so any attached event can occur. `RETI`/`CRETI` are program control (`control.rs`).
 
 use crate::classes::R;
 use crate::lexer::{Line, Tok};
@@ -23,7 +23,7 @@ impl Lowerer<'_> {
             "ATCH" => {
                 self.arity(line, 2, 2)?;
                 let routine = self.routine_operand(o[0]);
-                let event = self.event_operand(o[1], true);
+                let event = self.event_operand(o[1]);
                 IntOp::Attach {
                     routine: routine?,
                     event: event?,
@@ -31,7 +31,7 @@ impl Lowerer<'_> {
             }
             "DTCH" | "CEVNT" => {
                 self.arity(line, 1, 1)?;
-                let event = self.event_operand(o[0], false)?;
+                let event = self.event_operand(o[0])?;
                 if m == "DTCH" {
                     IntOp::Detach { event }
                 } else {
@@ -63,15 +63,14 @@ impl Lowerer<'_> {
         Ok(())
     }
 
-    /// An event number operand: a constant the CPU has (E051). With `attach`, an event whose
-    /// source the simulation does not run gets W050.
-    fn event_operand(&mut self, t: Tok<'_>, attach: bool) -> R<u8> {
+    /// An event number operand: a constant the CPU has (E051).
+    fn event_operand(&mut self, t: Tok<'_>) -> R<u8> {
         let n = self
             .cx
             .number(t, 0, 255, "event number", Code::EventNumber)?;
         let n = u8::try_from(n).unwrap_or(u8::MAX);
         let profile = self.cx.profile;
-        let Some(info) = interrupt::event(n).filter(|_| profile.interrupts.has(n)) else {
+        if interrupt::event(n).is_none() || !profile.interrupts.has(n) {
             return Err(self.cx.report(
                 Code::EventNumber,
                 t,
@@ -82,19 +81,6 @@ impl Lowerer<'_> {
                     event_list(profile)
                 )),
             ));
-        };
-        if attach && !info.source.simulated() {
-            self.cx.report(
-                Code::EventNotSimulated,
-                t,
-                format!("event {n} ({}) never occurs in the simulation", info.what),
-                Some(
-                    "ports are not simulated yet; only input edges (0-7), timed \
-                     interrupts (10, 11), T32/T96 (21, 22), the high-speed counters and the \
-                     pulse outputs raise events"
-                        .into(),
-                ),
-            );
         }
         Ok(n)
     }

@@ -14,6 +14,7 @@
 
 mod address;
 mod classes;
+mod comm;
 mod control;
 mod data_block;
 mod ext;

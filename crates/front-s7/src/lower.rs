@@ -489,6 +489,7 @@ impl<'s> Lowerer<'s> {
             Group::Ext => return self.ext(ps, m, line),
             Group::Hsc => return self.hsc(ps, m, line),
             Group::Pls => return self.pls(ps, line),
+            Group::Comm => return self.comm(ps, m, line),
             Group::StrCompare => return self.str_compare(ps, m, line),
         };
         self.emit(ps, op);

@@ -73,6 +73,9 @@ pub(crate) enum Group {
     Hsc,
     /// `PLS` (s7-200-more §9), lowered by `Lowerer::pls`.
     Pls,
+    /// `XMT`, `RCV`, `NETR`, `NETW`, `GET`, `PUT`, `GPA`, `SPA` (s7-200-more §10), lowered by
+    /// `Lowerer::comm`.
+    Comm,
 }
 
 /// The program-control routines (spec §4.13).
@@ -348,6 +351,14 @@ pub(crate) const TABLE: &[(&str, Group)] = &[
     ("HDEF", Group::Hsc),
     ("HSC", Group::Hsc),
     ("PLS", Group::Pls),
+    ("XMT", Group::Comm),
+    ("RCV", Group::Comm),
+    ("NETR", Group::Comm),
+    ("NETW", Group::Comm),
+    ("GET", Group::Comm),
+    ("PUT", Group::Comm),
+    ("GPA", Group::Comm),
+    ("SPA", Group::Comm),
     ("LDS=", Group::StrCompare),
     ("LDS<>", Group::StrCompare),
     ("AS=", Group::StrCompare),
@@ -417,12 +428,14 @@ pub(crate) fn not_yet(set: InstrSet) -> &'static str {
         | InstrSet::Clock
         | InstrSet::Pid
         | InstrSet::HighSpeedCounters
-        | InstrSet::PulseOutputs => "this instruction is not implemented yet",
-        InstrSet::Freeport
+        | InstrSet::PulseOutputs
+        | InstrSet::Freeport
         | InstrSet::PortAddress
         | InstrSet::NetReadWrite
-        | InstrSet::GetPut
-        | InstrSet::IpAddress => "communication is not simulated yet (s7-200-more §10)",
+        | InstrSet::GetPut => "this instruction is not implemented yet",
+        InstrSet::IpAddress => {
+            "the IP address instructions GIP/SIP are out of scope (s7-200-more §10.6)"
+        }
         InstrSet::IntervalTimers | InstrSet::DiagnosticLed => {
             "this instruction is not implemented yet"
         }
@@ -587,11 +600,11 @@ mod tests {
     fn every_entry_lowers() {
         for &(m, group) in TABLE {
             let mut clean = false;
-            // The A5 first; PLS exists on the Siemens CPUs only.
-            'search: for (before, after, cpu) in CONTEXTS
-                .iter()
-                .flat_map(|&(b, a)| [(b, a, ProfileId::A5), (b, a, ProfileId::S7_200)])
-            {
+            // The A5 first; PLS exists on the Siemens CPUs only, GET/PUT on the SMART only
+            // (E033 elsewhere).
+            'search: for (before, after, cpu) in CONTEXTS.iter().flat_map(|&(b, a)| {
+                [ProfileId::A5, ProfileId::S7_200, ProfileId::Smart].map(|cpu| (b, a, cpu))
+            }) {
                 for ops in OPERANDS {
                     let text = format!("{before}{m} {ops}\n{after}");
                     let c = compile_str("t.stl", &text, cpu);
@@ -664,8 +677,8 @@ mod tests {
         assert_eq!(group("NOPE"), None);
     }
 
-    /// Every mnemonic of the families issue 13 parts C and D implement is lowered, so none of them
-    /// reaches "not supported yet".
+    /// Every mnemonic of the families issue 13 parts C and D, pulse outputs (§9) and
+    /// communication (§10) implement is lowered, so none of them reaches "not supported yet".
     #[test]
     fn implemented_families_are_complete() {
         for (set, ms) in FAMILIES {
@@ -678,6 +691,10 @@ mod tests {
                     | InstrSet::Pid
                     | InstrSet::HighSpeedCounters
                     | InstrSet::PulseOutputs
+                    | InstrSet::Freeport
+                    | InstrSet::PortAddress
+                    | InstrSet::NetReadWrite
+                    | InstrSet::GetPut
             ) {
                 for m in *ms {
                     assert!(group(m).is_some(), "{m} is not lowered");

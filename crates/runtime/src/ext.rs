@@ -267,6 +267,9 @@ pub fn execute(
             pulse::execute(img, layout, *channel)?;
             Ok(true)
         }
+        ExtBox::Comm { op, table, port } => {
+            crate::comm::execute(img, layout, *op, table, *port, frame)
+        }
     }
 }
 

@@ -270,6 +270,12 @@ impl Image {
         crate::hsc::set_rate(&mut self.bytes, &self.layout, n, steps);
     }
 
+    /// Queues `bytes` to arrive on serial port `port` during the next scan interval
+    /// (s7-200-more §10.4, §11.2 `rx`): [`crate::comm::queue_rx`].
+    pub fn queue_rx(&mut self, port: u8, bytes: &[u8]) {
+        crate::comm::queue_rx(&mut self.bytes, &self.layout, port, bytes);
+    }
+
     /// The physical output copy, as written at the end of the last scan.
     pub fn phys_out(&self) -> &[u8] {
         let (at, n) = (

@@ -19,6 +19,7 @@
 pub mod arith;
 pub mod bitops;
 pub mod block;
+pub mod comm;
 pub mod compare;
 pub mod convert;
 pub mod counter;

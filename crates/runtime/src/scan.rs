@@ -2,9 +2,9 @@
 //! resets of step 5, [`end`] does steps 6–8. Both engines call exactly these two functions, so
 //! time, SMB0, the clock-driven timer refresh and the output copy exist once.
 //!
-//! A program with interrupt routines or high-speed counters runs the event phases of s7-200-more §3.6.2 inside
-//! [`begin`] ([`crate::interrupt`]): E1 after the time step and the resets (before the inputs
-//! are read), E2 after the clock refresh. The engine passes an [`Isr`] that runs a routine's
+//! A program with interrupt routines, high-speed counters, pulse outputs or communication runs
+//! the event phases of s7-200-more §3.6.2 inside [`begin`] ([`crate::interrupt`]): E1 after the
+//! time step and the resets (before the inputs are read), E2 after the clock refresh. The engine passes an [`Isr`] that runs a routine's
 //! body; a fatal error in a routine aborts the scan ([`Begin::Fatal`]).
 //!
 //! Rules fixed here (spec leaves them open):
@@ -84,6 +84,9 @@ pub struct ScanPlan {
     hsc: bool,
     /// The program has a PLS, whose pulse trains the event phases advance.
     pulse: bool,
+    /// The program starts communication (XMT, RCV, network jobs), which the event phases
+    /// complete.
+    ports: bool,
 }
 
 impl ScanPlan {
@@ -123,6 +126,7 @@ impl ScanPlan {
             routines: routines.into(),
             hsc: program.defines_hsc(),
             pulse: program.uses_pulse(),
+            ports: program.uses_ports(),
         }
     }
 
@@ -132,10 +136,10 @@ impl ScanPlan {
     }
 
     /// Whether [`begin`] runs the event phases: the program has interrupt routines,
-    /// high-speed counters or pulse outputs. An engine's inline scan path (which has no phases)
-    /// must not be taken then.
+    /// high-speed counters, pulse outputs or communication. An engine's inline scan path
+    /// (which has no phases) must not be taken then.
     pub fn has_events(&self) -> bool {
-        self.has_interrupts() || self.hsc || self.pulse
+        self.has_interrupts() || self.hsc || self.pulse || self.ports
     }
 
     /// The interrupt routines by number.
@@ -168,6 +172,7 @@ impl ScanPlan {
             routines: Box::new([]),
             hsc: false,
             pulse: false,
+            ports: false,
         }
     }
 }
@@ -315,6 +320,9 @@ pub fn begin(
         }
     }
     // E2 (§3.6.2 step 5): the events of the scan instant.
+    if plan.ports {
+        crate::comm::instant(img, layout);
+    }
     if plan.has_events()
         && interrupt::instant_phase(img, layout, routines, isr, micros(t_ms)).is_err()
     {

@@ -142,6 +142,8 @@ codes! {
     HscMode = "E071", Error, "the high-speed counter does not support this mode on the selected CPU";
     /// Pulse output number not on the CPU.
     PulseNumber = "E072", Error, "the pulse output does not exist on the selected CPU";
+    /// Port number not on the CPU.
+    PortNumber = "E080", Error, "the communication port does not exist on the selected CPU, or its SM area lacks the port's registers";
     /// Contact or stack operation consuming an unloaded level.
     StackUnderflow = "W001", Warning, "a contact or ALD/OLD/LPP/LRD consumes a stack level that nothing loaded";
     /// Too many live stack levels.
@@ -152,8 +154,6 @@ codes! {
     UnprefixedLocal = "W004", Warning, "a name without `#` is taken as the block's local variable";
     /// `Symbol:Address` with a symbol no table defines.
     UncheckedSymbol = "W005", Warning, "in a `symbol:address` operand the symbol is not defined; the address is used";
-    /// An attached event the simulation never raises.
-    EventNotSimulated = "W050", Warning, "the attached event never occurs in the simulation: its source (a port) is not simulated yet";
     /// ENI/DISI in an interrupt routine.
     EnableInInterrupt = "W051", Warning, "ENI or DISI in an interrupt routine has no effect (run-time error 16#0004)";
     /// HDEF in an interrupt routine.

@@ -243,6 +243,76 @@ pub enum ExtBox {
         /// Q, a channel of the profile's table.
         channel: u8,
     },
+    /// A communication instruction of §10 (XMT, RCV, NETR, NETW, GET, PUT, GPA, SPA): the
+    /// runtime's `comm` module is its semantics.
+    Comm {
+        /// Which instruction.
+        op: CommOp,
+        /// TBL (XMT/RCV buffer, NETR/NETW/GET/PUT table) or ADDR (GPA/SPA byte).
+        table: Operand,
+        /// PORT, 0 or 1 (0 for GET/PUT, which use the Ethernet port).
+        port: u8,
+    },
+}
+
+/// The communication instructions (s7-200-more §10).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CommOp {
+    /// `XMT TBL, PORT` (§10.2).
+    Transmit,
+    /// `RCV TBL, PORT` (§10.3).
+    Receive,
+    /// `NETR TBL, PORT` (§10.5).
+    NetRead,
+    /// `NETW TBL, PORT` (§10.5).
+    NetWrite,
+    /// `GET TBL` (§10.5).
+    Get,
+    /// `PUT TBL` (§10.5).
+    Put,
+    /// `GPA ADDR, PORT` (§10.6).
+    GetAddress,
+    /// `SPA ADDR, PORT` (§10.6).
+    SetAddress,
+}
+
+impl CommOp {
+    /// Every op, in mnemonic order.
+    pub const ALL: [CommOp; 8] = [
+        CommOp::Transmit,
+        CommOp::Receive,
+        CommOp::NetRead,
+        CommOp::NetWrite,
+        CommOp::Get,
+        CommOp::Put,
+        CommOp::GetAddress,
+        CommOp::SetAddress,
+    ];
+
+    /// The STL mnemonic.
+    pub fn mnemonic(self) -> &'static str {
+        match self {
+            CommOp::Transmit => "XMT",
+            CommOp::Receive => "RCV",
+            CommOp::NetRead => "NETR",
+            CommOp::NetWrite => "NETW",
+            CommOp::Get => "GET",
+            CommOp::Put => "PUT",
+            CommOp::GetAddress => "GPA",
+            CommOp::SetAddress => "SPA",
+        }
+    }
+
+    /// Whether the instruction names a port (all but GET/PUT).
+    pub fn has_port(self) -> bool {
+        !matches!(self, CommOp::Get | CommOp::Put)
+    }
+
+    /// Whether it starts activity that completes later in virtual time (so the scan must run
+    /// the event phases): all but GPA/SPA.
+    pub fn timed(self) -> bool {
+        !matches!(self, CommOp::GetAddress | CommOp::SetAddress)
+    }
 }
 
 /// A string compare contact (`LDS=`, `AS<>`, `OS=`, …; §5.6): evaluated regardless of power

@@ -28,7 +28,9 @@ mod uses;
 mod verify;
 
 pub use call::{Arg, ArgDir, ArgValue, CallArgs};
-pub use ext::{ClockOp, ExtBox, FindRel, MAX_STRING, NumType, StackForm, StrArg, StrCompare};
+pub use ext::{
+    ClockOp, CommOp, ExtBox, FindRel, MAX_STRING, NumType, StackForm, StrArg, StrCompare,
+};
 pub use facts::{GateEffect, StackEffect, Successors, enclosing_loop, loop_entered_by};
 pub use omron::{
     BoxOperands, IndexOffset, IndexStep, OmronArith, OmronBox, OmronCounterKind, OmronRef,
@@ -104,6 +106,14 @@ impl Program {
             .iter()
             .flat_map(|p| &p.ops)
             .any(|op| matches!(op, Op::Ext(b) if matches!(**b, ExtBox::Pls { .. })))
+    }
+
+    /// Whether the program starts communication that completes later (XMT, RCV, NETR, NETW,
+    /// GET, PUT): then the scan runs the event phases, which time it (s7-200-more §10).
+    pub fn uses_ports(&self) -> bool {
+        self.pous.iter().flat_map(|p| &p.ops).any(
+            |op| matches!(op, Op::Ext(b) if matches!(**b, ExtBox::Comm { op, .. } if op.timed())),
+        )
     }
 
     /// Total number of IR ops over all POUs.

@@ -5,7 +5,9 @@
 //! [`Conversion::widths`].
 
 use super::{BitLoc, Operand};
-use super::{BoxOp, ClockOp, Contact, Conversion, ExtBox, OmronBox, Op, StrArg, StrCompare};
+use super::{
+    BoxOp, ClockOp, CommOp, Contact, Conversion, ExtBox, OmronBox, Op, StrArg, StrCompare,
+};
 use crate::area::Width;
 
 /// How an op uses a location.
@@ -238,6 +240,13 @@ impl ExtBox {
             ExtBox::Pid { table, .. } => vec![update(*table, DWord)],
             // Fixed registers (the control byte, SMD, HC), no operands.
             ExtBox::HscDefine { .. } | ExtBox::Hsc { .. } | ExtBox::Pls { .. } => vec![],
+            // The buffer or table is read (and its status byte written) now; a receive or a
+            // network job writes it later, in the event phases, outside any op.
+            ExtBox::Comm { op, table, .. } => match op {
+                CommOp::GetAddress => vec![write(*table, Byte)],
+                CommOp::SetAddress | CommOp::Transmit => vec![read(*table, Byte)],
+                _ => vec![update(*table, Byte)],
+            },
         };
         Uses::of(&list)
     }

@@ -10,7 +10,7 @@
 use super::error::{ParseErrorKind, Result};
 use super::lex::{Line, Word};
 use super::print::{Flag, Opd, Quoted};
-use crate::ir::{ClockOp, ExtBox, FindRel, NumType, StackForm, StrArg, StrCompare};
+use crate::ir::{ClockOp, CommOp, ExtBox, FindRel, NumType, StackForm, StrArg, StrCompare};
 use std::fmt::{self, Write as _};
 
 /// Bytes as a quoted string of Latin-1 characters.
@@ -136,6 +136,9 @@ pub(super) fn write_ext(out: &mut String, b: &ExtBox) -> fmt::Result {
         ExtBox::HscDefine { counter, mode } => write!(out, "hsc_define hsc={counter} mode={mode}"),
         ExtBox::Hsc { counter } => write!(out, "hsc hsc={counter}"),
         ExtBox::Pls { channel } => write!(out, "pls q={channel}"),
+        ExtBox::Comm { op, table, port } => {
+            write!(out, "comm op={op:?} table={} port={port}", Opd(*table))
+        }
     }
 }
 
@@ -248,6 +251,11 @@ pub(super) fn parse_ext(line: &mut Line<'_>) -> Result<ExtBox> {
         "pid" => ExtBox::Pid {
             table: opd(line, "table")?,
             lp: line.field("loop")?.number("PID loop")?,
+        },
+        "comm" => ExtBox::Comm {
+            op: line.field("op")?.choice(&CommOp::ALL, "communication op")?,
+            table: opd(line, "table")?,
+            port: line.field("port")?.number("port")?,
         },
         "hsc_define" => ExtBox::HscDefine {
             counter: line.field("hsc")?.number("counter")?,

@@ -15,6 +15,7 @@
 //! generated as mnemonic text instead, by [`omron`] (its module says why).
 
 pub mod boxes;
+pub mod comm;
 pub mod control;
 pub mod ext;
 pub mod ext_data;
@@ -183,6 +184,8 @@ pub(crate) struct Gen<'c, 'a> {
     pub(crate) hsc_counters: Vec<u8>,
     /// The pulse output channels the program drives.
     pub(crate) pulse_channels: Vec<u8>,
+    /// The program communicates (s7-200-more §10).
+    pub(crate) comm: bool,
     /// Wild-jump labels of the current POU not yet placed.
     pub(crate) pending_wild: Vec<LabelId>,
     /// Wild-jump labels of the current POU already placed (targets of backward jumps).
@@ -216,6 +219,7 @@ impl<'c, 'a> Gen<'c, 'a> {
             int_routines: Vec::new(),
             hsc_counters: Vec::new(),
             pulse_channels: Vec::new(),
+            comm: false,
             pending_wild: Vec::new(),
             placed_wild: Vec::new(),
             params: Vec::new(),
@@ -298,6 +302,7 @@ impl<'c, 'a> Gen<'c, 'a> {
         self.int_routines = self.plan_interrupts(1 + plan.len());
         self.hsc_counters = self.plan_hsc();
         self.pulse_channels = self.plan_pulse();
+        self.comm = self.plan_comm();
         let mut pous = Vec::with_capacity(self.n_pous as usize);
         self.pou = Program::MAIN;
         self.main_body(&plan);

@@ -25,6 +25,9 @@ impl Gen<'_, '_> {
         if !self.pulse_channels.is_empty() {
             self.pulse_setup();
         }
+        if self.comm {
+            self.comm_setup();
+        }
         if !self.int_routines.is_empty() {
             self.interrupt_setup();
         }
@@ -123,6 +126,7 @@ impl Gen<'_, '_> {
             if self.hsc_counters.is_empty() { 0 } else { 3 }, // high-speed counter
             if self.pulse_channels.is_empty() { 0 } else { 3 }, // pulse output
             if self.has_ext() { 6 } else { 0 }, // tables, text, strings, clock, PID
+            if self.comm { 4 } else { 0 },  // communication
         ];
         self.place_wild(ctx);
         match self.c.weighted(&weights) {
@@ -161,7 +165,8 @@ impl Gen<'_, '_> {
             15 => self.interrupt_network(),
             16 => self.hsc_network(),
             17 => self.pulse_network(),
-            _ => self.ext_network(),
+            18 => self.ext_network(),
+            _ => self.comm_network(),
         }
     }
 

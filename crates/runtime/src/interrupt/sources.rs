@@ -13,11 +13,12 @@
 //! [`Happening`]: put its state in the image (a new `record_fields!` record in
 //! `stljit_core::layout`), implement `next` (from that state) and `apply` (step it, then
 //! `super::queue::raise` the events it causes, at `τ`), and insert it into [`HAPPENINGS`] at its
-//! `source_rank` (§3.6.3: ports, pulse outputs, HSC0–HSC5, then the timed interrupts). A
-//! source whose level changes at the scan instant (HSC reset/start inputs) adds its check to
-//! [`instant`] between the edges and the timers. Then mark its `EventSource` simulated in core.
+//! `source_rank` (§3.6.3: ports, pulse outputs, HSC0–HSC5, the timed interrupts, then the
+//! network jobs). A source whose level changes at the scan instant (HSC reset/start inputs)
+//! adds its check to [`instant`] between the edges and the timers.
 
 use super::{attached, queue};
+use crate::comm::{self, NetJobs, Port};
 use crate::hsc::{self, Counter};
 use crate::mem;
 use crate::pulse::Generator;
@@ -84,10 +85,13 @@ impl Happening for TimedInterrupt {
     }
 }
 
-/// The happening sources in `source_rank` order (§3.6.3): the pulse outputs PTO0–PTO2
-/// (`crate::pulse`), the high-speed counters HSC0–HSC5 (`crate::hsc`), then the timed
-/// interrupts. The ports come first when they are simulated.
+/// The happening sources in `source_rank` order (§3.6.3): the serial ports 0 and 1
+/// (`crate::comm`, each receive before transmit), the pulse outputs PTO0–PTO2
+/// (`crate::pulse`), the high-speed counters HSC0–HSC5 (`crate::hsc`), the timed interrupts,
+/// then the network jobs.
 pub static HAPPENINGS: &[&dyn Happening] = &[
+    &Port { n: 0 },
+    &Port { n: 1 },
     &Generator { n: 0 },
     &Generator { n: 1 },
     &Generator { n: 2 },
@@ -99,6 +103,7 @@ pub static HAPPENINGS: &[&dyn Happening] = &[
     &Counter { n: 5 },
     &TimedInterrupt { channel: 0 },
     &TimedInterrupt { channel: 1 },
+    &NetJobs,
 ];
 
 /// The pending happening with the smallest `(τ, rank)` due at or before `until`: its time and
@@ -113,9 +118,11 @@ pub(crate) fn next_due(img: &[u8], layout: &Layout, until: u64) -> Option<(u64, 
 }
 
 /// The start of the interval `(ta, tb]` (µs): the sources whose happenings depend on the
-/// harness's activity in it (the high-speed counters' steps) plan them.
+/// harness's activity in it (the high-speed counters' steps, the received characters) plan
+/// them.
 pub(crate) fn start_interval(img: &mut [u8], layout: &Layout, ta: u64, tb: u64) {
     hsc::start_interval(img, layout, ta, tb);
+    comm::start_rx(img, layout, ta);
 }
 
 /// The instant sources at `T_k` (§3.6.2 step 5): input edges, the high-speed counters' reset
