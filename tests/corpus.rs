@@ -219,7 +219,7 @@ fn run_both_engines(
     };
     let mut choices = Choices::from_seed(13);
     let case = Case {
-        stimulus: stimulus::generate(&mut choices, program.profile, 200),
+        stimulus: stimulus::for_program(&mut choices, program, 200),
         program: program.clone(),
     };
     let engines = [EngineKind::Interp, EngineKind::Jit(OptLevel::None)];

@@ -44,7 +44,7 @@ pub(crate) fn main(args: Args) -> anyhow::Result<ExitCode> {
     };
     let mut choices = Choices::from_seed(args.seed);
     let case = Case {
-        stimulus: stimulus::generate(&mut choices, program.profile, args.scans),
+        stimulus: stimulus::for_program(&mut choices, program, args.scans),
         program: program.clone(),
     };
     let engines = [EngineKind::Interp, EngineKind::Jit(args.opt.into())];

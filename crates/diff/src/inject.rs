@@ -152,6 +152,7 @@ mod tests {
                     ai: vec![0; 16],
                     writes: vec![],
                     hsc: vec![],
+                    rx: vec![],
                 })
                 .collect(),
         }

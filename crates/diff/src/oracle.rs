@@ -175,14 +175,18 @@ pub fn start_image(program: &Program, opts: &RunOptions) -> Image {
 }
 
 /// Writes one scan's stimulus into an image: physical inputs, AI words, HMI writes, high-speed
-/// counter activity. Writes that do not fit the image are skipped (a reproducer edited by hand
-/// must not crash the oracle).
+/// counter activity, received bytes. Writes that do not fit the image are skipped (a reproducer
+/// edited by hand must not crash the oracle; `Image::queue_rx` ignores a port the image has
+/// not).
 pub fn apply_stimulus(img: &mut Image, s: &ScanInput) {
     img.set_inputs(&s.inputs);
     for (n, &steps) in s.hsc.iter().enumerate() {
         if let Ok(n) = u8::try_from(n) {
             img.set_hsc_rate(n, steps);
         }
+    }
+    for (port, bytes) in &s.rx {
+        img.queue_rx(*port, bytes);
     }
     for (i, &w) in s.ai.iter().enumerate() {
         let loc = Loc {

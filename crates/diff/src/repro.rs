@@ -6,14 +6,15 @@
 //! program.omr    for an Omron profile instead: the program printed as Omron mnemonics
 //! stimulus.csv   inputs, analog inputs and HMI writes per scan, in stljit_sim's CSV format,
 //!                addresses spelled in the program's dialect (Omron: input words `0`, `1`)
-//! meta           key = value lines: profile, seed, engines, loop limit, the time of every scan
-//!                and (`hscN = …`) high-speed counter N's activity per scan
+//! meta           key = value lines: profile, seed, engines, loop limit, the time of every scan,
+//!                (`hscN = …`) high-speed counter N's activity per scan and (`rxN = …`) the
+//!                bytes received on serial port N per scan, hex, `-` for none
 //! README.txt     what failed: the scan, the first differing bytes with both values, the seed
 //! ```
 //! `stimulus.csv` uses scan numbers; scan times need not be regular, so they are listed in
 //! `meta` (`times = ...`), which is what [`read_case`] uses to replay a case exactly.
 
-use crate::generate::{Case, HmiWrite, ScanInput, Stimulus};
+use crate::generate::{Case, HmiWrite, Received, ScanInput, Stimulus};
 use crate::oracle::{FUZZ_LOOP_LIMIT, Finding};
 use std::collections::BTreeMap;
 use std::fmt::{self, Write as _};
@@ -216,7 +217,73 @@ pub fn meta_text(meta: &Meta, s: &Stimulus) -> String {
             let _ = writeln!(out, "hsc{n} = {}", v.join(" "));
         }
     }
+    // Received bytes per port and scan (no CSV column either).
+    let mut ports: Vec<u8> = s
+        .scans
+        .iter()
+        .flat_map(|x| x.rx.iter().map(|r| r.0))
+        .collect();
+    ports.sort_unstable();
+    ports.dedup();
+    for port in ports {
+        let v: Vec<String> = s
+            .scans
+            .iter()
+            .map(|x| match x.rx.iter().find(|r| r.0 == port) {
+                Some((_, bytes)) if !bytes.is_empty() => {
+                    bytes.iter().map(|b| format!("{b:02X}")).collect()
+                }
+                _ => "-".to_owned(),
+            })
+            .collect();
+        let _ = writeln!(out, "rx{port} = {}", v.join(" "));
+    }
     out
+}
+
+/// The received bytes of a `meta` file (`rxN = 4F4B0D - 41`): per scan, `(port, bytes)` in
+/// ascending port order, as the generator gives them.
+fn parse_rx(text: &str, scans: usize) -> Result<Vec<Received>, ReproError> {
+    let mut out = vec![Vec::new(); scans];
+    let mut lines: Vec<(u8, &str)> = Vec::new();
+    for (k, v) in text.lines().filter_map(|l| l.split_once('=')) {
+        let Some(n) = k.trim().strip_prefix("rx") else {
+            continue;
+        };
+        let port: u8 = n
+            .parse()
+            .map_err(|_| ReproError::Meta(format!("bad `{}`", k.trim())))?;
+        lines.push((port, v));
+    }
+    lines.sort_by_key(|l| l.0);
+    for (port, v) in lines {
+        for (scan, x) in v.split_whitespace().enumerate() {
+            let bytes = if x == "-" {
+                Vec::new()
+            } else {
+                hex_bytes(x).ok_or_else(|| ReproError::Meta(format!("bad rx bytes `{x}`")))?
+            };
+            if let Some(row) = out.get_mut(scan)
+                && !bytes.is_empty()
+                && row.iter().all(|r: &(u8, Vec<u8>)| r.0 != port)
+            {
+                row.push((port, bytes));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Hex digit pairs (`4F4B`) as bytes; `None` for an odd length or a non-hex digit.
+fn hex_bytes(x: &str) -> Option<Vec<u8>> {
+    let digits = x.as_bytes();
+    if !digits.len().is_multiple_of(2) {
+        return None;
+    }
+    digits
+        .chunks(2)
+        .map(|d| u8::from_str_radix(std::str::from_utf8(d).ok()?, 16).ok())
+        .collect()
 }
 
 /// The high-speed counter activity of a `meta` file: per scan, one value per counter of the
@@ -414,6 +481,7 @@ pub fn parse_stimulus(
             ai: ai.clone(),
             writes,
             hsc: Vec::new(),
+            rx: Vec::new(),
         });
     }
     Ok(Stimulus { scans })
@@ -421,7 +489,8 @@ pub fn parse_stimulus(
 
 /// Reads a reproducer directory back into a case.
 pub fn read_case(dir: &Path) -> Result<(Case, Meta), ReproError> {
-    let (meta, times) = parse_meta(&read(dir, "meta")?)?;
+    let meta_text = read(dir, "meta")?;
+    let (meta, times) = parse_meta(&meta_text)?;
     let program = text::parse(&read(dir, "program.ir")?).map_err(ReproError::Program)?;
     if program.profile != meta.profile {
         return Err(ReproError::Meta(format!(
@@ -432,9 +501,11 @@ pub fn read_case(dir: &Path) -> Result<(Case, Meta), ReproError> {
     }
     let mut stimulus = parse_stimulus(meta.profile, &read(dir, "stimulus.csv")?, &times)?;
     let counters = meta.profile.profile().hsc.counters.len();
-    let hsc = parse_hsc(&read(dir, "meta")?, stimulus.scans.len(), counters)?;
-    for (scan, h) in stimulus.scans.iter_mut().zip(hsc) {
+    let hsc = parse_hsc(&meta_text, stimulus.scans.len(), counters)?;
+    let rx = parse_rx(&meta_text, stimulus.scans.len())?;
+    for ((scan, h), r) in stimulus.scans.iter_mut().zip(hsc).zip(rx) {
         scan.hsc = h;
+        scan.rx = r;
     }
     Ok((Case { program, stimulus }, meta))
 }
@@ -462,6 +533,29 @@ mod tests {
             reads_back(&dir, &case_from_seed(seed, &GenConfig::default()), seed);
         }
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// Received bytes (`rxN = …` in `meta`) read back exactly, in the generator's shape.
+    #[test]
+    fn received_bytes_read_back() {
+        let dir = std::env::temp_dir().join(format!("stljit-repro-rx-{}", std::process::id()));
+        let mut cases = 0;
+        for seed in 0..400 {
+            let case = case_from_seed(seed, &GenConfig::default());
+            if case.stimulus.scans.iter().any(|s| !s.rx.is_empty()) {
+                cases += 1;
+                reads_back(&dir, &case, seed);
+            }
+        }
+        assert!(cases > 10, "only {cases} cases with received bytes");
+        let _ = std::fs::remove_dir_all(&dir);
+        assert_eq!(
+            parse_rx("rx1 = 41 -\nrx0 = - 0D0A\n", 2).unwrap(),
+            vec![vec![(1, vec![0x41])], vec![(0, vec![0x0D, 0x0A])]]
+        );
+        for bad in ["rx0 = 4", "rx0 = 4G", "rxA = 41", "rx0 = é1"] {
+            assert!(parse_rx(bad, 1).is_err(), "{bad}");
+        }
     }
 
     /// Omron cases too: the stimulus in Omron spelling (input words, D/W/H addresses) reads

@@ -147,7 +147,8 @@ impl Shrinker<'_> {
     }
 
     fn simplify_stimulus(&mut self) {
-        let simplifications: [fn(&mut ScanInput); 3] = [
+        let simplifications: [fn(&mut ScanInput); 4] = [
+            |s| s.rx.clear(),
             |s| s.writes.clear(),
             |s| s.ai.iter_mut().for_each(|w| *w = 0),
             |s| s.inputs.iter_mut().for_each(|b| *b = 0),

@@ -1,9 +1,10 @@
 //! Communication (s7-200-more §10): a first-scan network that puts port 0 (and sometimes
-//! port 1) into Freeport or PPI master mode, loads the receive registers, a transmit buffer
-//! and network tables, and communication networks anywhere (a routine included): XMT, RCV,
-//! NETR/NETW or GET/PUT as the CPU has them, GPA/SPA, mode changes and reads of the status
-//! bytes. The stimulus brings received bytes ([`super::stimulus`]); the interrupt generator
-//! attaches the port events now and then (they are simulated sources).
+//! port 1) into Freeport or PPI master mode, loads the receive registers (and often starts a
+//! receive), a transmit buffer and network tables, and communication networks anywhere (a
+//! routine included): XMT, RCV, NETR/NETW or GET/PUT as the CPU has them, GPA/SPA, mode
+//! changes and reads of the status bytes. The stimulus brings received bytes ([`super::stimulus::for_program`], built around
+//! [`START_CHARS`] and [`END_CHARS`]); the interrupt generator attaches the port events of a
+//! communicating program often, other programs' now and then.
 
 use super::Gen;
 use super::programs::{on, sm};
@@ -17,6 +18,12 @@ use stljit_core::{Area, Family, Width};
 const XMT_BUF: u32 = 900;
 const RCV_BUF: [u32; 2] = [940, 980];
 const NET_TABLE: u32 = 1020;
+
+/// The start characters (SMB88/SMB188) the setup network chooses from; the stimulus builds
+/// received messages around the same ones.
+pub(crate) const START_CHARS: [u8; 3] = [0x02, 0x41, 0x00];
+/// The end characters (SMB89/SMB189) the setup network chooses from.
+pub(crate) const END_CHARS: [u8; 3] = [0x0D, 0x03, 0x42];
 
 fn at(area: Area, offset: u32) -> Operand {
     Operand::Mem(Loc { area, offset })
@@ -58,7 +65,15 @@ impl Gen<'_, '_> {
             }
             let m = self.mode_byte();
             self.mov(Width::Byte, m, at(Area::SM, p.mode_smb));
-            self.receive_registers(p.rcv_smb);
+            // Often a receive starts at once, so the stimulus's bytes find one waiting.
+            if self.receive_registers(p.rcv_smb) && self.c.chance(1, 2) {
+                let table = at(Area::V, RCV_BUF[usize::from(p.port)]);
+                self.emit(Op::Ext(Box::new(ExtBox::Comm {
+                    op: CommOp::Receive,
+                    table,
+                    port: p.port,
+                })));
+            }
         }
         let n = self.c.range(0, 6);
         self.mov(Width::Byte, n, at(Area::V, XMT_BUF));
@@ -70,10 +85,11 @@ impl Gen<'_, '_> {
     }
 
     /// The receive registers of the port whose status byte is SMB`base` (if the CPU's SM area
-    /// has them): control byte, start/end characters, idle and timer times, maximum count.
-    fn receive_registers(&mut self, base: u32) {
+    /// has them, which it returns): control byte, start/end characters, idle and timer times,
+    /// maximum count.
+    fn receive_registers(&mut self, base: u32) -> bool {
         if base + rcv::MAX_COUNT >= self.p.area_size(Area::SM) {
-            return;
+            return false;
         }
         let ctl = match self.c.weighted(&[3, 3, 2, 1]) {
             0 => 0xB0, // en, ec, il: any response to an end character
@@ -81,8 +97,8 @@ impl Gen<'_, '_> {
             2 => 0x90 | (self.c.bits() & 0x2C),
             _ => self.c.bits() & 0xFF,
         };
-        let sc = self.c.pick(&[0x02, 0x41, 0x00]);
-        let ec = self.c.pick(&[0x0D, 0x03, 0x42]);
+        let sc = u32::from(self.c.pick(&START_CHARS));
+        let ec = u32::from(self.c.pick(&END_CHARS));
         let idle = self.c.pick(&[0, 0, 1, 3]);
         let timer = self.c.pick(&[0, 2, 5, 20]);
         let max = self.c.pick(&[1, 3, 8, 20, 0]);
@@ -92,6 +108,7 @@ impl Gen<'_, '_> {
         self.mov(Width::Word, idle, at(Area::SM, base + rcv::IDLE_MS));
         self.mov(Width::Word, timer, at(Area::SM, base + rcv::TIMER_MS));
         self.mov(Width::Byte, max, at(Area::SM, base + rcv::MAX_COUNT));
+        true
     }
 
     /// A network table at [`NET_TABLE`], valid for both layouts in most programs: remote

@@ -108,8 +108,8 @@ impl Gen<'_, '_> {
     }
 
     /// An event of the profile: mostly an input edge, a timed interrupt, (S7-200) a timer
-    /// event or an event of a counter or pulse output the program uses, which the simulation
-    /// raises; now and then any other.
+    /// event or an event of a counter, pulse output or serial port the program uses; now and
+    /// then any other (every event source is simulated, so any may occur).
     fn event(&mut self) -> u8 {
         let ints = self.p.interrupts;
         let pick = |c: &mut crate::rng::Choices<'_>, f: &dyn Fn(EventSource) -> bool| {
@@ -124,7 +124,9 @@ impl Gen<'_, '_> {
         let hsc_weight = if hsc.is_empty() { 0 } else { 4 };
         let pulse = self.pulse_channels.clone();
         let pulse_weight = if pulse.is_empty() { 0 } else { 3 };
-        let choice = match self.c.weighted(&[4, 4, 1, 1, hsc_weight, pulse_weight]) {
+        let comm_weight = if self.comm { 3 } else { 0 };
+        let weights = [4, 4, 1, 1, hsc_weight, pulse_weight, comm_weight];
+        let choice = match self.c.weighted(&weights) {
             0 => pick(self.c, &|s| matches!(s, EventSource::InputEdge { .. })),
             1 => pick(self.c, &|s| matches!(s, EventSource::Timed { .. })),
             2 => pick(self.c, &|s| matches!(s, EventSource::TimerReached { .. })),
@@ -133,6 +135,7 @@ impl Gen<'_, '_> {
                 self.c,
                 &|s| matches!(s, EventSource::PulseOutput { channel } if pulse.contains(&channel)),
             ),
+            6 => pick(self.c, &|s| matches!(s, EventSource::Communication)),
             _ => pick(
                 self.c,
                 &|s| matches!(s, EventSource::HighSpeedCounter { counter, .. } if hsc.contains(&counter)),

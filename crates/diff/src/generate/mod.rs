@@ -36,7 +36,7 @@ use stljit_core::ir::{
 };
 use stljit_core::{CounterId, CpuProfile, Family, LabelId, OpIdx, PouId, ProfileId, TimerId};
 
-pub use stimulus::{HmiWrite, ScanInput, Stimulus};
+pub use stimulus::{HmiWrite, Received, ScanInput, Stimulus};
 
 /// Knobs of the generator. The defaults aim at many small, realistic programs per second.
 #[derive(Clone, Debug)]
@@ -123,7 +123,7 @@ pub fn generate_in(
 /// Generates a case from any choice stream.
 pub fn generate_case(c: &mut Choices<'_>, cfg: &GenConfig) -> Case {
     let program = generate_program(c, cfg);
-    let stimulus = stimulus::generate(c, program.profile, cfg.scans);
+    let stimulus = stimulus::for_program(c, &program, cfg.scans);
     Case { program, stimulus }
 }
 

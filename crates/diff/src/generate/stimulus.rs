@@ -1,8 +1,11 @@
-//! Per-scan stimulus: virtual time, input bytes, analog input words and HMI writes.
+//! Per-scan stimulus: virtual time, input bytes, analog input words, HMI writes, high-speed
+//! counter activity and, for programs that communicate, the bytes received on the serial ports.
 //!
 //! Inputs change the way a machine's do (a few bits per scan, now and then a whole byte); times
 //! are regular, irregular (including repeated instants) or jump far ahead, so that every timer
-//! resolution sees zero, one and many intervals per scan.
+//! resolution sees zero, one and many intervals per scan. Received bytes ([`for_program`]) come
+//! in short messages built around the start and end characters the communication generator
+//! configures, now and then as noise or as a burst that overflows the port's receive FIFO.
 //!
 //! Omron profiles ([`Family::Omron`]): the inputs are the CIO input words 0–1 (the profile's
 //! input bytes), scan times are 1 to 200 ms (fixed, irregular, or fixed with a rare pause of
@@ -11,7 +14,8 @@
 //! words and bits.
 
 use crate::rng::Choices;
-use stljit_core::ir::{Address, BitLoc, Loc};
+use stljit_core::comm::PORTS;
+use stljit_core::ir::{Address, BitLoc, Loc, Program};
 use stljit_core::omron::{WordArea, bit_of_word, word_loc};
 use stljit_core::{Area, Family, ProfileId, Width};
 
@@ -23,6 +27,10 @@ pub struct HmiWrite {
     /// The value (a bit uses bit 0).
     pub value: u32,
 }
+
+/// The bytes arriving on the serial ports in one scan interval (s7-200-more §10.4, §11.2 `rx`),
+/// as `(port, bytes)`: ports ascending, each at most once, never an empty list.
+pub type Received = Vec<(u8, Vec<u8>)>;
 
 /// Everything the outside world supplies for one scan.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -38,6 +46,8 @@ pub struct ScanInput {
     /// High-speed counter activity in the interval before the scan, by counter number
     /// (s7-200-more §8.4; missing counters: 0).
     pub hsc: Vec<i32>,
+    /// The bytes arriving on the serial ports in the interval before the scan.
+    pub rx: Received,
 }
 
 /// The stimulus of a whole run.
@@ -149,9 +159,67 @@ pub fn generate(c: &mut Choices<'_>, profile: ProfileId, scans: u32) -> Stimulus
             ai: ai.clone(),
             writes,
             hsc: hsc.clone(),
+            rx: Vec::new(),
         });
     }
     Stimulus { scans: out }
+}
+
+/// Generates `scans` scans of stimulus for `program`: [`generate`] for its profile, then, if the
+/// program starts communication ([`Program::uses_ports`]), received bytes in about one scan in
+/// three. A program without ports gets exactly [`generate`]'s stimulus.
+pub fn for_program(c: &mut Choices<'_>, program: &Program, scans: u32) -> Stimulus {
+    let mut stimulus = generate(c, program.profile, scans);
+    if program.uses_ports() {
+        for scan in &mut stimulus.scans {
+            scan.rx = received(c);
+        }
+    }
+    stimulus
+}
+
+/// One scan's received bytes: none in two scans of three, else mostly port 0, now and then
+/// port 1 or both.
+fn received(c: &mut Choices<'_>) -> Received {
+    if !c.chance(1, 3) {
+        return Vec::new();
+    }
+    let ports: &[u8] = match c.weighted(&[6, 2, 1]) {
+        0 => &[PORTS[0].port],
+        1 => &[PORTS[1].port],
+        _ => &[PORTS[0].port, PORTS[1].port],
+    };
+    ports.iter().map(|&p| (p, message(c))).collect()
+}
+
+/// A message: a start character, a few characters, an end character (each part optional), or
+/// noise, or a burst longer than the receive FIFO (s7-200-more §10.4: the excess is dropped).
+fn message(c: &mut Choices<'_>) -> Vec<u8> {
+    use super::comm::{END_CHARS, START_CHARS};
+    let mut m = Vec::new();
+    match c.weighted(&[8, 2, 1]) {
+        0 => {
+            if c.chance(2, 3) {
+                m.push(c.pick(&START_CHARS));
+            }
+            for _ in 0..c.range(0, 6) {
+                m.push(if c.chance(1, 6) {
+                    c.pick(&END_CHARS)
+                } else {
+                    c.range(0x20, 0x7E) as u8
+                });
+            }
+            if c.chance(2, 3) {
+                m.push(c.pick(&END_CHARS));
+            }
+        }
+        1 => m.extend((0..c.range(1, 40)).map(|_| c.bits() as u8)),
+        _ => m.extend((0..c.range(200, 320)).map(|_| c.bits() as u8)),
+    }
+    if m.is_empty() {
+        m.push(c.pick(&END_CHARS));
+    }
+    m
 }
 
 fn hmi_write(c: &mut Choices<'_>, profile: ProfileId) -> HmiWrite {

@@ -298,6 +298,46 @@ fn high_speed_counters_count() {
     assert!(3 * counted > programs, "{counted} of {programs} counted");
 }
 
+/// Programs that communicate get received bytes, and the ports take them in: in most of them
+/// characters leave a receive FIFO (s7-200-more §10.4), and in some an RCV stores them.
+#[test]
+fn received_bytes_reach_the_ports() {
+    use stljit_core::comm::PORTS;
+    use stljit_core::layout::PortState;
+    let (mut with_rx, mut consumed, mut stored) = (0, 0, 0);
+    for seed in 0..600 {
+        let case = case_from_seed(seed, &GenConfig::default());
+        let has_rx = case.stimulus.scans.iter().any(|s| !s.rx.is_empty());
+        assert!(
+            case.program.uses_ports() || !has_rx,
+            "seed {seed}: received bytes for a program without ports"
+        );
+        with_rx += usize::from(has_rx);
+    }
+    let field = |img: &stljit_runtime::Image, port: u8, f: u32| {
+        img.bytes()[img.layout().port_state(port, f) as usize]
+    };
+    let any =
+        |img: &stljit_runtime::Image, f: u32| PORTS.iter().any(|p| field(img, p.port, f) != 0);
+    let stored_now = std::cell::Cell::new(false);
+    let programs = run_generated(
+        0..600,
+        Program::uses_ports,
+        |img, _| stored_now.set(stored_now.get() | any(img, PortState::RX_COUNT)),
+        |img| {
+            consumed += usize::from(any(img, PortState::FIFO_HEAD));
+            stored += usize::from(stored_now.replace(false));
+        },
+    );
+    assert!(programs > 40, "{programs} programs with ports");
+    assert!(2 * with_rx > programs, "{with_rx} of {programs} got bytes");
+    assert!(2 * consumed > programs, "{consumed} of {programs} received");
+    assert!(
+        5 * stored > programs,
+        "{stored} of {programs} stored a character"
+    );
+}
+
 /// The §4–§7 instructions reach their error paths in generated programs: a table or string
 /// past its area (0x0091), an index 0 (0x009B), a clock write with a bad date (0x0007), a clock
 /// on the A5, which has none (0x000C), and a bad pointer (0x0006).
