@@ -232,7 +232,9 @@ fn and_parts(b: &mut FunctionBuilder<'_>, x: Parts, y: Parts) -> B {
     }
     // x86 folds a 32-bit load (a word contact, see `Lower::test_byte`) into the `and`, `or` or
     // `andn` that consumes it unshifted and not complemented, so the other operand moves.
-    let (v, w, pos) = if foldable(b, w, ny, nx) && !foldable(b, v, nx, ny) {
+    // Where both are foldable loads, the operand still folds: shifting the accumulator (one
+    // load kept in a register) saves the operand's separate load.
+    let (v, w, pos) = if foldable(b, w, ny, nx) {
         (align(b, v, pos, q), w, q)
     } else {
         (v, align(b, w, q, pos), pos)
