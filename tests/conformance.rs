@@ -13,9 +13,9 @@
 //! A case may carry `known_failure = "reason"`: its failures are printed loudly but do not fail
 //! the test; a known failure that starts passing *does* fail, so the marker cannot go stale.
 
+pub(crate) mod feeds;
 pub(crate) mod frames;
 pub(crate) mod harness;
-pub(crate) mod hsc_feed;
 pub(crate) mod phys_out;
 
 use harness::{ENGINES, Failure, HarnessError, run_case_text, run_dir};

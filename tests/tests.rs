@@ -3,6 +3,7 @@
 
 mod conformance;
 mod corpus;
+mod demo_station;
 mod diagnostics;
 mod examples;
 mod fuzz_smoke;

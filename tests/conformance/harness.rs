@@ -209,7 +209,7 @@ struct ScanSpec {
     fatal: Option<FatalCode>,
     last_err: Option<u16>,
     /// Counter activity and received bytes before the scan (`hsc = …`, `rx = …`).
-    feed: super::hsc_feed::ScanFeed,
+    feed: super::feeds::ScanFeed,
     /// Physical output bits after the scan (`phys_q = { "Q0.0" = 1 }`).
     phys_q: Vec<(String, u32, u8, bool)>,
 }
@@ -343,7 +343,7 @@ fn run(
     if let Some(start) = case.rtc_start {
         image.set_clock_start(start);
     }
-    let mut feed = super::hsc_feed::Feed {
+    let mut feed = super::feeds::Feed {
         inner: engine,
         scans: case.scans.iter().map(|s| s.feed.clone()).collect(),
         k: 0,
@@ -705,7 +705,7 @@ fn parse_scan(
     resolve: &dyn Fn(&str) -> Result<Address, String>,
     family: Family,
 ) -> Result<ScanSpec, String> {
-    check_keys(row, &[SCAN_KEYS, super::hsc_feed::KEYS].concat(), "scan")?;
+    check_keys(row, &[SCAN_KEYS, super::feeds::KEYS].concat(), "scan")?;
     if let Some(n) = uint(row, "scan", "scan")?
         && n != k as u64
     {
@@ -776,7 +776,7 @@ fn parse_scan(
         Some(v) => Some(u16::try_from(v).map_err(|_| "`last_err` must fit 16 bits".to_string())?),
     };
     Ok(ScanSpec {
-        feed: super::hsc_feed::ScanFeed::parse(row)?,
+        feed: super::feeds::ScanFeed::parse(row)?,
         phys_q: super::phys_out::parse(&table("phys_q")?)?,
         inputs,
         expect,
