@@ -4,10 +4,10 @@
 //! program.ir     the program in the IR text form (`stljit_core::text`); what is read back
 //! program.stl    the same program printed as S7 STL, for reading only (never read back);
 //! program.omr    for an Omron profile instead: the program printed as Omron mnemonics
-//! stimulus.csv   inputs, analog inputs and HMI writes per scan, in stljit_sim's CSV format,
-//!                addresses spelled in the program's dialect (Omron: input words `0`, `1`)
+//! stimulus.csv   inputs, analog inputs, HMI writes and high-speed counter steps (`HSCn`) per
+//!                scan, in stljit_sim's CSV format, addresses spelled in the program's dialect
+//!                (Omron: input words `0`, `1`)
 //! meta           key = value lines: profile, seed, engines, loop limit, the time of every scan
-//!                and (`hscN = …`) high-speed counter N's activity per scan
 //! README.txt     what failed: the scan, the first differing bytes with both values, the seed
 //! ```
 //! `stimulus.csv` uses scan numbers; scan times need not be regular, so they are listed in
@@ -139,12 +139,25 @@ pub fn stimulus_csv(profile: ProfileId, s: &Stimulus) -> String {
             cols.push(w.addr);
         }
     }
+    // High-speed counters with any activity: `HSCn` columns, held like the inputs.
+    let counters = s.scans.iter().map(|x| x.hsc.len()).max().unwrap_or(0);
+    let hsc: Vec<usize> = (0..counters)
+        .filter(|&n| {
+            s.scans
+                .iter()
+                .any(|x| x.hsc.get(n).is_some_and(|&v| v != 0))
+        })
+        .collect();
     let mut out = String::from("scan");
     for c in &cols {
         let _ = write!(out, ",{}", name(profile, c));
     }
+    for n in &hsc {
+        let _ = write!(out, ",HSC{n}");
+    }
     out.push('\n');
     let mut prev: Vec<Option<u32>> = vec![Some(0); cols.len()];
+    let mut prev_hsc = vec![0; hsc.len()];
     for (k, x) in s.scans.iter().enumerate() {
         let cells: Vec<Option<u32>> = cols
             .iter()
@@ -170,7 +183,17 @@ pub fn stimulus_csv(profile: ProfileId, s: &Stimulus) -> String {
                 if held && *v == prev[i] { None } else { *v }
             })
             .collect();
-        if k == 0 || changed.iter().any(Option::is_some) {
+        let steps: Vec<i32> = hsc
+            .iter()
+            .map(|&n| x.hsc.get(n).copied().unwrap_or(0))
+            .collect();
+        let changed_hsc: Vec<Option<i32>> = steps
+            .iter()
+            .zip(&prev_hsc)
+            .map(|(&v, &p)| (v != p).then_some(v))
+            .collect();
+        if k == 0 || changed.iter().any(Option::is_some) || changed_hsc.iter().any(Option::is_some)
+        {
             let _ = write!(out, "{k}");
             for v in &changed {
                 match v {
@@ -180,8 +203,17 @@ pub fn stimulus_csv(profile: ProfileId, s: &Stimulus) -> String {
                     None => out.push(','),
                 }
             }
+            for v in &changed_hsc {
+                match v {
+                    Some(v) => {
+                        let _ = write!(out, ",{v}");
+                    }
+                    None => out.push(','),
+                }
+            }
             out.push('\n');
         }
+        prev_hsc = steps;
         for (i, v) in cells.into_iter().enumerate() {
             if v.is_some() {
                 prev[i] = v;
@@ -203,46 +235,7 @@ pub fn meta_text(meta: &Meta, s: &Stimulus) -> String {
     let _ = writeln!(out, "scans = {}", s.len());
     let times: Vec<String> = s.scans.iter().map(|x| x.t_ms.to_string()).collect();
     let _ = writeln!(out, "times = {}", times.join(" "));
-    // High-speed counter activity per scan (not a CSV column: stljit_sim has none for it).
-    let counters = s.scans.iter().map(|x| x.hsc.len()).max().unwrap_or(0);
-    for n in 0..counters {
-        let v: Vec<i32> = s
-            .scans
-            .iter()
-            .map(|x| x.hsc.get(n).copied().unwrap_or(0))
-            .collect();
-        if v.iter().any(|&x| x != 0) {
-            let v: Vec<String> = v.iter().map(i32::to_string).collect();
-            let _ = writeln!(out, "hsc{n} = {}", v.join(" "));
-        }
-    }
     out
-}
-
-/// The high-speed counter activity of a `meta` file: per scan, one value per counter of the
-/// profile (as the generator gives it).
-fn parse_hsc(text: &str, scans: usize, counters: usize) -> Result<Vec<Vec<i32>>, ReproError> {
-    let mut out = vec![vec![0; counters]; scans];
-    for (k, v) in text.lines().filter_map(|l| l.split_once('=')) {
-        let Some(n) = k.trim().strip_prefix("hsc") else {
-            continue;
-        };
-        let n: usize = n
-            .parse()
-            .map_err(|_| ReproError::Meta(format!("bad `{}`", k.trim())))?;
-        for (scan, x) in v.split_whitespace().enumerate() {
-            let x: i32 = x
-                .parse()
-                .map_err(|_| ReproError::Meta(format!("bad hsc value `{x}`")))?;
-            if let Some(row) = out.get_mut(scan) {
-                if row.len() <= n {
-                    row.resize(n + 1, 0);
-                }
-                row[n] = x;
-            }
-        }
-    }
-    Ok(out)
 }
 
 /// Writes a reproducer directory (created if missing).
@@ -375,14 +368,30 @@ pub fn parse_stimulus(
     }
     let mut inputs = vec![0u8; p.inputs as usize];
     let mut ai = vec![0u16; (p.analog_inputs / 2) as usize];
+    let mut hsc = vec![0i32; p.hsc.counters.len()];
     let mut rows = st.rows().iter().peekable();
     let mut scans = Vec::with_capacity(times.len());
     for (k, &t) in times.iter().enumerate() {
         let mut writes = Vec::new();
         while let Some(row) = rows.next_if(|r| r.at <= k as u64) {
             for (col, cell) in st.columns().iter().zip(&row.cells) {
-                let Some(v) = *cell else { continue };
-                match col.address {
+                let (address, v) = match (col.target, cell.as_ref()) {
+                    (_, None) => continue,
+                    (sim::Target::Address(a), Some(&sim::Cell::Value(v))) => (a, v),
+                    (sim::Target::HscSteps(n), Some(&sim::Cell::Steps(v))) => {
+                        if let Some(h) = hsc.get_mut(usize::from(n)) {
+                            *h = v;
+                        }
+                        continue;
+                    }
+                    _ => {
+                        return Err(ReproError::Stimulus(format!(
+                            "line {}: the fuzz oracle replays no `{}` column (received bytes)",
+                            row.line, col.name
+                        )));
+                    }
+                };
+                match address {
                     Address::Value { loc, width } if loc.area == Area::I => {
                         for i in 0..width.bytes() {
                             if let Some(b) = inputs.get_mut((loc.offset + i) as usize) {
@@ -413,7 +422,7 @@ pub fn parse_stimulus(
             inputs: inputs.clone(),
             ai: ai.clone(),
             writes,
-            hsc: Vec::new(),
+            hsc: hsc.clone(),
         });
     }
     Ok(Stimulus { scans })
@@ -430,12 +439,7 @@ pub fn read_case(dir: &Path) -> Result<(Case, Meta), ReproError> {
             program.profile.name()
         )));
     }
-    let mut stimulus = parse_stimulus(meta.profile, &read(dir, "stimulus.csv")?, &times)?;
-    let counters = meta.profile.profile().hsc.counters.len();
-    let hsc = parse_hsc(&read(dir, "meta")?, stimulus.scans.len(), counters)?;
-    for (scan, h) in stimulus.scans.iter_mut().zip(hsc) {
-        scan.hsc = h;
-    }
+    let stimulus = parse_stimulus(meta.profile, &read(dir, "stimulus.csv")?, &times)?;
     Ok((Case { program, stimulus }, meta))
 }
 
@@ -455,13 +459,32 @@ mod tests {
         assert_eq!(back.stimulus, case.stimulus, "seed {seed}");
     }
 
+    /// High-speed counter activity travels as `HSCn` columns of `stimulus.csv` and reads back
+    /// per scan, held from row to row like the inputs.
     #[test]
     fn repro_directory_reads_back_the_same_case() {
         let dir = std::env::temp_dir().join(format!("stljit-repro-test-{}", std::process::id()));
+        let mut hsc_columns = 0;
         for seed in 0..40 {
             reads_back(&dir, &case_from_seed(seed, &GenConfig::default()), seed);
+            let csv = std::fs::read_to_string(dir.join("stimulus.csv")).unwrap();
+            hsc_columns += csv.lines().next().unwrap().matches(",HSC").count();
         }
+        assert!(
+            hsc_columns > 0,
+            "no generated case drove a high-speed counter"
+        );
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// Received bytes are a stimulus column the oracle does not replay: refused with the line.
+    #[test]
+    fn a_port_column_is_refused() {
+        let e = parse_stimulus(ProfileId::A5, "scan,PORT0\n1,16#4F\n", &[0, 10]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "stimulus.csv: line 2: the fuzz oracle replays no `PORT0` column (received bytes)"
+        );
     }
 
     /// Omron cases too: the stimulus in Omron spelling (input words, D/W/H addresses) reads
