@@ -333,6 +333,29 @@ fn reserved(name: &str) -> Option<Reserved> {
     }
 }
 
+/// The high-speed counters of `profile` as column names (`HSC0, HSC1`), or `none`.
+pub fn hsc_columns(profile: &CpuProfile) -> String {
+    list(profile.hsc.iter().map(|c| format!("HSC{}", c.number)))
+}
+
+/// The serial ports of `profile` as column names (`PORT0, PORT1`), or `none`.
+pub fn port_columns(profile: &CpuProfile) -> String {
+    list(
+        comm::ports(profile)
+            .iter()
+            .map(|p| format!("PORT{}", p.port)),
+    )
+}
+
+fn list(names: impl Iterator<Item = String>) -> String {
+    let names: Vec<String> = names.collect();
+    if names.is_empty() {
+        "none".to_string()
+    } else {
+        names.join(", ")
+    }
+}
+
 /// Parses a non-empty cell of `column`.
 fn parse_cell(text: &str, column: &Column) -> Result<Cell, StimulusErrorKind> {
     let bad_cell = |error| StimulusErrorKind::BadCell {
@@ -548,26 +571,13 @@ impl Stimulus {
     /// The target of a reserved column name, if the profile has that counter or port.
     fn hardware(&self, name: &str, reserved: Reserved) -> Result<Target, StimulusErrorKind> {
         let profile = self.profile.profile();
-        let list = |names: Vec<String>| {
-            if names.is_empty() {
-                "none".to_string()
-            } else {
-                names.join(", ")
-            }
-        };
         match reserved {
             Reserved::Hsc(n) => match u8::try_from(n) {
                 Ok(n) if profile.hsc.get(n).is_some() => Ok(Target::HscSteps(n)),
                 _ => Err(StimulusErrorKind::NoCounter {
                     name: name.to_string(),
                     cpu: profile.model,
-                    have: list(
-                        profile
-                            .hsc
-                            .iter()
-                            .map(|c| format!("HSC{}", c.number))
-                            .collect(),
-                    ),
+                    have: hsc_columns(profile),
                 }),
             },
             Reserved::Port(n) => match u8::try_from(n) {
@@ -575,12 +585,7 @@ impl Stimulus {
                 _ => Err(StimulusErrorKind::NoPort {
                     name: name.to_string(),
                     cpu: profile.model,
-                    have: list(
-                        comm::ports(profile)
-                            .iter()
-                            .map(|p| format!("PORT{}", p.port))
-                            .collect(),
-                    ),
+                    have: port_columns(profile),
                 }),
             },
         }
