@@ -3,9 +3,9 @@
 //!
 //! The cases are the examples' `stimulus.csv` files with their symbol tables (the S7 traffic
 //! light and the Omron conveyor, whose addresses are Omron's: `0.00`, `W3`, `D10`, `#hex`
-//! values), mutated by a fixed-seed generator (byte flips, cuts, splices, duplicated lines),
-//! plus a few hand-made extremes. An accepted stimulus is run for a few scans on every engine,
-//! which must agree.
+//! values), and a stimulus of the S7 hardware columns (`HSCn`, `PORTn`), mutated by a fixed-seed
+//! generator (byte flips, cuts, splices, duplicated lines), plus a few hand-made extremes. An
+//! accepted stimulus is run for a few scans on every engine, which must agree.
 
 use crate::conformance::harness::ENGINES;
 use std::path::PathBuf;
@@ -151,6 +151,44 @@ fn no_stimulus_text_makes_the_tools_panic() {
         b"0123456789,.-#\n\r VIQMT+e",
     );
     // Both paths must be exercised, or the mutations are too weak (or too strong) to test much.
+    assert!(
+        accepted > 30 && rejected > 30,
+        "{accepted} accepted, {rejected} rejected"
+    );
+}
+
+/// The reserved columns of the simulated hardware (`HSCn` steps, `PORTn` bytes), on the traffic
+/// light (an a5 program: HSC0, HSC1, ports 0 and 1; it defines no counter, so even a mutated
+/// huge step count costs nothing, and nothing drains the ports' 256-byte FIFOs).
+#[test]
+fn no_hardware_column_makes_the_tools_panic() {
+    let s = subject("traffic_light", "traffic_light.awl", Dialect::S7);
+    let base = "t_ms,Ped_Button,HSC0,hsc1,PORT0,Port1\n0,0,5,-3,16#4F4B0D,\n2000,1,10,,,16#00FF\n\
+                3000,0,0,16#FFFFFFFF,16#41,\n";
+    assert!(exercise(base, &s), "the base is accepted");
+    let extremes = [
+        "scan,HSC0\n0,16#\n".to_string(),
+        "scan,HSC0\n0,2147483648\n".to_string(),
+        "scan,HSC0\n0,1.5\n".to_string(),
+        "scan,HSC2\n0,1\n".to_string(),
+        "scan,HSC99999999999999999999\n0,1\n".to_string(),
+        "scan,PORT0\n0,16#4\n".to_string(),
+        "scan,PORT0\n0,16#\n".to_string(),
+        "scan,PORT0\n0,4F4B\n".to_string(),
+        "scan,PORT2\n0,16#00\n".to_string(),
+        "scan,PORT0,port0\n0,16#00,16#01\n".to_string(),
+        format!("scan,PORT0\n0,16#{}\n1,16#00\n", "AB".repeat(5000)),
+        "scan,HSC0\n0,-2147483648\n1,2147483647\n".to_string(),
+    ];
+    for text in &extremes {
+        exercise(text, &s);
+    }
+    let (accepted, rejected) = mutations(
+        base,
+        &s,
+        0x1B87_F491_4F6C_DD1D,
+        b"0123456789ABCDEF#,-\n HSCPORT",
+    );
     assert!(
         accepted > 30 && rejected > 30,
         "{accepted} accepted, {rejected} rejected"

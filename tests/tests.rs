@@ -12,4 +12,5 @@ mod ir_text;
 mod mutate;
 mod omron_text;
 mod regressions;
+mod stimulus_hardware;
 mod tidy;

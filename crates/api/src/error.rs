@@ -85,6 +85,24 @@ pub enum Error {
         /// Why it was rejected.
         reason: &'static str,
     },
+    /// A high-speed counter the program's CPU does not have ([`crate::Plc::set_hsc_steps`]).
+    NoCounter {
+        /// The counter's number as given.
+        counter: u8,
+        /// The CPU's model (`A5`).
+        cpu: &'static str,
+        /// The counters it has (`HSC0, HSC1`), or `none`.
+        have: String,
+    },
+    /// A serial port the program's CPU does not have ([`crate::Plc::queue_rx`]).
+    NoPort {
+        /// The port's number as given.
+        port: u8,
+        /// The CPU's model (`CP1H`).
+        cpu: &'static str,
+        /// The ports it has (`PORT0, PORT1`), or `none`.
+        have: String,
+    },
     /// The simulation could not run (a trace writer failed, a stimulus does not fit).
     Sim(SimError),
 }
@@ -114,6 +132,13 @@ impl fmt::Display for Error {
                 write!(f, "{what} belongs to another program or CPU profile")
             }
             Error::Snapshot { reason } => write!(f, "not a stljit snapshot: {reason}"),
+            Error::NoCounter { counter, cpu, have } => write!(
+                f,
+                "the {cpu} has no high-speed counter {counter} (it has: {have})"
+            ),
+            Error::NoPort { port, cpu, have } => {
+                write!(f, "the {cpu} has no serial port {port} (it has: {have})")
+            }
             Error::Sim(e) => write!(f, "{e}"),
         }
     }

@@ -7,7 +7,9 @@
 //! * [`Plc`] — read and write any address or symbol by name ([`Plc::read`], [`Plc::write`]) or
 //!   through a pre-resolved [`Handle`] ([`Plc::get`], [`Plc::set`]); run one scan, `n` scans or a
 //!   span of virtual time ([`Plc::scan`], [`Plc::run`], [`Plc::run_for`], [`Plc::run_until`]);
-//!   the time and scan number ([`Plc::time_ms`], [`Plc::scan_no`]); [`Plc::snapshot`] and
+//!   the time and scan number ([`Plc::time_ms`], [`Plc::scan_no`]); the simulated hardware's
+//!   stimulus (high-speed counter steps [`Plc::set_hsc_steps`], bytes received on a serial port
+//!   [`Plc::queue_rx`]); [`Plc::snapshot`] and
 //!   [`Plc::restore`] of the whole state; forcing ([`Plc::force`], [`Plc::unforce`]; where in
 //!   the scan: [`force`]); an observer per scan ([`Plc::set_observer`], [`Plc::run_observed`]);
 //!   stimulus files, cancel flags and progress ([`Plc::simulate`]).

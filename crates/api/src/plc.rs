@@ -336,6 +336,46 @@ impl Plc {
         self.set(&h, value)
     }
 
+    // ---- simulated hardware --------------------------------------------------------------
+
+    /// Sets high-speed counter `counter`'s counting activity: `steps` signed unit steps in
+    /// every scan interval from the next scan on, held until set again (s7-200-more §8.4: the
+    /// steps of an interval are spread evenly over it; modes 0–2 count in the counter's
+    /// direction and ignore the sign, modes 3–11 count up for `steps > 0` and down for
+    /// `steps < 0`). A stimulus's `HSCn` column does the same. The counter counts them only
+    /// once the program has defined and enabled it (HDEF, HSC).
+    pub fn set_hsc_steps(&mut self, counter: u8, steps: i32) -> Result<(), Error> {
+        let profile = self.program.profile.profile();
+        if profile.hsc.get(counter).is_none() {
+            return Err(Error::NoCounter {
+                counter,
+                cpu: profile.model,
+                have: stljit_sim::stimulus::hsc_columns(profile),
+            });
+        }
+        self.image.set_hsc_rate(counter, steps);
+        Ok(())
+    }
+
+    /// Queues `bytes` to be received on serial port `port` in the interval before the next
+    /// scan, back to back from its start, one character time each (s7-200-more §10.4; what
+    /// does not complete by the next scan stays pending into the following interval). The port
+    /// holds at most 256 pending bytes; more are dropped. The program sees them in Freeport
+    /// mode (SMB30/SMB130), through RCV or the receive-character event. A stimulus's `PORTn`
+    /// column does the same.
+    pub fn queue_rx(&mut self, port: u8, bytes: &[u8]) -> Result<(), Error> {
+        let profile = self.program.profile.profile();
+        if stljit_core::comm::port(profile, port).is_none() {
+            return Err(Error::NoPort {
+                port,
+                cpu: profile.model,
+                have: stljit_sim::stimulus::port_columns(profile),
+            });
+        }
+        self.image.queue_rx(port, bytes);
+        Ok(())
+    }
+
     // ---- forcing -------------------------------------------------------------------------
 
     /// Holds `handle`'s address at `value` whatever the program or a write does, from now on

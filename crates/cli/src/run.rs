@@ -2,8 +2,9 @@
 //!
 //! The run goes through the embedding API (`stljit_api::Plc`), as every other tool that drives
 //! a PLC does. Scan k starts at k × scan time. Several stimulus files or a parameter sweep make
-//! a batch of runs on every core (`crate::batch`). A stimulus file drives inputs and HMI writes, `--watch` prints
-//! one CSV row per scan, `--trace` writes a CSV or VCD file. Exit codes: 0 ok, 1 program errors,
+//! a batch of runs on every core (`crate::batch`). A stimulus file drives inputs, HMI writes,
+//! high-speed counter steps and received bytes (`stljit_sim::stimulus`), `--watch` prints one
+//! CSV row per scan, `--trace` writes a CSV or VCD file. Exit codes: 0 ok, 1 program errors,
 //! 2 usage or stimulus errors, 3 the PLC stopped on a fatal runtime error.
 
 use crate::check::Input;
@@ -45,8 +46,9 @@ pub(crate) struct Args {
     /// Virtual time per scan.
     #[arg(long, value_name = "DURATION", default_value = "10ms", value_parser = parse_duration)]
     scan_time: u64,
-    /// Stimulus CSV: `scan,ADDR,...` or `t_ms,ADDR,...`. Several files make a batch: one run
-    /// per file.
+    /// Stimulus CSV: `scan,ADDR,...` or `t_ms,ADDR,...`; columns `HSC0`..`HSC5` give a
+    /// high-speed counter's steps per scan interval, `PORT0`/`PORT1` the bytes a serial port
+    /// receives (`16#4F4B0D`). Several files make a batch: one run per file.
     #[arg(long, value_name = "STIMULUS.csv", num_args = 1.., action = clap::ArgAction::Append)]
     inputs: Vec<PathBuf>,
     /// A parameter sweep, ADDR=V1,V2,...: one run per value, written like an HMI write before

@@ -3,6 +3,8 @@
 //! (station address, network latency). The runtime's `comm` module is the semantics; the
 //! front end and the fuzzer read the same table.
 
+use crate::profile::{CpuProfile, Family};
+
 /// The SM registers and events of one serial port (§10.1–§10.4, event table §3.1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PortRegs {
@@ -45,6 +47,21 @@ pub const PORTS: [PortRegs; 2] = [
         rcv_event: 24,
     },
 ];
+
+/// The serial ports `profile` has: both of [`PORTS`] on every S7 profile (the `a5` too, whose
+/// port 1 transmits and receives characters but has no receive registers for RCV), none on
+/// the Omron profiles. The layout's port state and the stimulus's `PORTn` columns follow it.
+pub fn ports(profile: &CpuProfile) -> &'static [PortRegs] {
+    match profile.family {
+        Family::S7 => &PORTS,
+        Family::Omron => &[],
+    }
+}
+
+/// Port `n` of `profile`, if it has it.
+pub fn port(profile: &CpuProfile, n: u8) -> Option<&'static PortRegs> {
+    ports(profile).get(usize::from(n))
+}
 
 /// The receive register offsets from [`PortRegs::rcv_smb`] (§10.3).
 pub mod rcv {

@@ -4,11 +4,10 @@
 //! program.ir     the program in the IR text form (`stljit_core::text`); what is read back
 //! program.stl    the same program printed as S7 STL, for reading only (never read back);
 //! program.omr    for an Omron profile instead: the program printed as Omron mnemonics
-//! stimulus.csv   inputs, analog inputs and HMI writes per scan, in stljit_sim's CSV format,
-//!                addresses spelled in the program's dialect (Omron: input words `0`, `1`)
-//! meta           key = value lines: profile, seed, engines, loop limit, the time of every scan,
-//!                (`hscN = …`) high-speed counter N's activity per scan and (`rxN = …`) the
-//!                bytes received on serial port N per scan, hex, `-` for none
+//! stimulus.csv   inputs, analog inputs, HMI writes, high-speed counter steps (`HSCn`) and
+//!                received bytes (`PORTn`) per scan, in stljit_sim's CSV format, addresses spelled in the program's dialect
+//!                (Omron: input words `0`, `1`)
+//! meta           key = value lines: profile, seed, engines, loop limit, the time of every scan
 //! README.txt     what failed: the scan, the first differing bytes with both values, the seed
 //! ```
 //! `stimulus.csv` uses scan numbers; scan times need not be regular, so they are listed in
@@ -140,12 +139,36 @@ pub fn stimulus_csv(profile: ProfileId, s: &Stimulus) -> String {
             cols.push(w.addr);
         }
     }
+    // High-speed counters with any activity: `HSCn` columns, held like the inputs.
+    let counters = s.scans.iter().map(|x| x.hsc.len()).max().unwrap_or(0);
+    let hsc: Vec<usize> = (0..counters)
+        .filter(|&n| {
+            s.scans
+                .iter()
+                .any(|x| x.hsc.get(n).is_some_and(|&v| v != 0))
+        })
+        .collect();
     let mut out = String::from("scan");
     for c in &cols {
         let _ = write!(out, ",{}", name(profile, c));
     }
+    for n in &hsc {
+        let _ = write!(out, ",HSC{n}");
+    }
+    // Serial ports that receive anything: `PORTn` columns, one-shot per scan.
+    let mut ports: Vec<u8> = s
+        .scans
+        .iter()
+        .flat_map(|x| x.rx.iter().filter(|r| !r.1.is_empty()).map(|r| r.0))
+        .collect();
+    ports.sort_unstable();
+    ports.dedup();
+    for n in &ports {
+        let _ = write!(out, ",PORT{n}");
+    }
     out.push('\n');
     let mut prev: Vec<Option<u32>> = vec![Some(0); cols.len()];
+    let mut prev_hsc = vec![0; hsc.len()];
     for (k, x) in s.scans.iter().enumerate() {
         let cells: Vec<Option<u32>> = cols
             .iter()
@@ -171,7 +194,28 @@ pub fn stimulus_csv(profile: ProfileId, s: &Stimulus) -> String {
                 if held && *v == prev[i] { None } else { *v }
             })
             .collect();
-        if k == 0 || changed.iter().any(Option::is_some) {
+        let steps: Vec<i32> = hsc
+            .iter()
+            .map(|&n| x.hsc.get(n).copied().unwrap_or(0))
+            .collect();
+        let changed_hsc: Vec<Option<i32>> = steps
+            .iter()
+            .zip(&prev_hsc)
+            .map(|(&v, &p)| (v != p).then_some(v))
+            .collect();
+        let received: Vec<Option<&[u8]>> = ports
+            .iter()
+            .map(|&n| {
+                x.rx.iter()
+                    .find(|r| r.0 == n && !r.1.is_empty())
+                    .map(|r| r.1.as_slice())
+            })
+            .collect();
+        if k == 0
+            || changed.iter().any(Option::is_some)
+            || changed_hsc.iter().any(Option::is_some)
+            || received.iter().any(Option::is_some)
+        {
             let _ = write!(out, "{k}");
             for v in &changed {
                 match v {
@@ -181,8 +225,26 @@ pub fn stimulus_csv(profile: ProfileId, s: &Stimulus) -> String {
                     None => out.push(','),
                 }
             }
+            for v in &changed_hsc {
+                match v {
+                    Some(v) => {
+                        let _ = write!(out, ",{v}");
+                    }
+                    None => out.push(','),
+                }
+            }
+            for bytes in &received {
+                out.push(',');
+                if let Some(bytes) = bytes {
+                    out.push_str("16#");
+                    for b in *bytes {
+                        let _ = write!(out, "{b:02X}");
+                    }
+                }
+            }
             out.push('\n');
         }
+        prev_hsc = steps;
         for (i, v) in cells.into_iter().enumerate() {
             if v.is_some() {
                 prev[i] = v;
@@ -204,112 +266,7 @@ pub fn meta_text(meta: &Meta, s: &Stimulus) -> String {
     let _ = writeln!(out, "scans = {}", s.len());
     let times: Vec<String> = s.scans.iter().map(|x| x.t_ms.to_string()).collect();
     let _ = writeln!(out, "times = {}", times.join(" "));
-    // High-speed counter activity per scan (not a CSV column: stljit_sim has none for it).
-    let counters = s.scans.iter().map(|x| x.hsc.len()).max().unwrap_or(0);
-    for n in 0..counters {
-        let v: Vec<i32> = s
-            .scans
-            .iter()
-            .map(|x| x.hsc.get(n).copied().unwrap_or(0))
-            .collect();
-        if v.iter().any(|&x| x != 0) {
-            let v: Vec<String> = v.iter().map(i32::to_string).collect();
-            let _ = writeln!(out, "hsc{n} = {}", v.join(" "));
-        }
-    }
-    // Received bytes per port and scan (no CSV column either).
-    let mut ports: Vec<u8> = s
-        .scans
-        .iter()
-        .flat_map(|x| x.rx.iter().map(|r| r.0))
-        .collect();
-    ports.sort_unstable();
-    ports.dedup();
-    for port in ports {
-        let v: Vec<String> = s
-            .scans
-            .iter()
-            .map(|x| match x.rx.iter().find(|r| r.0 == port) {
-                Some((_, bytes)) if !bytes.is_empty() => {
-                    bytes.iter().map(|b| format!("{b:02X}")).collect()
-                }
-                _ => "-".to_owned(),
-            })
-            .collect();
-        let _ = writeln!(out, "rx{port} = {}", v.join(" "));
-    }
     out
-}
-
-/// The received bytes of a `meta` file (`rxN = 4F4B0D - 41`): per scan, `(port, bytes)` in
-/// ascending port order, as the generator gives them.
-fn parse_rx(text: &str, scans: usize) -> Result<Vec<Received>, ReproError> {
-    let mut out = vec![Vec::new(); scans];
-    let mut lines: Vec<(u8, &str)> = Vec::new();
-    for (k, v) in text.lines().filter_map(|l| l.split_once('=')) {
-        let Some(n) = k.trim().strip_prefix("rx") else {
-            continue;
-        };
-        let port: u8 = n
-            .parse()
-            .map_err(|_| ReproError::Meta(format!("bad `{}`", k.trim())))?;
-        lines.push((port, v));
-    }
-    lines.sort_by_key(|l| l.0);
-    for (port, v) in lines {
-        for (scan, x) in v.split_whitespace().enumerate() {
-            let bytes = if x == "-" {
-                Vec::new()
-            } else {
-                hex_bytes(x).ok_or_else(|| ReproError::Meta(format!("bad rx bytes `{x}`")))?
-            };
-            if let Some(row) = out.get_mut(scan)
-                && !bytes.is_empty()
-                && row.iter().all(|r: &(u8, Vec<u8>)| r.0 != port)
-            {
-                row.push((port, bytes));
-            }
-        }
-    }
-    Ok(out)
-}
-
-/// Hex digit pairs (`4F4B`) as bytes; `None` for an odd length or a non-hex digit.
-fn hex_bytes(x: &str) -> Option<Vec<u8>> {
-    let digits = x.as_bytes();
-    if !digits.len().is_multiple_of(2) {
-        return None;
-    }
-    digits
-        .chunks(2)
-        .map(|d| u8::from_str_radix(std::str::from_utf8(d).ok()?, 16).ok())
-        .collect()
-}
-
-/// The high-speed counter activity of a `meta` file: per scan, one value per counter of the
-/// profile (as the generator gives it).
-fn parse_hsc(text: &str, scans: usize, counters: usize) -> Result<Vec<Vec<i32>>, ReproError> {
-    let mut out = vec![vec![0; counters]; scans];
-    for (k, v) in text.lines().filter_map(|l| l.split_once('=')) {
-        let Some(n) = k.trim().strip_prefix("hsc") else {
-            continue;
-        };
-        let n: usize = n
-            .parse()
-            .map_err(|_| ReproError::Meta(format!("bad `{}`", k.trim())))?;
-        for (scan, x) in v.split_whitespace().enumerate() {
-            let x: i32 = x
-                .parse()
-                .map_err(|_| ReproError::Meta(format!("bad hsc value `{x}`")))?;
-            if let Some(row) = out.get_mut(scan) {
-                if row.len() <= n {
-                    row.resize(n + 1, 0);
-                }
-                row[n] = x;
-            }
-        }
-    }
-    Ok(out)
 }
 
 /// Writes a reproducer directory (created if missing).
@@ -442,14 +399,37 @@ pub fn parse_stimulus(
     }
     let mut inputs = vec![0u8; p.inputs as usize];
     let mut ai = vec![0u16; (p.analog_inputs / 2) as usize];
+    let mut hsc = vec![0i32; p.hsc.counters.len()];
     let mut rows = st.rows().iter().peekable();
     let mut scans = Vec::with_capacity(times.len());
     for (k, &t) in times.iter().enumerate() {
         let mut writes = Vec::new();
+        let mut rx: Received = Vec::new();
         while let Some(row) = rows.next_if(|r| r.at <= k as u64) {
             for (col, cell) in st.columns().iter().zip(&row.cells) {
-                let Some(v) = *cell else { continue };
-                match col.address {
+                let (address, v) = match (col.target, cell.as_ref()) {
+                    (_, None) => continue,
+                    (sim::Target::Address(a), Some(&sim::Cell::Value(v))) => (a, v),
+                    (sim::Target::HscSteps(n), Some(&sim::Cell::Steps(v))) => {
+                        if let Some(h) = hsc.get_mut(usize::from(n)) {
+                            *h = v;
+                        }
+                        continue;
+                    }
+                    (sim::Target::Receive(n), Some(sim::Cell::Bytes(b))) => {
+                        if !b.is_empty() && rx.iter().all(|r| r.0 != n) {
+                            rx.push((n, b.clone()));
+                        }
+                        continue;
+                    }
+                    (_, Some(_)) => {
+                        return Err(ReproError::Stimulus(format!(
+                            "line {}: a `{}` cell of the wrong kind",
+                            row.line, col.name
+                        )));
+                    }
+                };
+                match address {
                     Address::Value { loc, width } if loc.area == Area::I => {
                         for i in 0..width.bytes() {
                             if let Some(b) = inputs.get_mut((loc.offset + i) as usize) {
@@ -480,8 +460,8 @@ pub fn parse_stimulus(
             inputs: inputs.clone(),
             ai: ai.clone(),
             writes,
-            hsc: Vec::new(),
-            rx: Vec::new(),
+            hsc: hsc.clone(),
+            rx,
         });
     }
     Ok(Stimulus { scans })
@@ -489,8 +469,7 @@ pub fn parse_stimulus(
 
 /// Reads a reproducer directory back into a case.
 pub fn read_case(dir: &Path) -> Result<(Case, Meta), ReproError> {
-    let meta_text = read(dir, "meta")?;
-    let (meta, times) = parse_meta(&meta_text)?;
+    let (meta, times) = parse_meta(&read(dir, "meta")?)?;
     let program = text::parse(&read(dir, "program.ir")?).map_err(ReproError::Program)?;
     if program.profile != meta.profile {
         return Err(ReproError::Meta(format!(
@@ -499,14 +478,7 @@ pub fn read_case(dir: &Path) -> Result<(Case, Meta), ReproError> {
             program.profile.name()
         )));
     }
-    let mut stimulus = parse_stimulus(meta.profile, &read(dir, "stimulus.csv")?, &times)?;
-    let counters = meta.profile.profile().hsc.counters.len();
-    let hsc = parse_hsc(&meta_text, stimulus.scans.len(), counters)?;
-    let rx = parse_rx(&meta_text, stimulus.scans.len())?;
-    for ((scan, h), r) in stimulus.scans.iter_mut().zip(hsc).zip(rx) {
-        scan.hsc = h;
-        scan.rx = r;
-    }
+    let stimulus = parse_stimulus(meta.profile, &read(dir, "stimulus.csv")?, &times)?;
     Ok((Case { program, stimulus }, meta))
 }
 
@@ -526,16 +498,26 @@ mod tests {
         assert_eq!(back.stimulus, case.stimulus, "seed {seed}");
     }
 
+    /// High-speed counter activity travels as `HSCn` columns of `stimulus.csv` and reads back
+    /// per scan, held from row to row like the inputs.
     #[test]
     fn repro_directory_reads_back_the_same_case() {
         let dir = std::env::temp_dir().join(format!("stljit-repro-test-{}", std::process::id()));
+        let mut hsc_columns = 0;
         for seed in 0..40 {
             reads_back(&dir, &case_from_seed(seed, &GenConfig::default()), seed);
+            let csv = std::fs::read_to_string(dir.join("stimulus.csv")).unwrap();
+            hsc_columns += csv.lines().next().unwrap().matches(",HSC").count();
         }
+        assert!(
+            hsc_columns > 0,
+            "no generated case drove a high-speed counter"
+        );
         let _ = std::fs::remove_dir_all(&dir);
     }
 
-    /// Received bytes (`rxN = …` in `meta`) read back exactly, in the generator's shape.
+    /// Received bytes travel as `PORTn` columns of `stimulus.csv` (one-shot per scan) and read
+    /// back exactly, in the generator's shape.
     #[test]
     fn received_bytes_read_back() {
         let dir = std::env::temp_dir().join(format!("stljit-repro-rx-{}", std::process::id()));
@@ -549,13 +531,17 @@ mod tests {
         }
         assert!(cases > 10, "only {cases} cases with received bytes");
         let _ = std::fs::remove_dir_all(&dir);
+        let st = parse_stimulus(
+            ProfileId::A5,
+            "scan,PORT0,PORT1\n0,,16#41\n1,16#0D0A,\n",
+            &[0, 10, 20],
+        )
+        .unwrap();
+        let rx: Vec<_> = st.scans.iter().map(|s| s.rx.clone()).collect();
         assert_eq!(
-            parse_rx("rx1 = 41 -\nrx0 = - 0D0A\n", 2).unwrap(),
-            vec![vec![(1, vec![0x41])], vec![(0, vec![0x0D, 0x0A])]]
+            rx,
+            vec![vec![(1, vec![0x41])], vec![(0, vec![0x0D, 0x0A])], vec![]]
         );
-        for bad in ["rx0 = 4", "rx0 = 4G", "rxA = 41", "rx0 = é1"] {
-            assert!(parse_rx(bad, 1).is_err(), "{bad}");
-        }
     }
 
     /// Omron cases too: the stimulus in Omron spelling (input words, D/W/H addresses) reads

@@ -9,7 +9,7 @@ use crate::convert::{duration, error, paths, to_py, value};
 use numpy::{IntoPyArray as _, PyArray1};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict};
+use pyo3::types::{PyByteArray, PyBytes, PyDict};
 use std::collections::HashMap;
 use std::sync::{Mutex, MutexGuard};
 use stljit_api::{
@@ -354,6 +354,39 @@ impl PyPlc {
             }
         }
         Ok(out)
+    }
+
+    /// Gives high-speed counter `counter` `steps` signed unit steps in every scan interval from
+    /// the next scan on, held until set again (s7-200-more §8.4).
+    fn set_hsc_steps(&self, counter: i64, steps: i64) -> PyResult<()> {
+        let counter = u8::try_from(counter).map_err(|_| {
+            PyValueError::new_err(format!("counter {counter}: not a counter number (0…255)"))
+        })?;
+        let steps = i32::try_from(steps).map_err(|_| {
+            PyValueError::new_err(format!(
+                "steps {steps}: not a 32-bit integer (-2147483648…2147483647)"
+            ))
+        })?;
+        self.lock().plc.set_hsc_steps(counter, steps).map_err(error)
+    }
+
+    /// Queues `data` (bytes or bytearray) to be received on serial port `port` in the interval
+    /// before the next scan (s7-200-more §10.4).
+    fn queue_rx(&self, port: i64, data: &Bound<'_, PyAny>) -> PyResult<()> {
+        let port = u8::try_from(port).map_err(|_| {
+            PyValueError::new_err(format!("port {port}: not a port number (0…255)"))
+        })?;
+        let bytes: Vec<u8> = if let Ok(b) = data.cast::<PyBytes>() {
+            b.as_bytes().to_vec()
+        } else if let Ok(b) = data.cast::<PyByteArray>() {
+            b.to_vec()
+        } else {
+            return Err(PyTypeError::new_err(format!(
+                "data: bytes or bytearray, not {}",
+                data.get_type().name()?
+            )));
+        };
+        self.lock().plc.queue_rx(port, &bytes).map_err(error)
     }
 
     /// Holds an address at `value` whatever the program or a write does (inputs before the

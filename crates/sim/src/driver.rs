@@ -2,17 +2,18 @@
 //! reporting every scan to an [`Observer`].
 //!
 //! Scan `k` starts at virtual time `k · scan_ms`. Before it, the stimulus rows due at `k` are
-//! written into the image; after it, the observer sees the image. The run ends after the
+//! written into the image (addresses, high-speed counter steps, received bytes:
+//! [`crate::stimulus`]); after it, the observer sees the image. The run ends after the
 //! requested scans, or early when a scan reports STOP or a fatal error, or when the caller's
 //! cancel flag is set (checked between scans only, so the image is always a whole-scan state).
 
-use crate::stimulus::Stimulus;
+use crate::stimulus::{Cell, Row, Stimulus, Target};
 use crate::value::write_address;
 use std::borrow::BorrowMut;
 use std::fmt;
 use std::io;
 use std::sync::atomic::{AtomicBool, Ordering};
-use stljit_core::{FatalCode, ScanStatus};
+use stljit_core::{FatalCode, ScanStatus, comm};
 use stljit_runtime::engine::Engine;
 use stljit_runtime::image::Image;
 
@@ -176,6 +177,16 @@ pub enum SimError {
         /// The row's source line.
         line: u32,
     },
+    /// The stimulus was built for another profile (an `HSCn` or `PORTn` column the image's
+    /// CPU lacks).
+    StimulusColumn {
+        /// The column's name.
+        column: String,
+        /// The row's source line.
+        line: u32,
+        /// What does not fit.
+        reason: &'static str,
+    },
     /// An observer failed (a trace writer's I/O error).
     Observer(io::Error),
 }
@@ -190,6 +201,11 @@ impl fmt::Display for SimError {
                     "stimulus line {line}: `{column}` is outside the memory image"
                 )
             }
+            SimError::StimulusColumn {
+                column,
+                line,
+                reason,
+            } => write!(f, "stimulus line {line}: `{column}`: {reason}"),
             SimError::Observer(e) => write!(f, "trace output failed: {e}"),
         }
     }
@@ -273,7 +289,8 @@ impl<'a, I: BorrowMut<Image>> Simulation<'a, I> {
 
     /// Runs scans until `until`, a STOP, a fatal error or cancellation. Stimulus rows due before
     /// this run's first scan are applied before it (so a continued simulation sees the
-    /// stimulus's state at the current time), rows due later before their scan.
+    /// stimulus's state at the current time; their received bytes are not delivered, their
+    /// interval is past), rows due later before their scan.
     pub fn run(
         &mut self,
         until: Until,
@@ -308,16 +325,8 @@ impl<'a, I: BorrowMut<Image>> Simulation<'a, I> {
             while let Some(row) = rows.get(next_row)
                 && stimulus.due_scan(row, self.scan_ms) <= k
             {
-                for (cell, column) in row.cells.iter().zip(stimulus.columns()) {
-                    if let Some(v) = *cell
-                        && !write_address(self.image.borrow_mut(), &column.address, v)
-                    {
-                        return Err(SimError::StimulusAddress {
-                            column: column.name.clone(),
-                            line: row.line,
-                        });
-                    }
-                }
+                let past = stimulus.due_scan(row, self.scan_ms) < first;
+                apply_row(self.image.borrow_mut(), stimulus, row, past)?;
                 next_row += 1;
             }
             // One scan, or every scan up to the next stimulus row in one engine call (bounded,
@@ -378,6 +387,55 @@ impl<'a, I: BorrowMut<Image>> Simulation<'a, I> {
         }
         Ok(report)
     }
+}
+
+/// Writes a stimulus row into the image before its scan: address values (inputs into the
+/// physical input copy, the rest like an HMI write), high-speed counter steps (the counter's
+/// activity per interval, which the image holds until set again, so every scan of a stretch
+/// the engine runs at once counts them) and received bytes (queued once, for the interval
+/// before the scan; not for a row already `past` when the run started, whose bytes belonged to
+/// an interval gone by).
+fn apply_row(
+    image: &mut Image,
+    stimulus: &Stimulus,
+    row: &Row,
+    past: bool,
+) -> Result<(), SimError> {
+    for (cell, column) in row.cells.iter().zip(stimulus.columns()) {
+        let Some(cell) = cell else { continue };
+        let misfit = |reason| SimError::StimulusColumn {
+            column: column.name.clone(),
+            line: row.line,
+            reason,
+        };
+        let profile = image.layout().profile.profile();
+        match (cell, column.target) {
+            (&Cell::Value(v), Target::Address(address)) => {
+                if !write_address(image, &address, v) {
+                    return Err(SimError::StimulusAddress {
+                        column: column.name.clone(),
+                        line: row.line,
+                    });
+                }
+            }
+            (&Cell::Steps(steps), Target::HscSteps(n)) => {
+                if profile.hsc.get(n).is_none() {
+                    return Err(misfit("the CPU has no such high-speed counter"));
+                }
+                image.set_hsc_rate(n, steps);
+            }
+            (Cell::Bytes(bytes), Target::Receive(port)) => {
+                if comm::port(profile, port).is_none() {
+                    return Err(misfit("the CPU has no such serial port"));
+                }
+                if !past {
+                    image.queue_rx(port, bytes);
+                }
+            }
+            _ => return Err(misfit("the cell does not fit its column")),
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

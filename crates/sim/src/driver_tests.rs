@@ -3,7 +3,7 @@
 use super::*;
 use crate::stimulus::TimeBase;
 use crate::test_resolver::resolve;
-use stljit_core::layout::Sched;
+use stljit_core::layout::{PortState, Sched};
 use stljit_core::{Area, ProfileId};
 use stljit_runtime::mem;
 use stljit_runtime::scan;
@@ -211,4 +211,91 @@ fn setup_and_observer_errors() {
     s.push_row(0, vec![Some(1)]).unwrap();
     let e = sim.run(Until::Scans(1), &s, &mut ()).unwrap_err();
     assert!(matches!(e, SimError::StimulusAddress { line: 2, .. }));
+}
+
+/// After each scan (or stretch): HSC0's activity per interval and the length of port 0's
+/// receive FIFO. The toy engine runs no event phase, so nothing drains the FIFO: its length is
+/// every byte the driver ever queued.
+#[derive(Default)]
+struct Hardware {
+    every_scan: bool,
+    seen: Vec<(u64, i32, u16)>,
+}
+
+impl Observer for Hardware {
+    fn observe(&mut self, e: &ScanEvent<'_>) -> io::Result<()> {
+        let (b, l) = (e.image.bytes(), e.image.layout());
+        let rate = stljit_runtime::hsc::rate(b, l, 0);
+        let fifo = mem::get_u16_ne(b, l.port_state(0, PortState::FIFO_LEN));
+        self.seen.push((e.scan, rate, fifo));
+        Ok(())
+    }
+
+    fn needs_every_scan(&self) -> bool {
+        self.every_scan
+    }
+}
+
+/// s7-200-more §11.2: `hsc_steps` is written before a scan and held until written again; `rx`
+/// bytes are queued once, before the row's scan (§10.4). Rows at scans 1 and 4: HSC0 = 10 then
+/// -4; PORT0 gets 2 bytes at scan 1 and 3 at scan 4. So the rate is 0, 10, 10, 10, -4, -4 and
+/// the FIFO 0, 2, 2, 2, 5, 5 whether the driver runs scan by scan or in stretches between rows.
+#[test]
+fn hsc_steps_hold_and_received_bytes_arrive_once() {
+    let s = stim("scan,HSC0,PORT0\n1,10,16#4F4B\n4,-4,16#414243\n");
+    for every_scan in [true, false] {
+        let mut toy = Toy;
+        let mut sim = Simulation::new(&mut toy, Image::blank(ProfileId::A5), 10).unwrap();
+        let mut obs = Hardware {
+            every_scan,
+            ..Hardware::default()
+        };
+        sim.run(Until::Scans(6), &s, &mut obs).unwrap();
+        let want = [
+            (0, 0, 0),
+            (1, 10, 2),
+            (2, 10, 2),
+            (3, 10, 2),
+            (4, -4, 5),
+            (5, -4, 5),
+        ];
+        if every_scan {
+            assert_eq!(obs.seen, want);
+        } else {
+            // Stretches end before each row: scan 0, scans 1-3, scans 4-5.
+            assert_eq!(obs.seen, vec![want[0], want[3], want[5]]);
+        }
+    }
+}
+
+/// A run continued at scan 3 applies the held steps of the past row (scan 1) but not its bytes,
+/// which belonged to the interval before scan 1; the row at scan 4 delivers its own.
+#[test]
+fn a_continued_run_does_not_receive_past_bytes_again() {
+    let s = stim("scan,HSC0,PORT0\n1,10,16#4F4B\n4,-4,16#414243\n");
+    let mut toy = Toy;
+    let mut sim = Simulation::new(&mut toy, Image::blank(ProfileId::A5), 10).unwrap();
+    let empty = Stimulus::empty(TimeBase::Scan, ProfileId::A5.profile());
+    sim.run(Until::Scans(3), &empty, &mut ()).unwrap();
+    let mut obs = Hardware {
+        every_scan: true,
+        ..Hardware::default()
+    };
+    sim.run(Until::Scans(2), &s, &mut obs).unwrap();
+    assert_eq!(obs.seen, vec![(3, 10, 0), (4, -4, 3)]);
+}
+
+/// A stimulus checked for the s7-200 (HSC0..HSC5) run on an a5 image (HSC0, HSC1 only).
+#[test]
+fn a_counter_the_image_lacks_is_an_error() {
+    let mut s = Stimulus::empty(TimeBase::Scan, ProfileId::S7_200.profile());
+    s.add_column("HSC4", &resolve).unwrap();
+    s.push_row(0, vec![Some(1)]).unwrap();
+    let mut toy = Toy;
+    let mut sim = Simulation::new(&mut toy, Image::blank(ProfileId::A5), 10).unwrap();
+    let e = sim.run(Until::Scans(1), &s, &mut ()).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "stimulus line 2: `HSC4`: the CPU has no such high-speed counter"
+    );
 }

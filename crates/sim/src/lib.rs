@@ -7,7 +7,7 @@
 //! the caller supplies (normally `stljit_front_s7::parse_address` for the program's profile), so
 //! the simulation does not depend on the front end.
 //!
-//! * [`stimulus`] — the stimulus CSV (`scan,I0.0,VW100` or `t_ms,...`).
+//! * [`stimulus`] — the stimulus CSV (`scan,I0.0,VW100,HSC0,PORT0` or `t_ms,...`).
 //! * [`watch`] — watch specs (`VD50:real`) and how values print.
 //! * [`trace_csv`], [`trace_vcd`] — trace writers, both [`Observer`]s.
 //! * [`driver`] — [`Simulation`]: runs an [`Engine`] scan by scan.
@@ -29,7 +29,9 @@ mod test_resolver;
 pub use driver::{
     FnObserver, Observer, Outcome, Progress, RunReport, ScanEvent, SimError, Simulation, Until,
 };
-pub use stimulus::{Stimulus, StimulusError, StimulusErrorKind, TimeBase};
+pub use stimulus::{
+    Cell, CellError, Column, Stimulus, StimulusError, StimulusErrorKind, Target, TimeBase,
+};
 pub use trace_csv::CsvTrace;
 pub use trace_vcd::VcdTrace;
 pub use value::{

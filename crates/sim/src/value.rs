@@ -225,7 +225,10 @@ pub fn writable(address: &Address, read_only_sm: u32) -> Option<&'static str> {
     };
     match area {
         Area::SM if first < read_only_sm => Some("SMB0–SMB29 are read-only (written by the CPU)"),
-        Area::HC => Some("high-speed counters are read-only"),
+        Area::HC => Some(
+            "a high-speed counter's current value is read-only (its counting is driven by steps: \
+             an `HSCn` stimulus column)",
+        ),
         Area::L => Some("L memory is local to a POU and cannot be driven from outside"),
         _ => None,
     }

@@ -17,7 +17,7 @@ pub(super) fn take_blocks(
     let s7 = u32::from(profile.family == Family::S7);
     let ports = take(
         Block::Ports,
-        s7 * PORT_STATE_SIZE * crate::comm::PORTS.len() as u32,
+        PORT_STATE_SIZE * crate::comm::ports(profile).len() as u32,
     );
     let net_jobs = take(
         Block::NetJobs,

@@ -99,6 +99,13 @@ class Plc:
         until_ms: Optional[int] = None,
     ) -> Dict[str, npt.NDArray[np.generic]]:
         """Runs like ``run``; returns ``scan``, ``t_ms`` and one array per name, one row per scan."""
+    def set_hsc_steps(self, counter: int, steps: int) -> None:
+        """Gives high-speed counter ``counter`` ``steps`` signed unit steps in every scan
+        interval from the next scan on, held until set again (S7 only; a counter the CPU lacks
+        raises ``StljitError``)."""
+    def queue_rx(self, port: int, data: Union[bytes, bytearray]) -> None:
+        """Queues ``data`` to be received on serial port ``port`` in the interval before the
+        next scan (S7 only; a port the CPU lacks raises ``StljitError``)."""
     def force(self, key: _Key, value: _Value) -> None: ...
     def unforce(self, key: _Key) -> bool: ...
     def unforce_all(self) -> None: ...
