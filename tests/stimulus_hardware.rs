@@ -210,3 +210,61 @@ fn port_column_bytes_are_received_exactly_once() {
         &want,
     );
 }
+
+/// A fast encoder: 1,000 steps in every interval from scan 1 (the `COUNTER` program, PV 25).
+/// Derivation (§8.4, as above): CV climbs from 0 and every 25th step reaches PV, whose routine
+/// runs at that step's time and reloads CV = 0, so each interval's 1,000 steps raise 40 events
+/// and the 1,000th (at T_k, before the program) leaves CV = 0: after scan k, VW10 = 40·k,
+/// VD100 = 0, and the routine always saw 25. The runtime applies the 24 steps between two
+/// events at once (`hsc::Counter::apply_before`); the count must come out step for step.
+#[test]
+fn fast_encoder_counts_every_step_between_presets() {
+    let want: Vec<Vec<u32>> = (0..8u32)
+        .map(|k| vec![0, 40 * k, if k > 0 { 25 } else { 0 }])
+        .collect();
+    check(
+        COUNTER,
+        "scan,HSC0\n1,1000\n",
+        8,
+        &["VD100", "VW10", "VD104"],
+        &want,
+    );
+}
+
+/// HSC0 in mode 0 counting up with a preset it never reaches (PV = 2,000,000,000).
+const ENCODER: &str = "\
+Network 1
+LD     SM0.1
+MOVB   16#F8, SMB37
+MOVD   +0, SMD38
+MOVD   +2000000000, SMD42
+HDEF   0, 0
+HSC    0
+Network 2
+LD     SM0.0
+MOVD   HC0, VD100
+";
+
+/// A million steps per 10-ms interval (a 100 MHz count rate, far beyond the hardware's, to
+/// make a step-by-step simulation visible in the test's time) from scan 1, 250,000 from scan 5:
+/// after scan k ≤ 4, HC0 = 10^6·k; after scan k ≥ 5, 4·10^6 + 250,000·(k − 4) (§8.4: every step
+/// counts, CV never reaches PV).
+#[test]
+fn a_million_steps_per_scan_count_exactly() {
+    let want: Vec<Vec<u32>> = (0..8u32)
+        .map(|k| {
+            vec![if k <= 4 {
+                1_000_000 * k
+            } else {
+                4_000_000 + 250_000 * (k - 4)
+            }]
+        })
+        .collect();
+    check(
+        ENCODER,
+        "scan,HSC0\n1,1000000\n5,250000\n",
+        8,
+        &["VD100"],
+        &want,
+    );
+}

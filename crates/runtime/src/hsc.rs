@@ -12,6 +12,9 @@
 //! output, [`count_pulse`]), step `j` at `T_{k−1} + ⌊j·D/s⌋`. Each step is a happening: the
 //! interval phase applies the steps of every source in time order and services the queues
 //! after each, so a CV = PV routine runs at the step that reached the preset, before the next.
+//! Steps that raise no event and come before any other source's next happening are applied
+//! together ([`Counter::apply_before`]): with nothing queued no routine can run between them,
+//! so the result is the same, and a fast encoder costs a few happenings per scan.
 //! A step counts only while the counter is enabled and not held by its reset input, and (modes
 //! 2, 5, 8, 11) while its start input is active; the levels are those of the previous scan
 //! instant, which is what the physical inputs hold while the interval phase runs.
@@ -289,30 +292,15 @@ impl Happening for Counter {
         })
     }
 
-    /// One unit step (§8.4): only while enabled, not held by reset and (with a start input)
-    /// started; the levels are the physical inputs, which hold the previous scan instant's
-    /// while the interval phase runs.
+    /// One unit step (§8.4): only while it counts ([`counting`]); in modes with external
+    /// direction a step against the current direction turns it first.
     fn apply(&self, img: &mut [u8], layout: &Layout, tau: u64) {
         let n = self.n;
         let done = get_u32(img, layout, n, HscState::DONE);
         set_u32(img, layout, n, HscState::DONE, done.saturating_add(1));
-        let (Some(info), Some(m)) = (info(layout, n), mode(img, layout, n)) else {
+        let Some((info, m)) = counting(img, layout, n) else {
             return;
         };
-        if get(img, layout, n, HscState::ENABLED) == 0 {
-            return;
-        }
-        let low = |field| get(img, layout, n, field) != 0;
-        if let Some(r) = info.reset_input(m)
-            && active(img, layout, r, low(HscState::RESET_LOW))
-        {
-            return;
-        }
-        if let Some(s) = info.start_input(m)
-            && !active(img, layout, s, low(HscState::START_LOW))
-        {
-            return;
-        }
         let mut up = get(img, layout, n, HscState::DIR) != 0;
         if !m.internal_direction() {
             let step_up = get(img, layout, n, HscState::STEP_UP) != 0;
@@ -324,6 +312,111 @@ impl Happening for Counter {
         }
         step(img, layout, info, up, tau);
     }
+
+    /// The step due at `tau`, then at once every further step of the interval due before
+    /// `before` that raises nothing: no direction change and no CV = PV on the way (the step
+    /// reaching PV is left to [`Counter::apply`], so its routine runs at its own time). Between
+    /// such steps only their count is observable (no routine can run: nothing is queued), so a
+    /// fast encoder costs a few steps per scan instead of one happening per pulse.
+    fn apply_before(&self, img: &mut [u8], layout: &Layout, tau: u64, before: u64) {
+        self.apply(img, layout, tau);
+        if !interrupt::nothing_queued(img, layout) {
+            return;
+        }
+        let n = self.n;
+        let due = steps_due_before(img, layout, n, before);
+        let silent = match counting(img, layout, n) {
+            // Steps that do not count change nothing but the interval's progress.
+            None => due,
+            Some((_, m)) => {
+                let up = get(img, layout, n, HscState::DIR) != 0;
+                let turns =
+                    !m.internal_direction() && (get(img, layout, n, HscState::STEP_UP) != 0) != up;
+                if turns {
+                    0
+                } else {
+                    due.min(steps_before_preset(img, layout, n, up))
+                }
+            }
+        };
+        if silent == 0 {
+            return;
+        }
+        let done = get_u32(img, layout, n, HscState::DONE);
+        set_u32(img, layout, n, HscState::DONE, done.saturating_add(silent));
+        if let Some((info, _)) = counting(img, layout, n) {
+            let up = get(img, layout, n, HscState::DIR) != 0;
+            let cv = current(img, layout, n);
+            // CV wraps at the DINT ends (module doc): `silent` steps are `silent` mod 2^32.
+            let cv = if up {
+                cv.wrapping_add(silent as i32)
+            } else {
+                cv.wrapping_sub(silent as i32)
+            };
+            set_current(img, layout, n, cv);
+            update_status(img, layout, info);
+        }
+    }
+}
+
+/// Counter `n`'s info and mode when a step counts now (§8.4): defined, enabled, not held by
+/// its reset input and, in modes 2, 5, 8 and 11, started by its start input; the levels are
+/// the physical inputs, which hold the previous scan instant's while the interval phase runs.
+fn counting(img: &[u8], layout: &Layout, n: u8) -> Option<(&'static HscInfo, Mode)> {
+    let (info, m) = (info(layout, n)?, mode(img, layout, n)?);
+    if get(img, layout, n, HscState::ENABLED) == 0 {
+        return None;
+    }
+    let low = |field| get(img, layout, n, field) != 0;
+    if let Some(r) = info.reset_input(m)
+        && active(img, layout, r, low(HscState::RESET_LOW))
+    {
+        return None;
+    }
+    if let Some(s) = info.start_input(m)
+        && !active(img, layout, s, low(HscState::START_LOW))
+    {
+        return None;
+    }
+    Some((info, m))
+}
+
+/// How many of counter `n`'s remaining steps in this interval are due before `before`: step
+/// `j` (1-based) is due at `T_START + ⌊j·SPAN/STEPS⌋`, which is before `before` exactly when
+/// `j·SPAN < (before − T_START)·STEPS`.
+fn steps_due_before(img: &[u8], layout: &Layout, n: u8, before: u64) -> u32 {
+    let steps = get_u32(img, layout, n, HscState::STEPS);
+    let done = get_u32(img, layout, n, HscState::DONE);
+    if done >= steps {
+        return 0;
+    }
+    let ta = mem::get_u64_ne(img, layout.hsc_state(n, HscState::T_START));
+    let span = mem::get_u64_ne(img, layout.hsc_state(n, HscState::SPAN));
+    let Some(room) = before.checked_sub(ta).filter(|&r| r > 0) else {
+        return 0;
+    };
+    let last = if span == 0 {
+        u128::from(steps)
+    } else {
+        // The largest j with j·SPAN < room·STEPS.
+        (u128::from(room) * u128::from(steps) - 1) / u128::from(span)
+    };
+    let last = u32::try_from(last.min(u128::from(steps))).unwrap_or(steps);
+    last.saturating_sub(done)
+}
+
+/// How many steps in direction `up` counter `n` can take before one makes CV = PV (that one
+/// raises the event): the distance to PV less one, modulo 2^32 (at CV = PV already, the next
+/// 2^32 − 1 steps are clear).
+fn steps_before_preset(img: &[u8], layout: &Layout, n: u8, up: bool) -> u32 {
+    let cv = current(img, layout, n) as u32;
+    let pv = get_u32(img, layout, n, HscState::PV);
+    let distance = if up {
+        pv.wrapping_sub(cv)
+    } else {
+        cv.wrapping_sub(pv)
+    };
+    distance.wrapping_sub(1)
 }
 
 /// One unit step of counter `info` in direction `up` at `tau`: CV, status, CV = PV event.

@@ -157,6 +157,11 @@ fn attach_slot(layout: &Layout, event: u8) -> Option<u32> {
         .then(|| layout.int_state(IntState::ATTACH) + u32::from(event))
 }
 
+/// Whether no event waits in any queue.
+pub(crate) fn nothing_queued(img: &[u8], layout: &Layout) -> bool {
+    queue::is_empty(img, layout)
+}
+
 /// The routine number + 1 attached to `event` (0: detached).
 pub(crate) fn attached(img: &[u8], layout: &Layout, event: u8) -> u8 {
     attach_slot(layout, event).map_or(0, |at| mem::get_u8(img, at))

@@ -113,6 +113,11 @@ pub(crate) fn pop_next(img: &mut [u8], l: &Layout) -> Option<Entry> {
     Some(e)
 }
 
+/// Whether every queue is empty.
+pub(crate) fn is_empty(img: &[u8], l: &Layout) -> bool {
+    EventGroup::ALL.iter().all(|&g| len(img, l, g) == 0)
+}
+
 /// Drops every queued entry of `event` (DTCH, CEVNT).
 pub(crate) fn remove_event(img: &mut [u8], l: &Layout, event: u8) {
     let Some(info) = interrupt::event(event) else {

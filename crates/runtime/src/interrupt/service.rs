@@ -73,8 +73,8 @@ pub fn interval_phase(
     let r = (|| {
         sources::poll_timers(img, layout, ta);
         s.service(img, layout, ta)?;
-        while let Some((tau, rank)) = sources::next_due(img, layout, tb) {
-            HAPPENINGS[rank].apply(img, layout, tau);
+        while let Some((tau, rank, before)) = sources::next_due(img, layout, tb) {
+            HAPPENINGS[rank].apply_before(img, layout, tau, before);
             s.service(img, layout, tau)?;
         }
         Ok(())

@@ -5,7 +5,9 @@
 //!   raising events at that time). The interval phase applies the pending happening with the
 //!   smallest `(τ, rank)` (rank = position in [`HAPPENINGS`], the spec's `source_rank`), then
 //!   services the queues at `τ`, and repeats while a happening is due at or before `T_k`; a
-//!   happening a routine schedules takes part if it is due in time.
+//!   happening a routine schedules takes part if it is due in time. A source may apply its
+//!   following happenings with the first when they raise nothing and no other source's comes
+//!   between ([`Happening::apply_before`]: the high-speed counters' steps).
 //! * An **instant source** raises the events of the scan instant `T_k` itself, in the order of
 //!   §3.6.2 step 5 ([`instant`]): input edges, then the timers reaching their preset.
 //!
@@ -34,6 +36,14 @@ pub trait Happening: Sync {
     fn next(&self, img: &[u8], layout: &Layout) -> Option<u64>;
     /// Applies the happening due at `tau` (== what `next` returned).
     fn apply(&self, img: &mut [u8], layout: &Layout, tau: u64);
+    /// Applies the happening due at `tau` and, where the source can tell that its following
+    /// happenings raise no event, those of them due before `before` as well: no other source's
+    /// happening comes first, so only the service runs after each would come between them, and
+    /// with nothing queued those do nothing. The default applies the one happening.
+    fn apply_before(&self, img: &mut [u8], layout: &Layout, tau: u64, before: u64) {
+        let _ = before;
+        self.apply(img, layout, tau);
+    }
 }
 
 /// Timed interrupt 0 or 1 (§3.5.1): while its event is attached with an interval of 1 ms or
@@ -106,15 +116,27 @@ pub static HAPPENINGS: &[&dyn Happening] = &[
     &NetJobs,
 ];
 
-/// The pending happening with the smallest `(τ, rank)` due at or before `until`: its time and
-/// its index in [`HAPPENINGS`].
-pub(crate) fn next_due(img: &[u8], layout: &Layout, until: u64) -> Option<(u64, usize)> {
-    HAPPENINGS
-        .iter()
-        .enumerate()
-        .filter_map(|(rank, s)| s.next(img, layout).map(|t| (t, rank)))
-        .filter(|&(t, _)| t <= until)
-        .min()
+/// The pending happening with the smallest `(τ, rank)` due at or before `until`: its time, its
+/// index in [`HAPPENINGS`], and the time before which no other source's happening is due
+/// (`until + 1` when none is), for [`Happening::apply_before`].
+pub(crate) fn next_due(img: &[u8], layout: &Layout, until: u64) -> Option<(u64, usize, u64)> {
+    let mut first: Option<(u64, usize)> = None;
+    let mut second = until.saturating_add(1);
+    for (rank, s) in HAPPENINGS.iter().enumerate() {
+        let Some(t) = s.next(img, layout).filter(|&t| t <= until) else {
+            continue;
+        };
+        // Ranks ascend, so at equal times the one found first keeps its place.
+        match first {
+            Some((f, _)) if t < f => {
+                second = second.min(f);
+                first = Some((t, rank));
+            }
+            Some(_) => second = second.min(t),
+            None => first = Some((t, rank)),
+        }
+    }
+    first.map(|(t, rank)| (t, rank, second))
 }
 
 /// The start of the interval `(ta, tb]` (µs): the sources whose happenings depend on the
