@@ -5,16 +5,9 @@ use stljit_api::{
     EngineKind, Error, FnObserver, Options, Outcome, Plc, Project, Snapshot, Type, Until, Value,
 };
 
-const ENGINES: [EngineKind; 2] = [EngineKind::Jit, EngineKind::Interp];
+mod common;
 
-fn plc(text: &str, engine: EngineKind) -> Plc {
-    let project = Project::new().text("t.stl", text);
-    let options = Options {
-        engine,
-        ..Options::default()
-    };
-    Plc::compile(&project, &options).expect("compiles")
-}
+use common::{ENGINES, plc};
 
 /// I0.0 drives Q0.0; M0.1 reads Q0.0 back; the program sets M0.0 every scan and copies what it
 /// reads of M0.0 to Q0.1; VW10 counts scans.

@@ -4,16 +4,9 @@
 
 use stljit_api::{EngineKind, Error, Options, Plc, Project, Until, Value};
 
-const ENGINES: [EngineKind; 2] = [EngineKind::Jit, EngineKind::Interp];
+mod common;
 
-fn plc(text: &str, engine: EngineKind) -> Plc {
-    let project = Project::new().text("t.stl", text);
-    let options = Options {
-        engine,
-        ..Options::default()
-    };
-    Plc::compile(&project, &options).expect("compiles")
-}
+use common::{ENGINES, plc};
 
 fn int(plc: &Plc, name: &str) -> i64 {
     match plc.read(name).expect("readable") {
