@@ -1,15 +1,17 @@
 //! The native many-scans loop (`run_scans`): `for i in 0..n { begin; main; end }` at times
 //! `t0 + i · dt`, stopping at the first scan whose status is not Ok.
 //!
-//! A scan that stays on the common path runs its prologue and epilogue inline: an S7 program
-//! whose plan has no clock-refreshed timer and no interrupt routine, outside the first scan,
-//! not in STOP, whose main program returns Ok without a STOP request. Every other scan calls
-//! the runtime's `scan::begin`/`scan::end` shims, which remain the definition; in particular
-//! every scan of a program with interrupt routines, whose event phases run inside
-//! `scan::begin` (it calls back into the compiled routines through `NativeRoutines`). The inline path reads every
-//! fact it applies from `runtime::scan` (`DELTAS`, `RESETS`, the `SMB0_*` bits) and the image
-//! layout, so it restates no rule; the differential tests and every fuzz campaign compare its
-//! bytes with the interpreter's, which always calls `scan::begin`/`end`.
+//! A scan that stays on the common path runs its prologue and epilogue inline: a program of
+//! either dialect whose plan has no clock-refreshed timer and no event source, outside the
+//! first scan, not in STOP, whose main program returns Ok without a STOP request. Every other
+//! scan calls the runtime's `scan::begin`/`scan::end` shims, which remain the definition; in
+//! particular every scan of a program with interrupt routines, whose event phases run inside
+//! `scan::begin` (it calls back into the compiled routines through `NativeRoutines`). The
+//! inline path reads every fact it applies from `runtime::scan` (`DELTAS`, `RESETS`, the
+//! `SMB0_*` bits), from `core::omron` (the system bits, their pulse periods, the condition
+//! flags, `P_First_Cycle`) and the image layout, so it restates no fact; the differential tests
+//! and every fuzz campaign compare its bytes with the interpreter's, which always calls
+//! `scan::begin`/`end`.
 //!
 //! Why inline: an empty program's scan is otherwise two shim calls, each with its pointer
 //! checks and `catch_unwind`, around a few dozen stores; inline, the whole scan of a small
@@ -26,14 +28,17 @@ use cranelift_codegen::ir::{
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::JITModule;
 use cranelift_module::{FuncId, Module};
+use stljit_core::ir::Loc;
 use stljit_core::layout::{Layout, Sched};
+use stljit_core::omron::{self, SystemBit};
 use stljit_core::{Area, Family, ScanStatus};
 use stljit_runtime::scan::{self, Begin, ScanPlan};
 
 /// Whether scans of `plan`'s program may take the inline path at all (the interrupt
-/// machinery could act in a program with interrupt routines or high-speed counters).
+/// machinery could act in a program with interrupt routines, high-speed counters, pulse
+/// outputs or communication; Omron timers are never clock-refreshed).
 fn inline_path(plan: &ScanPlan) -> bool {
-    plan.family() == Family::S7 && plan.clock_timers().is_empty() && !plan.has_events()
+    plan.clock_timers().is_empty() && !plan.has_events()
 }
 
 /// The loop, with the signature `build::run_signature`:
@@ -127,7 +132,7 @@ pub(crate) fn build_run(
     b.ins().brif(runs, run, &[], slow_end, &[fatal.into()]);
 
     b.switch_to_block(fast_begin);
-    inline_begin(&mut b, &img, t, &q, &prev_q);
+    inline_begin(&mut b, &img, plan.family(), t, &q, &prev_q);
     b.ins().jump(run, &[]);
 
     b.switch_to_block(run);
@@ -193,6 +198,11 @@ impl Img<'_> {
         )
     }
 
+    /// The byte at image offset `off`, zero-extended to `i32`.
+    fn byte_at(&self, b: &mut FunctionBuilder<'_>, off: u32) -> Value {
+        b.ins().uload8(I32, Self::flags(), self.base, off as i32)
+    }
+
     /// Stores `v` (its own type) to scheduler field `field`.
     fn store(&self, b: &mut FunctionBuilder<'_>, v: Value, field: u32) {
         self.store_at(b, v, self.layout.sched(field));
@@ -229,12 +239,13 @@ fn quotients(b: &mut FunctionBuilder<'_>, t: Value) -> Vec<Value> {
         .collect()
 }
 
-/// `scan::begin` for a scan in RUN after the first, S7 family, no clock-refreshed timer: the
-/// time step with its deltas (`q`: this scan's `t / div`, `prev_q`: the previous scan's), the
-/// step-5 resets, the input copy and SMB0.
+/// `scan::begin` for a scan in RUN after the first, no clock-refreshed timer: the time step
+/// with its deltas (`q`: this scan's `t / div`, `prev_q`: the previous scan's), the step-5
+/// resets, the input copy and the family's system bits.
 fn inline_begin(
     b: &mut FunctionBuilder<'_>,
     img: &Img<'_>,
+    family: Family,
     t: Value,
     q: &[Value],
     prev_q: &[Value],
@@ -261,6 +272,16 @@ fn inline_begin(
     let zero = b.ins().iconst(I32, 0);
     img.store(b, zero, Sched::LOOP_COUNT);
     img.copy(b, l.phys_in, l.base(Area::I), l.area_size(Area::I));
+    match family {
+        Family::S7 => inline_smb0(b, img, t),
+        Family::Omron => inline_omron_bits(b, img, t),
+    }
+}
+
+/// SMB0 outside the first scan (S7, spec §2.3): the constant bits, the clock bits, the parity
+/// bit.
+fn inline_smb0(b: &mut FunctionBuilder<'_>, img: &Img<'_>, t: Value) {
+    let l = img.layout;
     if l.area_size(Area::SM) > 0 {
         // SMB0 outside the first scan: the constant bits, the clock bits, the parity bit.
         let mut v = b.ins().iconst(I32, i64::from(scan::SMB0_ALWAYS));
@@ -281,6 +302,61 @@ fn inline_begin(
         let v = b.ins().bor(v, even);
         let v = b.ins().ireduce(I8, v);
         img.store_at(b, v, l.base(Area::SM));
+    }
+}
+
+/// The Omron system bits outside the first cycle (omron-cp.md §2.2 step 3, `scan::begin`'s
+/// `omron_system_bits` then `clear_condition_flags`): the first four bytes of the Flags area
+/// become `P_On` and the clock pulses ON in the first half of their period, keeping only what
+/// neither writes, and `P_First_Cycle` goes OFF.
+fn inline_omron_bits(b: &mut FunctionBuilder<'_>, img: &Img<'_>, t: Value) {
+    let l = img.layout;
+    let mut bits = b.ins().iconst(I32, 1i64 << SystemBit::On.index());
+    for (pulse, period) in SystemBit::PULSES {
+        let phase = b.ins().urem_imm_u(t, period as i64);
+        let on = b
+            .ins()
+            .icmp_imm_u(IntCC::UnsignedLessThan, phase, (period / 2) as i64);
+        let on = b.ins().uextend(I32, on);
+        let on = b.ins().ishl_imm_u(on, i64::from(pulse.index()));
+        bits = b.ins().bor(bits, on);
+    }
+    // The condition flags are kept by the system bits and then cleared (where the area holds
+    // them), so of an old byte only what is neither a system bit nor a condition flag stays.
+    let keep = u32::from(SystemBit::CONDITION_FLAGS);
+    let cleared = if l.area_size(Area::Flags) >= 2 {
+        u32::from(SystemBit::CONDITION_FLAGS)
+    } else {
+        0
+    };
+    let base = l.base(Area::Flags);
+    for i in 0..4u32 {
+        let k = ((keep & !cleared) >> (8 * i)) & 0xFF;
+        let byte = b.ins().ushr_imm_u(bits, i64::from(8 * i));
+        let byte = if k == 0 {
+            byte
+        } else {
+            let old = img.byte_at(b, base + i);
+            let old = b.ins().band_imm_u(old, i64::from(k));
+            b.ins().bor(byte, old)
+        };
+        let byte = b.ins().ireduce(I8, byte);
+        img.store_at(b, byte, base + i);
+    }
+    let (word, bit) = omron::FIRST_CYCLE;
+    let at = omron::bit_of_word(
+        Loc {
+            area: Area::Aux,
+            offset: 2 * word,
+        },
+        bit,
+    );
+    if at.byte < l.area_size(Area::Aux) {
+        let a = l.base(Area::Aux) + at.byte;
+        let old = img.byte_at(b, a);
+        let off = b.ins().band_imm_u(old, !(1i64 << at.bit) & 0xFF);
+        let off = b.ins().ireduce(I8, off);
+        img.store_at(b, off, a);
     }
 }
 

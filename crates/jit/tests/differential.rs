@@ -246,68 +246,101 @@ fn run_scans_equals_the_interpreter_scan_by_scan() {
 /// same bytes whichever path each scan takes (first scan, STOP, fatal, clock timers).
 #[test]
 fn run_scans_in_stretches_equals_scan_by_scan() {
-    use stljit_core::ScanStatus;
-    use stljit_diff::oracle::{apply_stimulus, start_image};
-    use stljit_runtime::Engine;
     let cfg = GenConfig {
         scans: 40,
         ..GenConfig::default()
     };
-    let run = RunOptions::default();
     let mut stretches = 0u64;
     for seed in 0..SEEDS / 2 {
-        let case = case_from_seed(seed ^ 0x5EED, &cfg);
-        let mut interp =
-            stljit_interp::Interpreter::new(&case.program).expect("interpreter accepts it");
-        let opt = if seed % 2 == 0 {
-            stljit_jit::OptLevel::Speed
-        } else {
-            stljit_jit::OptLevel::None
-        };
-        let mut jit =
-            stljit_jit::JitProgram::compile(&case.program, &stljit_jit::JitOptions::at(opt))
-                .expect("JIT compiles");
-        let (mut want, mut got) = (
-            start_image(&case.program, &run),
-            start_image(&case.program, &run),
-        );
-        let (mut k, mut t, mut rng) = (0usize, 0u64, seed.wrapping_mul(0x9E37_79B9) | 1);
-        let mut next = || {
-            rng ^= rng << 13;
-            rng ^= rng >> 7;
-            rng ^= rng << 17;
-            rng
-        };
-        while k < case.stimulus.scans.len() {
-            let len = 1 + (next() % 6) as usize;
-            let dt = 1 + next() % 200;
-            // Now and then a stretch starts 50 ms before the last scan's time.
-            let t0 = if next() % 11 == 0 {
-                t.saturating_sub(50)
-            } else {
-                t
-            };
-            apply_stimulus(&mut want, &case.stimulus.scans[k]);
-            apply_stimulus(&mut got, &case.stimulus.scans[k]);
-            let mut status = ScanStatus::Ok;
-            let mut done = 0;
-            while done < len as u64 && status == ScanStatus::Ok {
-                status = interp.scan(&mut want, t0 + done * dt);
-                done += 1;
-            }
-            let (jdone, jstatus) = jit.run_scans(&mut got, t0, dt, len as u64);
-            assert_eq!((jdone, jstatus), (done, status), "seed {seed}, scan {k}");
-            assert!(
-                got.bytes() == want.bytes(),
-                "seed {seed}: images differ after the stretch starting at scan {k}"
-            );
-            stretches += 1;
-            if status != ScanStatus::Ok {
-                break;
-            }
-            k += len;
-            t = t0 + (len as u64 - 1) * dt;
-        }
+        stretches += stretches_agree(&case_from_seed(seed ^ 0x5EED, &cfg), seed, 200);
     }
     assert!(stretches > SEEDS, "{stretches} stretches");
+}
+
+/// The same for Omron programs, whose scans take the inline path too: the system bits (`P_On`,
+/// the clock pulses at random scan times, `P_First_Cycle` OFF after the first cycle) and the
+/// condition flags cleared at the cycle's start.
+#[test]
+fn omron_run_scans_in_stretches_equals_scan_by_scan() {
+    use stljit_core::Family;
+    use stljit_diff::generate::generate_in;
+    use stljit_diff::rng::Choices;
+    let cfg = GenConfig {
+        scans: 40,
+        ..GenConfig::default()
+    };
+    let (mut stretches, mut cases) = (0u64, 0u64);
+    for seed in 0..SEEDS / 2 {
+        let mut c = Choices::from_seed(seed ^ 0x0C01);
+        // A program the front end rejects is the generator's business (its own tests).
+        if let Ok(g) = generate_in(Family::Omron, &mut c, &cfg) {
+            // Scan times up to 2 s, so that 40 scans pass the 1-minute pulse's edges too.
+            stretches += stretches_agree(&g.case, seed, 2000);
+            cases += 1;
+        }
+    }
+    assert!(cases > SEEDS / 4, "only {cases} Omron programs generated");
+    assert!(stretches > SEEDS / 2, "{stretches} stretches");
+}
+
+/// Runs `case` in random stretches (scan times 1..=`max_dt` ms) on the JIT's native loop and
+/// scan by scan on the interpreter, comparing the images after every stretch; the number of
+/// stretches run.
+fn stretches_agree(case: &stljit_diff::generate::Case, seed: u64, max_dt: u64) -> u64 {
+    use stljit_core::ScanStatus;
+    use stljit_diff::oracle::{apply_stimulus, start_image};
+    use stljit_runtime::Engine;
+    let run = RunOptions::default();
+    let mut stretches = 0u64;
+    let mut interp =
+        stljit_interp::Interpreter::new(&case.program).expect("interpreter accepts it");
+    let opt = if seed.is_multiple_of(2) {
+        stljit_jit::OptLevel::Speed
+    } else {
+        stljit_jit::OptLevel::None
+    };
+    let mut jit = stljit_jit::JitProgram::compile(&case.program, &stljit_jit::JitOptions::at(opt))
+        .expect("JIT compiles");
+    let (mut want, mut got) = (
+        start_image(&case.program, &run),
+        start_image(&case.program, &run),
+    );
+    let (mut k, mut t, mut rng) = (0usize, 0u64, seed.wrapping_mul(0x9E37_79B9) | 1);
+    let mut next = || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        rng
+    };
+    while k < case.stimulus.scans.len() {
+        let len = 1 + (next() % 6) as usize;
+        let dt = 1 + next() % max_dt;
+        // Now and then a stretch starts 50 ms before the last scan's time.
+        let t0 = if next() % 11 == 0 {
+            t.saturating_sub(50)
+        } else {
+            t
+        };
+        apply_stimulus(&mut want, &case.stimulus.scans[k]);
+        apply_stimulus(&mut got, &case.stimulus.scans[k]);
+        let mut status = ScanStatus::Ok;
+        let mut done = 0;
+        while done < len as u64 && status == ScanStatus::Ok {
+            status = interp.scan(&mut want, t0 + done * dt);
+            done += 1;
+        }
+        let (jdone, jstatus) = jit.run_scans(&mut got, t0, dt, len as u64);
+        assert_eq!((jdone, jstatus), (done, status), "seed {seed}, scan {k}");
+        assert!(
+            got.bytes() == want.bytes(),
+            "seed {seed}: images differ after the stretch starting at scan {k}"
+        );
+        stretches += 1;
+        if status != ScanStatus::Ok {
+            break;
+        }
+        k += len;
+        t = t0 + (len as u64 - 1) * dt;
+    }
+    stretches
 }
