@@ -315,6 +315,20 @@ impl SystemBit {
 /// `A200.11` (`P_First_Cycle`): ON during the first cycle only (spec §1.8).
 pub const FIRST_CYCLE: (u32, u8) = (200, 11);
 
+/// Where [`FIRST_CYCLE`] sits in an image of `layout`: the byte's image offset and the bit, or
+/// `None` on a profile whose Aux area does not reach it.
+pub fn first_cycle_bit(layout: &crate::layout::Layout) -> Option<(u32, u8)> {
+    let (word, bit) = FIRST_CYCLE;
+    let at = bit_of_word(
+        Loc {
+            area: Area::Aux,
+            offset: 2 * word,
+        },
+        bit,
+    );
+    (at.byte < layout.area_size(Area::Aux)).then(|| (layout.base(Area::Aux) + at.byte, at.bit))
+}
+
 /// The temporary relay `TRn` (0..=15).
 pub fn tr_bit(n: u8) -> BitLoc {
     BitLoc {

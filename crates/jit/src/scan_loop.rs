@@ -28,7 +28,6 @@ use cranelift_codegen::ir::{
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::JITModule;
 use cranelift_module::{FuncId, Module};
-use stljit_core::ir::Loc;
 use stljit_core::layout::{Layout, Sched};
 use stljit_core::omron::{self, SystemBit};
 use stljit_core::{Area, Family, ScanStatus};
@@ -343,18 +342,9 @@ fn inline_omron_bits(b: &mut FunctionBuilder<'_>, img: &Img<'_>, t: Value) {
         let byte = b.ins().ireduce(I8, byte);
         img.store_at(b, byte, base + i);
     }
-    let (word, bit) = omron::FIRST_CYCLE;
-    let at = omron::bit_of_word(
-        Loc {
-            area: Area::Aux,
-            offset: 2 * word,
-        },
-        bit,
-    );
-    if at.byte < l.area_size(Area::Aux) {
-        let a = l.base(Area::Aux) + at.byte;
+    if let Some((a, bit)) = omron::first_cycle_bit(l) {
         let old = img.byte_at(b, a);
-        let off = b.ins().band_imm_u(old, !(1i64 << at.bit) & 0xFF);
+        let off = b.ins().band_imm_u(old, !(1i64 << bit) & 0xFF);
         let off = b.ins().ireduce(I8, off);
         img.store_at(b, off, a);
     }

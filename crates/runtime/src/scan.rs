@@ -30,7 +30,7 @@ use crate::interrupt::{self, Isr};
 use crate::mem;
 use crate::timer;
 use stljit_core::interrupt::MAX_ROUTINE;
-use stljit_core::ir::{Loc, Program};
+use stljit_core::ir::Program;
 use stljit_core::layout::{Layout, SCHED_SIZE, Sched, TimerState};
 use stljit_core::omron::{self, SystemBit};
 use stljit_core::profile::Resolution;
@@ -381,18 +381,9 @@ fn omron_system_bits(img: &mut [u8], layout: &Layout, t_ms: u64, first: bool) {
         let at = base + i as u32;
         mem::set_u8(img, at, (mem::get_u8(img, at) & keep) | b);
     }
-    let (word, bit) = omron::FIRST_CYCLE;
-    let at = omron::bit_of_word(
-        Loc {
-            area: Area::Aux,
-            offset: 2 * word,
-        },
-        bit,
-    );
-    if at.byte < layout.area_size(Area::Aux) {
-        let a = layout.base(Area::Aux) + at.byte;
+    if let Some((a, bit)) = omron::first_cycle_bit(layout) {
         let old = mem::get_u8(img, a);
-        let mask = 1 << at.bit;
+        let mask = 1 << bit;
         mem::set_u8(img, a, if first { old | mask } else { old & !mask });
     }
 }
