@@ -282,7 +282,6 @@ fn inline_begin(
 fn inline_smb0(b: &mut FunctionBuilder<'_>, img: &Img<'_>, t: Value) {
     let l = img.layout;
     if l.area_size(Area::SM) > 0 {
-        // SMB0 outside the first scan: the constant bits, the clock bits, the parity bit.
         let mut v = b.ins().iconst(I32, i64::from(scan::SMB0_ALWAYS));
         for (bit, period) in scan::SMB0_CLOCKS {
             // ON while `t / (period / 2)` is even.

@@ -258,8 +258,8 @@ impl Image {
     pub fn set_inputs(&mut self, inputs: &[u8]) {
         let dst = self.phys_in_mut();
         // The usual call passes exactly the 16 input bytes of the S7 profiles, once per scan:
-        // as a fixed-size copy that is two moves instead of calls to `memmove` and `memset`,
-        // which cost as much as a third of an empty program's scan.
+        // as a fixed-size copy that is two moves instead of calls to `memmove` and `memset`
+        // (about 1 ns of an empty program's 17-ns scan in `stljit bench`).
         if let (Ok(dst), Ok(src)) = (
             <&mut [u8; 16]>::try_from(&mut *dst),
             <&[u8; 16]>::try_from(inputs),
