@@ -9,6 +9,7 @@
 
 use crate::rules::{Gate, GatePolicy, Rules};
 use crate::{block, mem};
+use std::hint::select_unpredictable;
 use stljit_core::ir::CounterKind;
 use stljit_core::layout::Sched;
 use stljit_core::layout::{COUNTER_STATE_SIZE, CounterState, Layout};
@@ -89,48 +90,31 @@ impl Counter {
         };
         let s = |k: u16| (stack >> k) & 1 != 0;
         let c = self;
-        Some(match kind {
+        // `S0` (R, or LD for CTD) wins over counting; otherwise an edge counts once. Written
+        // as selects, not branches, for the reason given in `Timer::step`.
+        let reset = s(0);
+        let (counted, reset_cv, bit) = match kind {
             CounterKind::Up => {
                 let up = edge_of(&mut c.prev_up, s(1), quiet);
-                if s(0) {
-                    c.cv = 0;
-                    false
-                } else {
-                    if up && c.cv < i16::MAX {
-                        c.cv += 1;
-                    }
-                    c.cv >= preset
-                }
+                let counted = c.cv + i16::from(up & (c.cv < i16::MAX));
+                (counted, 0, counted >= preset)
             }
             CounterKind::Down => {
                 let down = edge_of(&mut c.prev_down, s(1), quiet);
-                if s(0) {
-                    c.cv = preset;
-                    false
-                } else {
-                    if down && c.cv > 0 {
-                        c.cv -= 1;
-                    }
-                    c.cv == 0
-                }
+                let counted = c.cv - i16::from(down & (c.cv > 0));
+                (counted, preset, counted == 0)
             }
             CounterKind::UpDown => {
                 let up = edge_of(&mut c.prev_up, s(2), quiet);
                 let down = edge_of(&mut c.prev_down, s(1), quiet);
-                if s(0) {
-                    c.cv = 0;
-                    false
-                } else {
-                    if up {
-                        c.cv = c.cv.wrapping_add(1);
-                    }
-                    if down {
-                        c.cv = c.cv.wrapping_sub(1);
-                    }
-                    c.cv >= preset
-                }
+                let counted =
+                    c.cv.wrapping_add(i16::from(up))
+                        .wrapping_sub(i16::from(down));
+                (counted, 0, counted >= preset)
             }
-        })
+        };
+        c.cv = select_unpredictable(reset, reset_cv, counted);
+        Some(!reset & bit)
     }
 }
 

@@ -14,6 +14,7 @@
 
 use crate::rules::{Gate, GatePolicy};
 use crate::{block, mem};
+use std::hint::select_unpredictable;
 use stljit_core::ir::TimerKind;
 use stljit_core::layout::{Layout, Sched, TIMER_STATE_SIZE, TimerState};
 use stljit_core::{Area, ErrorCode};
@@ -134,38 +135,40 @@ impl Timer {
     pub fn step(&mut self, kind: TimerKind, input: bool, gate: Gate, preset: i16, d100: u32) {
         let t = self;
         let d100 = if t.res == 100 { d100 } else { 0 };
-        let (on, gate) = match gate {
-            Gate::Open => (input, true),
-            Gate::Closed(GatePolicy::S7Scr) => (false, false),
-            Gate::Closed(GatePolicy::OmronInterlock) => {
-                if kind == TimerKind::On {
-                    t.run = false;
-                    t.cv = 0;
-                    t.bit = false;
-                }
-                return;
+        if gate == Gate::Closed(GatePolicy::OmronInterlock) {
+            if kind == TimerKind::On {
+                t.run = false;
+                t.cv = 0;
+                t.bit = false;
             }
-        };
+            return;
+        }
+        // Open: `IN = input`; closed under the S7 SCR policy: `IN = 0`.
+        let gate = gate.is_open();
+        let on = input & gate;
         match kind {
             TimerKind::On | TimerKind::Retentive => {
-                if on {
-                    if !t.run {
-                        t.run = true;
-                        if kind == TimerKind::On {
-                            t.cv = 0; // TON starts from 0; TONR resumes from the held value
-                        }
-                    } else {
-                        t.cv = sat_add(t.cv, d100);
-                    }
-                    t.pt_cache = preset;
-                    t.bit = t.cv >= preset;
-                } else {
-                    t.run = false;
-                    if kind == TimerKind::On {
-                        t.cv = 0;
-                        t.bit = false;
-                    }
-                }
+                // Spec §5.2, as selects: with IN on a running timer, CV = sat(CV + d100);
+                // otherwise (starting, or IN off) a TON's CV is 0 and a TONR's is held. With IN
+                // the bit is CV >= PT and the PT cache takes PT; without, a TON's bit is 0 and a
+                // TONR's held. `run` = IN. No branches: the inputs follow the plant from scan to
+                // scan, so a branch on them is mispredicted about half the time, which in the
+                // JIT's timer shim cost more than the rule itself (docs/performance.md).
+                let timing = on & t.run;
+                let held = if kind == TimerKind::On { 0 } else { t.cv };
+                t.cv = select_unpredictable(timing, sat_add(t.cv, d100), held);
+                let held_bit = kind == TimerKind::Retentive && t.bit;
+                // Bit and PT cache are chosen by one select of both packed together: a select
+                // of the old PT cache on its own is compiled as a branch around its load.
+                let pack = |pt: i16, bit: bool| (u32::from(pt as u16) << 16) | u32::from(bit);
+                let chosen = select_unpredictable(
+                    on,
+                    pack(preset, t.cv >= preset),
+                    pack(t.pt_cache, held_bit),
+                );
+                t.pt_cache = (chosen >> 16) as u16 as i16;
+                t.bit = chosen & 1 != 0;
+                t.run = on;
             }
             TimerKind::Off => {
                 if !gate {
