@@ -298,6 +298,7 @@ fn lower_fn(
     let fc = l.module.isa().frontend_config();
     l.b.finalize(fc);
     crate::lower::value::settle_alignments(&mut ctx.func);
+    crate::dse::remove_dead_stores(&mut ctx.func);
     match unsupported {
         Some(what) => Err(JitError::Unsupported(what)),
         None => Ok(()),

@@ -14,6 +14,7 @@
 mod analysis;
 mod build;
 mod clif;
+mod dse;
 mod engine;
 mod helpers;
 mod lower;
