@@ -11,6 +11,7 @@ use super::Lower;
 use super::cache::Addr;
 use super::mem::{OnFail, Place};
 use super::state::BoxState;
+use super::mf;
 use super::value::B;
 use crate::helpers::Helper;
 use cranelift_codegen::ir::{
@@ -18,7 +19,7 @@ use cranelift_codegen::ir::{
     condcodes::IntCC,
     types::{I16, I32},
 };
-use stljit_core::ir::{ArithOp, BoxOp, LogicOp, Operand};
+use stljit_core::ir::{ArithOp, BoxOp, Loc, LogicOp, Operand};
 use stljit_core::{Area, Width};
 use stljit_runtime::ffi::{
     OUTCOME_CLEAR_SHIFT, OUTCOME_HAS_VALUE_SHIFT, OUTCOME_SET_SHIFT, ValueBox,
@@ -92,6 +93,17 @@ impl Lower<'_, '_> {
 
     fn lower_box_op(&mut self, bx: &BoxOp) {
         match *bx {
+            BoxOp::Move {
+                width,
+                src: Operand::Mem(src),
+                dst: Operand::Mem(dst),
+            } if self.raw_move_applies(width, src, dst) => {
+                let (src, dst) = (self.loc_addr(src), self.loc_addr(dst));
+                self.boxed(|s, _| {
+                    s.move_raw(width, src, dst);
+                    B::K(true)
+                });
+            }
             BoxOp::Move {
                 width,
                 ref src,
@@ -195,6 +207,54 @@ impl Lower<'_, '_> {
                 start,
                 ref len,
             } => self.shift_register(data, start, len),
+        }
+    }
+
+    /// Whether a move of a word or double word between two static places can copy the bytes
+    /// as they are (`move_raw`): no byte it reads is in the cache or was stored recently (a
+    /// wide load of bytes still in the store buffer would stall; the general path assembles
+    /// cached bytes instead). The destination is read too, for its old value, when the box
+    /// has a predicate; it is checked either way.
+    fn raw_move_applies(&self, width: Width, src: Loc, dst: Loc) -> bool {
+        let now = self.block.cache.now;
+        let cold = |a: Addr| {
+            (0..width.bytes()).all(|i| self.block.cache.get(a.plus(i)).is_none())
+                && self.func.stores.is_cold(a, width.bytes(), now)
+        };
+        width != Width::Byte && cold(self.loc_addr(src)) && cold(self.loc_addr(dst))
+    }
+
+    /// `MOVW`/`MOVD` without decoding: the image is big-endian and so is the destination, so
+    /// the bytes are loaded and stored as they are, with no byte swap on either side (or on the
+    /// old value kept where PF is 0). The written bytes enter the cache like any write.
+    fn move_raw(&mut self, width: Width, src: Addr, dst: Addr) {
+        let n = width.bytes();
+        let ty = if width == Width::Word { I16 } else { I32 };
+        let sb = self.base(src);
+        let v = self.b.ins().load(ty, mf(), sb, src.off as i32);
+        let db = self.base(dst);
+        let v = match self.in_box.pf() {
+            Some(p) => {
+                let old = self.b.ins().load(ty, mf(), db, dst.off as i32);
+                self.b.ins().select(p, v, old)
+            }
+            None => v,
+        };
+        self.b.ins().store(mf(), v, db, dst.off as i32);
+        // Byte `i` of the destination is bits 8i.. of the little-endian load of it.
+        let wide = if ty == I32 {
+            v
+        } else {
+            self.b.ins().uextend(I32, v)
+        };
+        for i in 0..n {
+            let s = self.b.ins().ushr_imm_s(wide, i64::from(8 * i));
+            let byte = self.b.ins().band_imm_s(s, 0xFF);
+            self.block.cache.put_clean(dst.plus(i), byte);
+        }
+        self.func.stores.stored(dst, n, self.block.cache.now);
+        if let Some(pred) = &mut self.in_box.pred {
+            pred.reads.clear();
         }
     }
 
