@@ -1,16 +1,32 @@
-//! Tests of [`super::remove_dead_stores`] on small hand-built functions: which stores go and,
-//! as important, which must stay.
+//! Tests of [`super::remove_dead_stores`] on small hand-built blocks: which stores go and, as
+//! important, which must stay. Each case is a list of memory events in program order.
 
 use super::remove_dead_stores;
-use cranelift_codegen::ir::{
-    AbiParam, Function, InstBuilder, Signature, UserFuncName, Value, types::*,
-};
-use cranelift_codegen::isa::CallConv;
+use crate::lower::mf;
+use cranelift_codegen::ir::{AbiParam, Function, InstBuilder, Signature, UserFuncName, types::*};
+use cranelift_codegen::isa::{CallConv, TargetFrontendConfig};
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 
-/// Builds `fn(image: i64, other: i64, callee: i64)` whose body `body` writes into one block
-/// (or more, if it makes them).
-fn build(body: impl FnOnce(&mut FunctionBuilder, [Value; 3])) -> Function {
+/// One event of a test function `fn(image, other, callee)`.
+#[derive(Clone, Copy)]
+enum Ev {
+    /// A store of `n` (1, 2, 4) bytes at `image + off`.
+    St(i32, u8),
+    /// The same through `image + 100 + off`, the 100 added by its own `iadd` of a constant.
+    StVia100(i32),
+    /// A load of `n` bytes at `image + off`.
+    Ld(i32, u8),
+    /// A byte load through the other pointer parameter (it may point into the image).
+    LdOther,
+    /// An indirect call.
+    Call,
+    /// The block ends; the rest goes into the next one.
+    NewBlock,
+}
+use Ev::*;
+
+/// Builds the function, runs the pass, returns (stores removed, stores left).
+fn run(events: &[Ev]) -> (usize, usize) {
     let mut sig = Signature::new(CallConv::SystemV);
     sig.params = vec![AbiParam::new(I64); 3];
     let mut func = Function::with_name_signature(UserFuncName::user(0, 0), sig);
@@ -19,141 +35,99 @@ fn build(body: impl FnOnce(&mut FunctionBuilder, [Value; 3])) -> Function {
     let entry = b.create_block();
     b.append_block_params_for_function_params(entry);
     b.switch_to_block(entry);
-    let p = b.block_params(entry);
-    let params = [p[0], p[1], p[2]];
-    body(&mut b, params);
+    let p = b.block_params(entry).to_vec();
+    let (img, other, callee) = (p[0], p[1], p[2]);
+    for &e in events {
+        match e {
+            St(off, n) => {
+                let ty = [I8, I16, I32][n.trailing_zeros() as usize];
+                let v = b.ins().iconst(ty, 1);
+                b.ins().store(mf(), v, img, off);
+            }
+            StVia100(off) => {
+                let c = b.ins().iconst(I64, 100);
+                let base = b.ins().iadd(img, c);
+                let v = b.ins().iconst(I32, 1);
+                b.ins().istore8(mf(), v, base, off);
+            }
+            Ld(off, n) => {
+                let ty = [I8, I16, I32][n.trailing_zeros() as usize];
+                b.ins().load(ty, mf(), img, off);
+            }
+            LdOther => {
+                b.ins().uload8(I32, mf(), other, 0);
+            }
+            Call => {
+                let sig = b.import_signature(Signature::new(CallConv::SystemV));
+                b.ins().call_indirect(sig, callee, &[]);
+            }
+            NewBlock => {
+                let next = b.create_block();
+                b.ins().jump(next, &[]);
+                b.switch_to_block(next);
+            }
+        }
+    }
     b.ins().return_(&[]);
     b.seal_all_blocks();
-    b.finalize(cranelift_codegen::isa::TargetFrontendConfig {
+    b.finalize(TargetFrontendConfig {
         default_call_conv: CallConv::SystemV,
         pointer_width: target_lexicon::PointerWidth::U64,
         page_size_align_log2: 12,
     });
-    func
-}
-
-fn stores(func: &Function) -> usize {
-    func.layout
-        .blocks()
-        .flat_map(|b| func.layout.block_insts(b))
-        .filter(|&i| func.dfg.insts[i].opcode().can_store())
-        .count()
-}
-
-fn byte(b: &mut FunctionBuilder, v: i64) -> Value {
-    b.ins().iconst(I32, v)
-}
-
-/// Runs the pass and returns (removed, stores left).
-fn run(mut func: Function) -> (usize, usize) {
     let removed = remove_dead_stores(&mut func);
-    (removed, stores(&func))
+    let left = func
+        .layout
+        .blocks()
+        .flat_map(|bl| func.layout.block_insts(bl))
+        .filter(|&i| func.dfg.insts[i].opcode().can_store())
+        .count();
+    (removed, left)
 }
 
 #[test]
 fn a_byte_stored_twice_keeps_only_the_second_store() {
-    let f = build(|b, [img, ..]| {
-        let (x, y) = (byte(b, 1), byte(b, 2));
-        b.ins().istore8(crate::lower::mf(), x, img, 5);
-        b.ins().istore8(crate::lower::mf(), y, img, 5);
-    });
-    assert_eq!(run(f), (1, 1));
+    assert_eq!(run(&[St(5, 1), St(5, 1)]), (1, 1));
 }
 
 #[test]
-fn a_load_between_keeps_both_stores() {
-    let f = build(|b, [img, ..]| {
-        let (x, y) = (byte(b, 1), byte(b, 2));
-        b.ins().istore8(crate::lower::mf(), x, img, 5);
-        b.ins().uload8(I32, crate::lower::mf(), img, 5);
-        b.ins().istore8(crate::lower::mf(), y, img, 5);
-    });
-    assert_eq!(run(f), (0, 2));
+fn a_load_of_the_byte_between_keeps_both_stores() {
+    assert_eq!(run(&[St(5, 1), Ld(5, 1), St(5, 1)]), (0, 2));
+    // A wider load that includes it (bytes 2..6) reads it too.
+    assert_eq!(run(&[St(5, 1), Ld(2, 4), St(5, 1)]), (0, 2));
 }
 
 #[test]
-fn a_wide_load_over_the_byte_keeps_both_stores() {
-    let f = build(|b, [img, ..]| {
-        let (x, y) = (byte(b, 1), byte(b, 2));
-        b.ins().istore8(crate::lower::mf(), x, img, 5);
-        b.ins().load(I32, crate::lower::mf(), img, 2); // bytes 2..6
-        b.ins().istore8(crate::lower::mf(), y, img, 5);
-    });
-    assert_eq!(run(f), (0, 2));
-}
-
-#[test]
-fn a_load_of_another_byte_does_not_matter() {
-    let f = build(|b, [img, ..]| {
-        let (x, y) = (byte(b, 1), byte(b, 2));
-        b.ins().istore8(crate::lower::mf(), x, img, 5);
-        b.ins().uload8(I32, crate::lower::mf(), img, 6);
-        b.ins().load(I16, crate::lower::mf(), img, 3); // bytes 3..5
-        b.ins().istore8(crate::lower::mf(), y, img, 5);
-    });
-    assert_eq!(run(f), (1, 1));
+fn loads_of_other_bytes_do_not_matter() {
+    // Byte 6, and bytes 3..5.
+    assert_eq!(run(&[St(5, 1), Ld(6, 1), Ld(3, 2), St(5, 1)]), (1, 1));
 }
 
 #[test]
 fn a_store_is_dead_only_when_every_byte_is_overwritten() {
-    // A byte inside a later word store goes; a word store of which only half is stored again
-    // stays.
-    let f = build(|b, [img, ..]| {
-        let (x, w) = (byte(b, 1), b.ins().iconst(I16, 0x1234));
-        b.ins().istore8(crate::lower::mf(), x, img, 5);
-        b.ins().store(crate::lower::mf(), w, img, 4); // bytes 4, 5
-        b.ins().istore8(crate::lower::mf(), x, img, 5);
-    });
-    assert_eq!(run(f), (1, 2));
+    // Byte 5 inside a later word store of bytes 4..6 goes; that word, of which only byte 5 is
+    // stored again, stays.
+    assert_eq!(run(&[St(5, 1), St(4, 2), St(5, 1)]), (1, 2));
 }
 
 #[test]
 fn constant_offsets_in_the_address_are_seen_through() {
-    let f = build(|b, [img, ..]| {
-        let x = byte(b, 1);
-        let c = b.ins().iconst(I64, 100);
-        let frame = b.ins().iadd(img, c);
-        b.ins().istore8(crate::lower::mf(), x, frame, 4); // image byte 104
-        let frame2 = b.ins().iadd_imm_s(img, 104);
-        b.ins().istore8(crate::lower::mf(), x, frame2, 0); // image byte 104 again
-    });
-    assert_eq!(run(f), (1, 1));
+    // image + 100 + 4 and image + 104 are the same byte.
+    assert_eq!(run(&[StVia100(4), St(104, 1)]), (1, 1));
 }
 
 #[test]
 fn a_load_through_another_root_may_read_anything() {
-    // `other` may point into the image: its load may read byte 5.
-    let f = build(|b, [img, other, _]| {
-        let x = byte(b, 1);
-        b.ins().istore8(crate::lower::mf(), x, img, 5);
-        b.ins().uload8(I32, crate::lower::mf(), other, 0);
-        b.ins().istore8(crate::lower::mf(), x, img, 5);
-    });
-    assert_eq!(run(f), (0, 2));
+    assert_eq!(run(&[St(5, 1), LdOther, St(5, 1)]), (0, 2));
 }
 
 #[test]
 fn a_call_may_read_anything() {
-    let f = build(|b, [img, _, callee]| {
-        let x = byte(b, 1);
-        b.ins().istore8(crate::lower::mf(), x, img, 5);
-        let sig = b.import_signature(Signature::new(CallConv::SystemV));
-        b.ins().call_indirect(sig, callee, &[]);
-        b.ins().istore8(crate::lower::mf(), x, img, 5);
-    });
-    assert_eq!(run(f), (0, 2));
+    assert_eq!(run(&[St(5, 1), Call, St(5, 1)]), (0, 2));
 }
 
 #[test]
 fn a_store_before_the_block_ends_stays() {
     // The successor (or the caller) sees memory at the block's end.
-    let f = build(|b, [img, ..]| {
-        let x = byte(b, 1);
-        b.ins().istore8(crate::lower::mf(), x, img, 5);
-        let next = b.create_block();
-        b.ins().jump(next, &[]);
-        b.switch_to_block(next);
-        b.ins().istore8(crate::lower::mf(), x, img, 5);
-    });
-    assert_eq!(run(f), (0, 2));
+    assert_eq!(run(&[St(5, 1), NewBlock, St(5, 1)]), (0, 2));
 }

@@ -10,8 +10,8 @@
 use super::Lower;
 use super::cache::Addr;
 use super::mem::{OnFail, Place};
-use super::state::BoxState;
 use super::mf;
+use super::state::BoxState;
 use super::value::B;
 use crate::helpers::Helper;
 use cranelift_codegen::ir::{
