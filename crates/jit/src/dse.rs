@@ -30,6 +30,7 @@ type Place = (Value, i64);
 /// Peels `iadd` of constants off an address; at most a few levels, which is
 /// all lowering ever emits.
 fn root_of(func: &Function, mut v: Value, offset: Offset32) -> Place {
+    // Wrapping, as the machine's address arithmetic: no constant can make this panic.
     let mut off = i64::from(offset);
     for _ in 0..4 {
         let ValueDef::Result(inst, 0) = func.dfg.value_def(v) else {
@@ -41,11 +42,11 @@ fn root_of(func: &Function, mut v: Value, offset: Offset32) -> Place {
                 args: [a, b],
             } => match (iconst(func, a), iconst(func, b)) {
                 (_, Some(c)) => {
-                    off += c;
+                    off = off.wrapping_add(c);
                     v = a;
                 }
                 (Some(c), None) => {
-                    off += c;
+                    off = off.wrapping_add(c);
                     v = b;
                 }
                 (None, None) => break,
@@ -92,20 +93,24 @@ fn access_bytes(func: &Function, inst: Inst, opcode: Opcode) -> Option<u32> {
 #[derive(Default)]
 struct Covered(HashMap<Value, HashSet<i64>>);
 
+/// The `n` byte addresses from `off`, wrapping like the machine's address arithmetic (a range
+/// `off..off + n` could overflow, or wrap to an empty range that would cover nothing yet
+/// make every store look dead).
+fn bytes(off: i64, n: u32) -> impl Iterator<Item = i64> + Clone {
+    (0..i64::from(n)).map(move |i| off.wrapping_add(i))
+}
+
 impl Covered {
     /// Whether all `n` bytes from `off` of `root` are covered.
     fn all(&self, (root, off): Place, n: u32) -> bool {
         self.0
             .get(&root)
-            .is_some_and(|s| (off..off + i64::from(n)).all(|b| s.contains(&b)))
+            .is_some_and(|s| bytes(off, n).all(|b| s.contains(&b)))
     }
 
     /// A store of `n` bytes from `off` of `root`.
     fn stored(&mut self, (root, off): Place, n: u32) {
-        self.0
-            .entry(root)
-            .or_default()
-            .extend(off..off + i64::from(n));
+        self.0.entry(root).or_default().extend(bytes(off, n));
     }
 
     /// A load of `n` bytes from `off` of `root`: those bytes and every other root's are read
@@ -113,7 +118,7 @@ impl Covered {
     fn loaded(&mut self, (root, off): Place, n: u32) {
         self.0.retain(|&r, _| r == root);
         if let Some(s) = self.0.get_mut(&root) {
-            for b in off..off + i64::from(n) {
+            for b in bytes(off, n) {
                 s.remove(&b);
             }
         }

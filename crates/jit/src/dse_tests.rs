@@ -16,6 +16,9 @@ enum Ev {
     StVia100(i32),
     /// A load of `n` bytes at `image + off`.
     Ld(i32, u8),
+    /// A store of 2 bytes at `image + i64::MAX + 1` (the sum written as an `iadd` of a
+    /// constant and the offset 1), which wraps.
+    StMax,
     /// A byte load through the other pointer parameter (it may point into the image).
     LdOther,
     /// An indirect call.
@@ -49,6 +52,12 @@ fn run(events: &[Ev]) -> (usize, usize) {
                 let base = b.ins().iadd(img, c);
                 let v = b.ins().iconst(I32, 1);
                 b.ins().istore8(mf(), v, base, off);
+            }
+            StMax => {
+                let c = b.ins().iconst(I64, i64::MAX);
+                let base = b.ins().iadd(img, c);
+                let v = b.ins().iconst(I16, 1);
+                b.ins().store(mf(), v, base, 1);
             }
             Ld(off, n) => {
                 let ty = [I8, I16, I32][n.trailing_zeros() as usize];
@@ -130,4 +139,12 @@ fn a_call_may_read_anything() {
 fn a_store_before_the_block_ends_stays() {
     // The successor (or the caller) sees memory at the block's end.
     assert_eq!(run(&[St(5, 1), NewBlock, St(5, 1)]), (0, 2));
+}
+
+#[test]
+fn offsets_at_the_end_of_the_address_space_neither_panic_nor_cover_nothing() {
+    // image + i64::MAX (an iadd of a constant) + 1 wraps; the byte store there and a store
+    // elsewhere are kept, and the pass does not overflow.
+    assert_eq!(run(&[StMax, St(5, 1)]), (0, 2));
+    assert_eq!(run(&[StMax, StMax]), (1, 1));
 }
