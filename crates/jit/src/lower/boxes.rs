@@ -241,18 +241,13 @@ impl Lower<'_, '_> {
             None => v,
         };
         self.b.ins().store(mf(), v, db, dst.off as i32);
-        // Byte `i` of the destination is bits 8i.. of the little-endian load of it.
+        // Byte `i` of the destination is bits 8i.. of the (little-endian host's) load of it.
         let wide = if ty == I32 {
             v
         } else {
             self.b.ins().uextend(I32, v)
         };
-        for i in 0..n {
-            let s = self.b.ins().ushr_imm_s(wide, i64::from(8 * i));
-            let byte = self.b.ins().band_imm_s(s, 0xFF);
-            self.block.cache.put_clean(dst.plus(i), byte);
-        }
-        self.func.stores.stored(dst, n, self.block.cache.now);
+        self.note_wide_write(dst, n, wide, |i| 8 * i);
         if let Some(pred) = &mut self.in_box.pred {
             pred.reads.clear();
         }

@@ -120,20 +120,8 @@ impl Lower<'_, '_> {
                 self.set_byte(a, m);
             }
             _ => {
-                // Keep the written bytes in registers: a later bit or byte read of them (flags,
-                // coils on the same word) then needs no load.
                 let n = width.bytes();
-                for i in 0..n {
-                    let sh = 8 * (n - 1 - i);
-                    let s = if sh == 0 {
-                        v
-                    } else {
-                        self.b.ins().ushr_imm_s(v, i64::from(sh))
-                    };
-                    let m = self.b.ins().band_imm_s(s, 0xFF);
-                    self.block.cache.put_clean(a.plus(i), m);
-                }
-                self.func.stores.stored(a, n, self.block.cache.now);
+                self.note_wide_write(a, n, v, |i| 8 * (n - 1 - i));
                 let base = self.base(a);
                 self.store_be(base, a.off as i32, width, v);
             }
@@ -142,6 +130,28 @@ impl Lower<'_, '_> {
         if let Some(pred) = &mut self.in_box.pred {
             pred.reads.clear();
         }
+    }
+
+    /// Records a store of `n` bytes from `a` whose byte `i` is bits `shift(i)` to
+    /// `shift(i) + 7` of `v` (an `i32`): the bytes stay in registers, so that a later bit or
+    /// byte read of them (flags, coils on the same word) needs no load, and the store log
+    /// counts them as just stored. The caller emits the store itself.
+    pub(crate) fn note_wide_write(
+        &mut self,
+        a: Addr,
+        n: u32,
+        v: Value,
+        shift: impl Fn(u32) -> u32,
+    ) {
+        for i in 0..n {
+            let s = match shift(i) {
+                0 => v,
+                sh => self.b.ins().ushr_imm_s(v, i64::from(sh)),
+            };
+            let m = self.b.ins().band_imm_s(s, 0xFF);
+            self.block.cache.put_clean(a.plus(i), m);
+        }
+        self.func.stores.stored(a, n, self.block.cache.now);
     }
 
     /// Resolves a pointer held at `loc` for a `width` access; on failure takes `fail`.
