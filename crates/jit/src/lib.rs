@@ -18,6 +18,7 @@ mod dse;
 mod engine;
 mod helpers;
 mod lower;
+mod rebase;
 mod scan_loop;
 
 pub use clif::{asm_text, clif_text, optimized_clif_text};
