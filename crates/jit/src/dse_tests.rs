@@ -3,9 +3,8 @@
 
 use super::remove_dead_stores;
 use crate::lower::mf;
-use cranelift_codegen::ir::{AbiParam, Function, InstBuilder, Signature, UserFuncName, types::*};
-use cranelift_codegen::isa::{CallConv, TargetFrontendConfig};
-use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
+use cranelift_codegen::ir::{InstBuilder, Signature, types::*};
+use cranelift_codegen::isa::CallConv;
 
 /// One event of a test function `fn(image, other, callee)`.
 #[derive(Clone, Copy)]
@@ -30,59 +29,45 @@ use Ev::*;
 
 /// Builds the function, runs the pass, returns (stores removed, stores left).
 fn run(events: &[Ev]) -> (usize, usize) {
-    let mut sig = Signature::new(CallConv::SystemV);
-    sig.params = vec![AbiParam::new(I64); 3];
-    let mut func = Function::with_name_signature(UserFuncName::user(0, 0), sig);
-    let mut ctx = FunctionBuilderContext::new();
-    let mut b = FunctionBuilder::new(&mut func, &mut ctx);
-    let entry = b.create_block();
-    b.append_block_params_for_function_params(entry);
-    b.switch_to_block(entry);
-    let p = b.block_params(entry).to_vec();
-    let (img, other, callee) = (p[0], p[1], p[2]);
-    for &e in events {
-        match e {
-            St(off, n) => {
-                let ty = [I8, I16, I32][n.trailing_zeros() as usize];
-                let v = b.ins().iconst(ty, 1);
-                b.ins().store(mf(), v, img, off);
-            }
-            StVia100(off) => {
-                let c = b.ins().iconst(I64, 100);
-                let base = b.ins().iadd(img, c);
-                let v = b.ins().iconst(I32, 1);
-                b.ins().istore8(mf(), v, base, off);
-            }
-            StMax => {
-                let c = b.ins().iconst(I64, i64::MAX);
-                let base = b.ins().iadd(img, c);
-                let v = b.ins().iconst(I16, 1);
-                b.ins().store(mf(), v, base, 1);
-            }
-            Ld(off, n) => {
-                let ty = [I8, I16, I32][n.trailing_zeros() as usize];
-                b.ins().load(ty, mf(), img, off);
-            }
-            LdOther => {
-                b.ins().uload8(I32, mf(), other, 0);
-            }
-            Call => {
-                let sig = b.import_signature(Signature::new(CallConv::SystemV));
-                b.ins().call_indirect(sig, callee, &[]);
-            }
-            NewBlock => {
-                let next = b.create_block();
-                b.ins().jump(next, &[]);
-                b.switch_to_block(next);
+    let mut func = crate::test_fn::build(3, |b, p| {
+        let (img, other, callee) = (p[0], p[1], p[2]);
+        for &e in events {
+            match e {
+                St(off, n) => {
+                    let ty = [I8, I16, I32][n.trailing_zeros() as usize];
+                    let v = b.ins().iconst(ty, 1);
+                    b.ins().store(mf(), v, img, off);
+                }
+                StVia100(off) => {
+                    let c = b.ins().iconst(I64, 100);
+                    let base = b.ins().iadd(img, c);
+                    let v = b.ins().iconst(I32, 1);
+                    b.ins().istore8(mf(), v, base, off);
+                }
+                StMax => {
+                    let c = b.ins().iconst(I64, i64::MAX);
+                    let base = b.ins().iadd(img, c);
+                    let v = b.ins().iconst(I16, 1);
+                    b.ins().store(mf(), v, base, 1);
+                }
+                Ld(off, n) => {
+                    let ty = [I8, I16, I32][n.trailing_zeros() as usize];
+                    b.ins().load(ty, mf(), img, off);
+                }
+                LdOther => {
+                    b.ins().uload8(I32, mf(), other, 0);
+                }
+                Call => {
+                    let sig = b.import_signature(Signature::new(CallConv::SystemV));
+                    b.ins().call_indirect(sig, callee, &[]);
+                }
+                NewBlock => {
+                    let next = b.create_block();
+                    b.ins().jump(next, &[]);
+                    b.switch_to_block(next);
+                }
             }
         }
-    }
-    b.ins().return_(&[]);
-    b.seal_all_blocks();
-    b.finalize(TargetFrontendConfig {
-        default_call_conv: CallConv::SystemV,
-        pointer_width: target_lexicon::PointerWidth::U64,
-        page_size_align_log2: 12,
     });
     let removed = remove_dead_stores(&mut func);
     let left = func

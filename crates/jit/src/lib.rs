@@ -20,6 +20,8 @@ mod helpers;
 mod lower;
 mod rebase;
 mod scan_loop;
+#[cfg(test)]
+mod test_fn;
 
 pub use clif::{asm_text, clif_text, optimized_clif_text};
 pub use engine::JitProgram;

@@ -5,56 +5,39 @@
 use super::{MAX_EXTRA_BASES, MIN_ACCESSES, SHORT, shorten_displacements};
 use crate::lower::mf;
 use cranelift_codegen::ir::{
-    AbiParam, Function, InstBuilder, InstructionData, Opcode, Signature, UserFuncName, Value,
-    ValueDef, types::*,
+    Function, InstBuilder, InstructionData, Opcode, Signature, Value, ValueDef, types::*,
 };
-use cranelift_codegen::isa::{CallConv, TargetFrontendConfig};
+use cranelift_codegen::isa::CallConv;
 use cranelift_codegen::settings;
-use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 
 /// Builds `fn(image, callee)` with a byte load at each offset (a word store at every third,
 /// so stores are rewritten too, and a load through an opaque copy of the image at every
 /// fourth, as lowering makes them), in two blocks, and an indirect call at the end if `call`.
 fn build(offsets: &[i32], call: bool) -> Function {
-    let mut sig = Signature::new(CallConv::SystemV);
-    sig.params = vec![AbiParam::new(I64); 2];
-    let mut func = Function::with_name_signature(UserFuncName::user(0, 0), sig);
-    let mut ctx = FunctionBuilderContext::new();
-    let mut b = FunctionBuilder::new(&mut func, &mut ctx);
-    let entry = b.create_block();
-    b.append_block_params_for_function_params(entry);
-    b.switch_to_block(entry);
-    let p = b.block_params(entry).to_vec();
-    let (img, callee) = (p[0], p[1]);
-    let pair = b.ins().iconcat(img, img);
-    let img_copy = b.ins().isplit(pair).0;
-    for (i, &off) in offsets.iter().enumerate() {
-        if i == offsets.len() / 2 {
-            let next = b.create_block();
-            b.ins().jump(next, &[]);
-            b.switch_to_block(next);
+    crate::test_fn::build(2, |b, p| {
+        let (img, callee) = (p[0], p[1]);
+        let pair = b.ins().iconcat(img, img);
+        let img_copy = b.ins().isplit(pair).0;
+        for (i, &off) in offsets.iter().enumerate() {
+            if i == offsets.len() / 2 {
+                let next = b.create_block();
+                b.ins().jump(next, &[]);
+                b.switch_to_block(next);
+            }
+            if i % 3 == 2 {
+                let v = b.ins().iconst(I16, 1);
+                b.ins().store(mf(), v, img, off);
+            } else if i % 4 == 3 {
+                b.ins().load(I32, mf(), img_copy, off);
+            } else {
+                b.ins().uload8(I32, mf(), img, off);
+            }
         }
-        if i % 3 == 2 {
-            let v = b.ins().iconst(I16, 1);
-            b.ins().store(mf(), v, img, off);
-        } else if i % 4 == 3 {
-            b.ins().load(I32, mf(), img_copy, off);
-        } else {
-            b.ins().uload8(I32, mf(), img, off);
+        if call {
+            let sig = b.import_signature(Signature::new(CallConv::SystemV));
+            b.ins().call_indirect(sig, callee, &[]);
         }
-    }
-    if call {
-        let sig = b.import_signature(Signature::new(CallConv::SystemV));
-        b.ins().call_indirect(sig, callee, &[]);
-    }
-    b.ins().return_(&[]);
-    b.seal_all_blocks();
-    b.finalize(TargetFrontendConfig {
-        default_call_conv: CallConv::SystemV,
-        pointer_width: target_lexicon::PointerWidth::U64,
-        page_size_align_log2: 12,
-    });
-    func
+    })
 }
 
 /// The image offset a base value stands for, and whether it went through an opaque copy
