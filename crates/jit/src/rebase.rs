@@ -58,18 +58,9 @@ pub(crate) fn shorten_displacements(func: &mut Function) -> usize {
             if let Some((addr, off)) = address(data)
                 && !SHORT.contains(&off)
             {
-                if addr == image {
-                    far.push(Far {
-                        off,
-                        inst,
-                        copy: false,
-                    });
-                } else if is_opaque_copy(func, addr, image) {
-                    far.push(Far {
-                        off,
-                        inst,
-                        copy: true,
-                    });
+                let copy = addr != image;
+                if !copy || is_opaque_copy(func, addr, image) {
+                    far.push(Far { off, inst, copy });
                 }
             }
         }
