@@ -160,11 +160,16 @@ fn densest_window(far: &[Far]) -> Option<(i64, usize)> {
 fn opaque_offset(func: &mut Function, entry: Block, image: Value, bias: i64) -> (Value, Value) {
     let mut pos = FuncCursor::new(func).at_first_insertion_point(entry);
     let sum = pos.ins().iadd_imm_s(image, bias);
-    let pair = pos.ins().iconcat(sum, sum);
-    let base = pos.ins().isplit(pair).0;
-    let pair = pos.ins().iconcat(base, base);
-    let copy = pos.ins().isplit(pair).0;
+    let base = hidden(&mut pos, sum);
+    let copy = hidden(&mut pos, base);
     (base, copy)
+}
+
+/// `v` through `isplit(iconcat(v, v))`: the same pointer, as a value Cranelift cannot trace
+/// back to `v` (the form `write_bit_folded` uses and [`is_opaque_copy`] recognises).
+fn hidden(pos: &mut FuncCursor, v: Value) -> Value {
+    let pair = pos.ins().iconcat(v, v);
+    pos.ins().isplit(pair).0
 }
 
 /// Makes a load or store address `base + rel`.
