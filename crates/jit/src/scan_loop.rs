@@ -21,7 +21,7 @@ use crate::helpers::Helper;
 use crate::lower::Env;
 use cranelift_codegen::Context;
 use cranelift_codegen::ir::{
-    BlockArg, InstBuilder, MemFlagsData, Value,
+    Block, BlockArg, InstBuilder, MemFlagsData, Value,
     condcodes::IntCC,
     types::{I8, I32, I64},
 };
@@ -67,15 +67,16 @@ pub(crate) fn build_run(
         layout: env.layout,
     };
 
-    // The loop carries `t / div` of the previous scan for every delta field (the scan before the
-    // first one of this call left its time in `T_NOW`), so each scan divides its own time once.
-    let head = b.create_block();
-    let i = b.append_block_param(head, I64);
-    let prev_q: Vec<Value> = scan::DELTAS
-        .iter()
-        .map(|_| b.append_block_param(head, I64))
-        .collect();
+    // The loop carries this scan's time and `t / div` of this scan and of the previous one for
+    // every delta field (the scan before the first one of this call left its time in `T_NOW`),
+    // so each scan divides its time once, in the step to the next scan, and the scan's blocks
+    // only read block parameters. (Divisions of the scan's time inside the scan were placed by
+    // the optimizer at each of their uses, and computed twice per scan.)
     let body = b.create_block();
+    let i = b.append_block_param(body, I64);
+    let t = b.append_block_param(body, I64);
+    let prev_q = quotient_params(&mut b, body);
+    let q = quotient_params(&mut b, body);
     let slow_begin = b.create_block();
     let fast_begin = b.create_block();
     let run = b.create_block();
@@ -83,27 +84,29 @@ pub(crate) fn build_run(
     let end_status = b.append_block_param(slow_end, I32);
     let fast_end = b.create_block();
     let next = b.create_block();
+    let advance = b.create_block();
     let fin = b.create_block();
     let (fin_i, fin_st) = (
         b.append_block_param(fin, I64),
         b.append_block_param(fin, I32),
     );
     let zero64 = b.ins().iconst(I64, 0);
-    let before = img.load(&mut b, I64, Sched::T_NOW);
-    let mut args = vec![zero64.into()];
-    args.extend(quotients(&mut b, before).into_iter().map(BlockArg::from));
-    b.ins().jump(head, &args);
-
-    b.switch_to_block(head);
-    let more = b.ins().icmp(IntCC::UnsignedLessThan, i, n);
     let ok = b.ins().iconst(I32, ScanStatus::Ok as i64);
-    b.ins().brif(more, body, &[], fin, &[i.into(), ok.into()]);
+    let before = img.load(&mut b, I64, Sched::T_NOW);
+    let mut args = vec![zero64, t0];
+    args.extend(quotients(&mut b, before));
+    args.extend(quotients(&mut b, t0));
+    let any = b.ins().icmp_imm_u(IntCC::NotEqual, n, 0);
+    b.ins().brif(
+        any,
+        body,
+        &block_args(&args),
+        fin,
+        &[zero64.into(), ok.into()],
+    );
 
     b.switch_to_block(body);
-    let it = b.ins().imul(i, dt);
-    let t = b.ins().iadd(t0, it);
     let i1 = b.ins().iadd_imm_s(i, 1);
-    let q = quotients(&mut b, t);
     if inline_path(plan) {
         // The common path needs RUN mode and a scan after the first.
         let mode = img.load(&mut b, I8, Sched::MODE);
@@ -158,9 +161,16 @@ pub(crate) fn build_run(
     b.ins().jump(next, &[]);
 
     b.switch_to_block(next);
-    let mut args = vec![i1.into()];
-    args.extend(q.iter().map(|&v| BlockArg::from(v)));
-    b.ins().jump(head, &args);
+    let more = b.ins().icmp(IntCC::UnsignedLessThan, i1, n);
+    b.ins()
+        .brif(more, advance, &[], fin, &[i1.into(), ok.into()]);
+
+    b.switch_to_block(advance);
+    let t1 = b.ins().iadd(t, dt);
+    let mut args = vec![i1, t1];
+    args.extend_from_slice(&q);
+    args.extend(quotients(&mut b, t1));
+    b.ins().jump(body, &block_args(&args));
 
     b.switch_to_block(fin);
     b.ins()
@@ -225,6 +235,19 @@ impl Img<'_> {
             at += ty.bytes();
         }
     }
+}
+
+/// One `i64` parameter of `block` per field of [`scan::DELTAS`] (a quotient carried along).
+fn quotient_params(b: &mut FunctionBuilder<'_>, block: Block) -> Vec<Value> {
+    scan::DELTAS
+        .iter()
+        .map(|_| b.append_block_param(block, I64))
+        .collect()
+}
+
+/// `values` as block arguments.
+fn block_args(values: &[Value]) -> Vec<BlockArg> {
+    values.iter().map(|&v| BlockArg::from(v)).collect()
 }
 
 /// `t / div` for every field of [`scan::DELTAS`].

@@ -329,6 +329,13 @@ fn stretches_agree(case: &stljit_diff::generate::Case, seed: u64, max_dt: u64) -
             status = interp.scan(&mut want, t0 + done * dt);
             done += 1;
         }
+        // A call for no scans runs none and changes no byte (the loop tests its count first).
+        let before = got.bytes().to_vec();
+        assert_eq!(jit.run_scans(&mut got, t0, dt, 0), (0, ScanStatus::Ok));
+        assert!(
+            got.bytes() == before.as_slice(),
+            "seed {seed}: 0 scans wrote"
+        );
         let (jdone, jstatus) = jit.run_scans(&mut got, t0, dt, len as u64);
         assert_eq!((jdone, jstatus), (done, status), "seed {seed}, scan {k}");
         assert!(
