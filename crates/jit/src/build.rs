@@ -192,6 +192,7 @@ pub(crate) fn build(
         module.clear_context(ctx);
         Ok(())
     };
+    let mut main_body = None;
     for (i, &id) in pou_funcs.iter().enumerate() {
         let name = UserFuncName::user(0, i as u32);
         match &env.plans[i] {
@@ -199,7 +200,14 @@ pub(crate) fn build(
                 ctx.func = Function::with_name_signature(name, pou_signature(cc));
                 lower_fn(&env, &mut module, &mut ctx, &mut fbc, i, None)?;
                 dump(&ctx.func, i, Part::Whole);
-                define_fn(&mut module, &mut ctx, id)?;
+                if i == 0 {
+                    // The scan loop is the main program's only caller: it gets the body to
+                    // inline, and the function itself is never compiled.
+                    main_body = Some(ctx.func.clone());
+                    module.clear_context(&mut ctx);
+                } else {
+                    define_fn(&mut module, &mut ctx, id)?;
+                }
             }
             Some(plan) => {
                 for (k, &cid) in chunk_funcs[i].iter().enumerate() {
@@ -233,7 +241,8 @@ pub(crate) fn build(
         &mut ctx,
         &mut fbc,
         pou_funcs[0],
-    );
+        main_body.as_ref(),
+    )?;
     dump(&ctx.func, 0, Part::ScanLoop);
     define_fn(&mut module, &mut ctx, run_id)?;
     drop(env);

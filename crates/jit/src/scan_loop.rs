@@ -17,17 +17,20 @@
 //! checks and `catch_unwind`, around a few dozen stores; inline, the whole scan of a small
 //! program costs a few nanoseconds (`docs/performance.md`).
 
+use crate::JitError;
 use crate::helpers::Helper;
 use crate::lower::Env;
 use cranelift_codegen::Context;
+use cranelift_codegen::inline::{Inline, InlineCommand};
 use cranelift_codegen::ir::{
-    Block, BlockArg, InstBuilder, MemFlagsData, Value,
+    Block, BlockArg, FuncRef, Function, Inst, InstBuilder, MemFlagsData, Opcode, Value,
     condcodes::IntCC,
     types::{I8, I32, I64},
 };
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::JITModule;
 use cranelift_module::{FuncId, Module};
+use std::borrow::Cow;
 use stljit_core::layout::{Layout, Sched};
 use stljit_core::omron::{self, SystemBit};
 use stljit_core::{Area, Family, ScanStatus};
@@ -42,6 +45,11 @@ fn inline_path(plan: &ScanPlan) -> bool {
 
 /// The loop, with the signature `build::run_signature`:
 /// `(image, t0, dt, n, done_out) -> status`; writes the number of scans run to `done_out`.
+///
+/// With `main_body` (the main program's function, `main`'s CLIF, not yet compiled), the loop
+/// runs the main program inline instead of calling `main`: no call, no second prologue, and
+/// its loads and bases are the loop's (see [`InlineMain`]).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn build_run(
     env: &Env<'_>,
     plan: &ScanPlan,
@@ -49,7 +57,8 @@ pub(crate) fn build_run(
     ctx: &mut Context,
     fbc: &mut FunctionBuilderContext,
     main: FuncId,
-) {
+    main_body: Option<&Function>,
+) -> Result<(), JitError> {
     let mut b = FunctionBuilder::new(&mut ctx.func, fbc);
     let entry = b.create_block();
     b.append_block_params_for_function_params(entry);
@@ -179,6 +188,39 @@ pub(crate) fn build_run(
     b.seal_all_blocks();
     let fc = module.isa().frontend_config();
     b.finalize(fc);
+    if let Some(body) = main_body {
+        ctx.inline(InlineMain { call: mainf, body })
+            .map_err(|e| JitError::Codegen(format!("inlining the main program: {e:?}")))?;
+    }
+    Ok(())
+}
+
+/// Directs Cranelift's inliner to put the main program's body where the loop calls it (and
+/// nowhere else: the calls inside the body stay calls).
+struct InlineMain<'a> {
+    /// The loop's reference to the main program's function.
+    call: FuncRef,
+    body: &'a Function,
+}
+
+impl Inline for InlineMain<'_> {
+    fn inline(
+        &mut self,
+        _caller: &Function,
+        _inst: Inst,
+        _opcode: Opcode,
+        callee: FuncRef,
+        _args: &[Value],
+    ) -> InlineCommand<'_> {
+        if callee == self.call {
+            InlineCommand::Inline {
+                callee: Cow::Borrowed(self.body),
+                visit_callee: false,
+            }
+        } else {
+            InlineCommand::KeepCall
+        }
+    }
 }
 
 /// The image at its base address, with the layout its offsets come from.
