@@ -23,9 +23,9 @@ use crate::lower::Env;
 use cranelift_codegen::Context;
 use cranelift_codegen::inline::{Inline, InlineCommand};
 use cranelift_codegen::ir::{
-    Block, BlockArg, FuncRef, Function, Inst, InstBuilder, MemFlagsData, Opcode, Value,
+    Block, BlockArg, Endianness, FuncRef, Function, Inst, InstBuilder, MemFlagsData, Opcode, Value,
     condcodes::IntCC,
-    types::{I8, I32, I64},
+    types::{I8, I16, I32, I64},
 };
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::JITModule;
@@ -264,12 +264,18 @@ impl Img<'_> {
         b.ins().store(Self::flags(), v, self.base, off as i32);
     }
 
-    /// Copies `len` bytes from image offset `src` to `dst`, in 8-byte words and then bytes
-    /// (the I/O images are small; their offsets and size are constants of the layout).
+    /// Copies `len` bytes from image offset `src` to `dst`, each piece as wide as fits of 8, 4,
+    /// 2 and 1 bytes (the I/O images are small; their offsets and size are constants of the
+    /// layout).
     fn copy(&self, b: &mut FunctionBuilder<'_>, src: u32, dst: u32, len: u32) {
         let mut at = 0;
         while at < len {
-            let ty = if len - at >= 8 { I64 } else { I8 };
+            let ty = match len - at {
+                8.. => I64,
+                4..=7 => I32,
+                2..=3 => I16,
+                _ => I8,
+            };
             let v = b
                 .ins()
                 .load(ty, Self::flags(), self.base, (src + at) as i32);
@@ -338,7 +344,7 @@ fn inline_begin(
     img.copy(b, l.phys_in, l.base(Area::I), l.area_size(Area::I));
     match family {
         Family::S7 => inline_smb0(b, img, t),
-        Family::Omron => inline_omron_bits(b, img, t),
+        Family::Omron => inline_omron_bits(b, img, t, q),
     }
 }
 
@@ -372,15 +378,34 @@ fn inline_smb0(b: &mut FunctionBuilder<'_>, img: &Img<'_>, t: Value) {
 /// `omron_system_bits` then `clear_condition_flags`): the first four bytes of the Flags area
 /// become `P_On` and the clock pulses ON in the first half of their period, keeping only what
 /// neither writes, and `P_First_Cycle` goes OFF.
-fn inline_omron_bits(b: &mut FunctionBuilder<'_>, img: &Img<'_>, t: Value) {
+///
+/// A pulse is ON while `t % period < period / 2` (the runtime's definition); this computes it
+/// as "`t / (period / 2)` is even", which is the same for an even period (`t = k·period + r`
+/// gives `t / (period / 2) = 2k + [r >= period / 2]`) and costs one division instead of a
+/// division, a multiplication and a compare. Where `period / 2` is the divisor of a delta
+/// field, the scan's quotient `q` (of [`scan::DELTAS`]) is that division already.
+fn inline_omron_bits(b: &mut FunctionBuilder<'_>, img: &Img<'_>, t: Value, q: &[Value]) {
+    const _: () = {
+        let mut k = 0;
+        while k < SystemBit::PULSES.len() {
+            assert!(
+                SystemBit::PULSES[k].1.is_multiple_of(2),
+                "the parity form needs even periods"
+            );
+            k += 1;
+        }
+    };
     let l = img.layout;
     let mut bits = b.ins().iconst(I32, 1i64 << SystemBit::On.index());
     for (pulse, period) in SystemBit::PULSES {
-        let phase = b.ins().urem_imm_u(t, period as i64);
-        let on = b
-            .ins()
-            .icmp_imm_u(IntCC::UnsignedLessThan, phase, (period / 2) as i64);
-        let on = b.ins().uextend(I32, on);
+        let half = period / 2;
+        let halves = match scan::DELTAS.iter().position(|&(_, div)| div == half) {
+            Some(k) => q[k],
+            None => b.ins().udiv_imm_u(t, half as i64),
+        };
+        let odd = b.ins().band_imm_u(halves, 1);
+        let on = b.ins().bxor_imm_u(odd, 1);
+        let on = b.ins().ireduce(I32, on);
         let on = b.ins().ishl_imm_u(on, i64::from(pulse.index()));
         bits = b.ins().bor(bits, on);
     }
@@ -392,20 +417,18 @@ fn inline_omron_bits(b: &mut FunctionBuilder<'_>, img: &Img<'_>, t: Value) {
     } else {
         0
     };
+    // The four bytes as one little-endian word: byte `i` of the area is bits `8i..8i+8`.
     let base = l.base(Area::Flags);
-    for i in 0..4u32 {
-        let k = ((keep & !cleared) >> (8 * i)) & 0xFF;
-        let byte = b.ins().ushr_imm_u(bits, i64::from(8 * i));
-        let byte = if k == 0 {
-            byte
-        } else {
-            let old = img.byte_at(b, base + i);
-            let old = b.ins().band_imm_u(old, i64::from(k));
-            b.ins().bor(byte, old)
-        };
-        let byte = b.ins().ireduce(I8, byte);
-        img.store_at(b, byte, base + i);
-    }
+    let word_flags = Img::flags().with_endianness(Endianness::Little);
+    let k = i64::from(keep & !cleared);
+    let word = if k == 0 {
+        bits
+    } else {
+        let old = b.ins().load(I32, word_flags, img.base, base as i32);
+        let old = b.ins().band_imm_u(old, k);
+        b.ins().bor(bits, old)
+    };
+    b.ins().store(word_flags, word, img.base, base as i32);
     if let Some((a, bit)) = omron::first_cycle_bit(l) {
         let old = img.byte_at(b, a);
         let off = b.ins().band_imm_u(old, !(1i64 << bit) & 0xFF);
