@@ -111,7 +111,8 @@ pub(crate) struct Built {
 /// Which function of a POU [`build`] hands to its `dump` callback.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Part {
-    /// The POU's only function.
+    /// The POU's only function (the main program's is inlined into the scan loop instead of
+    /// being compiled on its own).
     Whole,
     /// The dispatcher of a split POU (the function its callers call).
     Dispatch,
