@@ -23,7 +23,7 @@ use crate::lower::Env;
 use cranelift_codegen::Context;
 use cranelift_codegen::inline::{Inline, InlineCommand};
 use cranelift_codegen::ir::{
-    Block, BlockArg, Endianness, FuncRef, Function, Inst, InstBuilder, MemFlagsData, Opcode, Value,
+    BlockArg, Endianness, FuncRef, Function, Inst, InstBuilder, MemFlagsData, Opcode, Value,
     condcodes::IntCC,
     types::{I8, I16, I32, I64},
 };
@@ -76,16 +76,23 @@ pub(crate) fn build_run(
         layout: env.layout,
     };
 
-    // The loop carries this scan's time and `t / div` of this scan and of the previous one for
-    // every delta field (the scan before the first one of this call left its time in `T_NOW`),
-    // so each scan divides its time once, in the step to the next scan, and the scan's blocks
-    // only read block parameters. (Divisions of the scan's time inside the scan were placed by
-    // the optimizer at each of their uses, and computed twice per scan.)
+    // The loop carries this scan's time, its quotients `t / div` (the fields of
+    // [`scan::DELTAS`] other than `div` 1) and its deltas, all computed in the step from the
+    // previous scan (for the first scan of this call, from the time the scan before it left in
+    // `T_NOW`): each scan divides its time once, and the scan's blocks only read block
+    // parameters. (Divisions of the scan's time inside the scan were placed by the optimizer at
+    // each of their uses, and computed twice per scan.)
     let body = b.create_block();
     let i = b.append_block_param(body, I64);
     let t = b.append_block_param(body, I64);
-    let prev_q = quotient_params(&mut b, body);
-    let q = quotient_params(&mut b, body);
+    let q_rest: Vec<Value> = (1..scan::DELTAS.len())
+        .map(|_| b.append_block_param(body, I64))
+        .collect();
+    let d: Vec<Value> = scan::DELTAS
+        .iter()
+        .map(|_| b.append_block_param(body, I32))
+        .collect();
+    let q: Vec<Value> = std::iter::once(t).chain(q_rest).collect();
     let slow_begin = b.create_block();
     let fast_begin = b.create_block();
     let run = b.create_block();
@@ -102,14 +109,14 @@ pub(crate) fn build_run(
     let zero64 = b.ins().iconst(I64, 0);
     let ok = b.ins().iconst(I32, ScanStatus::Ok as i64);
     let before = img.load(&mut b, I64, Sched::T_NOW);
-    let mut args = vec![zero64, t0];
-    args.extend(quotients(&mut b, before));
-    args.extend(quotients(&mut b, t0));
+    let before_q = quotients(&mut b, before);
+    let first_q = quotients(&mut b, t0);
+    let first_d = deltas(&mut b, &first_q, &before_q);
     let any = b.ins().icmp_imm_u(IntCC::NotEqual, n, 0);
     b.ins().brif(
         any,
         body,
-        &block_args(&args),
+        &scan_args(zero64, &first_q, &first_d),
         fin,
         &[zero64.into(), ok.into()],
     );
@@ -118,6 +125,8 @@ pub(crate) fn build_run(
     let i1 = b.ins().iadd_imm_s(i, 1);
     if inline_path(plan) {
         // The common path needs RUN mode and a scan after the first.
+        // Two byte loads, not one word: the word would span bytes of several recent stores,
+        // which the CPU cannot forward to a load (a stall costing more than the scan).
         let mode = img.load(&mut b, I8, Sched::MODE);
         let first = img.load(&mut b, I8, Sched::FIRST_SCAN);
         let slow = b.ins().bor(mode, first);
@@ -143,7 +152,7 @@ pub(crate) fn build_run(
     b.ins().brif(runs, run, &[], slow_end, &[fatal.into()]);
 
     b.switch_to_block(fast_begin);
-    inline_begin(&mut b, &img, plan.family(), t, &q, &prev_q);
+    inline_begin(&mut b, &img, plan.family(), &q, &d);
     b.ins().jump(run, &[]);
 
     b.switch_to_block(run);
@@ -151,10 +160,16 @@ pub(crate) fn build_run(
     let c = b.ins().call(mainf, &[image, zero32]);
     let s = b.inst_results(c)[0];
     if inline_path(plan) {
-        // Ok and no STOP request: the epilogue is the output copy and the scan counters.
-        let stop = img.load(&mut b, I8, Sched::STOP_REQ);
-        let stop = b.ins().uextend(I32, stop);
-        let slow = b.ins().bor(s, stop);
+        // Ok and no STOP request: the epilogue is the output copy and the scan counters. Both
+        // prologues reset the request, and only a `STOP` op sets it again (the scheduler
+        // fields are not addressable), so without one the status decides alone.
+        let slow = if env.prog.has_stop() {
+            let stop = img.load(&mut b, I8, Sched::STOP_REQ);
+            let stop = b.ins().uextend(I32, stop);
+            b.ins().bor(s, stop)
+        } else {
+            s
+        };
         b.ins().brif(slow, slow_end, &[s.into()], fast_end, &[]);
     } else {
         b.ins().jump(slow_end, &[s.into()]);
@@ -176,10 +191,9 @@ pub(crate) fn build_run(
 
     b.switch_to_block(advance);
     let t1 = b.ins().iadd(t, dt);
-    let mut args = vec![i1, t1];
-    args.extend_from_slice(&q);
-    args.extend(quotients(&mut b, t1));
-    b.ins().jump(body, &block_args(&args));
+    let next_q = quotients(&mut b, t1);
+    let next_d = deltas(&mut b, &next_q, &q);
+    b.ins().jump(body, &scan_args(i1, &next_q, &next_d));
 
     b.switch_to_block(fin);
     b.ins()
@@ -285,78 +299,154 @@ impl Img<'_> {
     }
 }
 
-/// One `i64` parameter of `block` per field of [`scan::DELTAS`] (a quotient carried along).
-fn quotient_params(b: &mut FunctionBuilder<'_>, block: Block) -> Vec<Value> {
-    scan::DELTAS
-        .iter()
-        .map(|_| b.append_block_param(block, I64))
+/// The arguments of the loop's `body` block for scan number `i`: its time and quotients `q`
+/// (from [`quotients`]) and its deltas `d`.
+fn scan_args(i: Value, q: &[Value], d: &[Value]) -> Vec<BlockArg> {
+    std::iter::once(i)
+        .chain(q.iter().copied())
+        .chain(d.iter().copied())
+        .map(BlockArg::from)
         .collect()
 }
 
-/// `values` as block arguments.
-fn block_args(values: &[Value]) -> Vec<BlockArg> {
-    values.iter().map(|&v| BlockArg::from(v)).collect()
+/// `t / div` for every field of [`scan::DELTAS`] (so the first is `t` itself).
+fn quotients(b: &mut FunctionBuilder<'_>, t: Value) -> Vec<Value> {
+    const _: () = assert!(
+        scan::DELTAS[0].1 == 1,
+        "the loop carries the time as the first quotient"
+    );
+    let mut q = Vec::with_capacity(scan::DELTAS.len());
+    for &(_, div) in &scan::DELTAS {
+        let v = divide(b, t, &q, div);
+        q.push(v);
+    }
+    q
 }
 
-/// `t / div` for every field of [`scan::DELTAS`].
-fn quotients(b: &mut FunctionBuilder<'_>, t: Value) -> Vec<Value> {
-    scan::DELTAS
+/// `t / d`, from the quotient in `q` (a prefix of [`quotients`]) of the largest field divisor
+/// that divides `d`: `(t / a) / b = t / (a·b)` for whole numbers, and a quotient already at
+/// hand needs a smaller division, which for these divisors is a multiply and a shift where the
+/// full one needs five instructions (`t / 100` as `(t / 10) / 10`).
+fn divide(b: &mut FunctionBuilder<'_>, t: Value, q: &[Value], d: u64) -> Value {
+    let (base, div) = scan::DELTAS
         .iter()
-        .map(|&(_, div)| match div {
-            1 => t,
-            _ => b.ins().udiv_imm_u(t, div as i64),
+        .zip(q)
+        .filter(|((_, div), _)| d.is_multiple_of(*div))
+        .map(|(&(_, div), &v)| (v, div))
+        .max_by_key(|&(_, div)| div)
+        .unwrap_or((t, 1));
+    if d == div {
+        base
+    } else {
+        b.ins().udiv_imm_u(base, (d / div) as i64)
+    }
+}
+
+/// The fields of [`scan::DELTAS`] for a scan whose quotients are `now` after a scan whose
+/// quotients are `before`: `now − before` saturated at 0 below and at `u32::MAX` above. The
+/// divisions are monotonic, so every field is below exactly when the time (the first field)
+/// is, and one comparison serves all of them.
+fn deltas(b: &mut FunctionBuilder<'_>, now: &[Value], before: &[Value]) -> Vec<Value> {
+    let below = b.ins().icmp(IntCC::UnsignedLessThan, now[0], before[0]);
+    let zero = b.ins().iconst(I64, 0);
+    let max = b.ins().iconst(I64, i64::from(u32::MAX));
+    now.iter()
+        .zip(before)
+        .map(|(&now, &before)| {
+            let d = b.ins().isub(now, before);
+            let d = b.ins().umin(d, max);
+            let d = b.ins().select(below, zero, d);
+            b.ins().ireduce(I32, d)
         })
         .collect()
 }
 
 /// `scan::begin` for a scan in RUN after the first, no clock-refreshed timer: the time step
-/// with its deltas (`q`: this scan's `t / div`, `prev_q`: the previous scan's), the step-5
+/// (`q`: the scan's time and quotients, `d`: its deltas, see [`build_run`]), the step-5
 /// resets, the input copy and the family's system bits.
 fn inline_begin(
     b: &mut FunctionBuilder<'_>,
     img: &Img<'_>,
     family: Family,
-    t: Value,
     q: &[Value],
-    prev_q: &[Value],
+    d: &[Value],
 ) {
     let l = img.layout;
-    let prev = img.load(b, I64, Sched::T_NOW);
-    for (&(field, _), (&now, &before)) in scan::DELTAS.iter().zip(q.iter().zip(prev_q)) {
-        // `t / div − prev / div`, saturated at 0 below and at u32::MAX above.
-        let d = b.ins().isub(now, before);
-        let below = b.ins().icmp(IntCC::UnsignedLessThan, now, before);
-        let zero = b.ins().iconst(I64, 0);
-        let d = b.ins().select(below, zero, d);
-        let max = b.ins().iconst(I64, i64::from(u32::MAX));
-        let d = b.ins().umin(d, max);
-        let d = b.ins().ireduce(I32, d);
+    let t = q[0];
+    for (&(field, _), &d) in scan::DELTAS.iter().zip(d) {
         img.store(b, d, field);
     }
+    let prev = img.load(b, I64, Sched::T_NOW);
     img.store(b, prev, Sched::T_PREV);
     img.store(b, t, Sched::T_NOW);
+    // The resets, and `FIRST_SCAN`, which this path has just read as 0: rewriting it lets the
+    // bytes form one run with their neighbours in the layout.
+    let mut resets = ConstBytes::default();
+    resets.put(l.sched(Sched::LOOP_COUNT), &0u32.to_le_bytes());
     for (field, v) in scan::RESETS {
-        let v = b.ins().iconst(I8, i64::from(v));
-        img.store(b, v, field);
+        resets.put(l.sched(field), &[v]);
     }
-    let zero = b.ins().iconst(I32, 0);
-    img.store(b, zero, Sched::LOOP_COUNT);
+    resets.put(l.sched(Sched::FIRST_SCAN), &[0]);
+    resets.store(b, img);
     img.copy(b, l.phys_in, l.base(Area::I), l.area_size(Area::I));
     match family {
-        Family::S7 => inline_smb0(b, img, t),
-        Family::Omron => inline_omron_bits(b, img, t, q),
+        Family::S7 => inline_smb0(b, img, q),
+        Family::Omron => inline_omron_bits(b, img, q),
+    }
+}
+
+/// Constant bytes to store at image offsets, written as few wide stores as their runs allow.
+#[derive(Default)]
+struct ConstBytes(std::collections::BTreeMap<u32, u8>);
+
+impl ConstBytes {
+    /// `bytes` from image offset `at` (a later `put` of the same byte wins).
+    fn put(&mut self, at: u32, bytes: &[u8]) {
+        for (k, &v) in (at..).zip(bytes) {
+            self.0.insert(k, v);
+        }
+    }
+
+    /// Stores every run of consecutive bytes in pieces of 8, 4, 2 and 1 bytes (little-endian
+    /// words, so that byte `k` of a piece goes to `at + k` on any host).
+    fn store(&self, b: &mut FunctionBuilder<'_>, img: &Img<'_>) {
+        let bytes: Vec<(u32, u8)> = self.0.iter().map(|(&k, &v)| (k, v)).collect();
+        let mut k = 0;
+        while k < bytes.len() {
+            let at = bytes[k].0;
+            let run = bytes[k..]
+                .iter()
+                .zip(at..)
+                .take_while(|((off, _), want)| off == want)
+                .count();
+            let ty = match run {
+                8.. => I64,
+                4..=7 => I32,
+                2..=3 => I16,
+                _ => I8,
+            };
+            let n = ty.bytes() as usize;
+            let word = bytes[k..k + n]
+                .iter()
+                .rev()
+                .fold(0u64, |w, &(_, v)| (w << 8) | u64::from(v));
+            let v = b.ins().iconst(ty, word as i64);
+            let flags = Img::flags().with_endianness(Endianness::Little);
+            b.ins().store(flags, v, img.base, at as i32);
+            k += n;
+        }
     }
 }
 
 /// SMB0 outside the first scan (S7, spec §2.3): the constant bits, the clock bits, the parity
 /// bit.
-fn inline_smb0(b: &mut FunctionBuilder<'_>, img: &Img<'_>, t: Value) {
+fn inline_smb0(b: &mut FunctionBuilder<'_>, img: &Img<'_>, q: &[Value]) {
     let l = img.layout;
     if l.area_size(Area::SM) > 0 {
         let mut v = b.ins().iconst(I32, i64::from(scan::SMB0_ALWAYS));
         for (bit, period) in scan::SMB0_CLOCKS {
             // ON while `t / (period / 2)` is even.
-            let half = b.ins().udiv_imm_u(t, (period / 2) as i64);
+            let half = divide(b, q[0], q, period / 2);
             let odd = b.ins().band_imm_u(half, 1);
             let on = b.ins().bxor_imm_u(odd, 1);
             let on = b.ins().ireduce(I32, on);
@@ -382,9 +472,9 @@ fn inline_smb0(b: &mut FunctionBuilder<'_>, img: &Img<'_>, t: Value) {
 /// A pulse is ON while `t % period < period / 2` (the runtime's definition); this computes it
 /// as "`t / (period / 2)` is even", which is the same for an even period (`t = k·period + r`
 /// gives `t / (period / 2) = 2k + [r >= period / 2]`) and costs one division instead of a
-/// division, a multiplication and a compare. Where `period / 2` is the divisor of a delta
-/// field, the scan's quotient `q` (of [`scan::DELTAS`]) is that division already.
-fn inline_omron_bits(b: &mut FunctionBuilder<'_>, img: &Img<'_>, t: Value, q: &[Value]) {
+/// division, a multiplication and a compare; [`divide`] starts it from the scan's quotients
+/// `q` (of [`scan::DELTAS`]), which for the 20 ms and 200 ms pulses are that division already.
+fn inline_omron_bits(b: &mut FunctionBuilder<'_>, img: &Img<'_>, q: &[Value]) {
     const _: () = {
         let mut k = 0;
         while k < SystemBit::PULSES.len() {
@@ -398,11 +488,7 @@ fn inline_omron_bits(b: &mut FunctionBuilder<'_>, img: &Img<'_>, t: Value, q: &[
     let l = img.layout;
     let mut bits = b.ins().iconst(I32, 1i64 << SystemBit::On.index());
     for (pulse, period) in SystemBit::PULSES {
-        let half = period / 2;
-        let halves = match scan::DELTAS.iter().position(|&(_, div)| div == half) {
-            Some(k) => q[k],
-            None => b.ins().udiv_imm_u(t, half as i64),
-        };
+        let halves = divide(b, q[0], q, period / 2);
         let odd = b.ins().band_imm_u(halves, 1);
         let on = b.ins().bxor_imm_u(odd, 1);
         let on = b.ins().ireduce(I32, on);

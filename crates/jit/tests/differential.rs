@@ -351,3 +351,70 @@ fn stretches_agree(case: &stljit_diff::generate::Case, seed: u64, max_dt: u64) -
     }
     stretches
 }
+
+/// The native loop's time step at the ends of its ranges, against the interpreter: a scan
+/// time above `u32::MAX` ms (the 1 ms delta saturates, spec §2.1 step 1; the 10 and 100 ms
+/// deltas do not), a stretch whose time wraps past `u64::MAX` (every delta is 0 in the scan
+/// after the wrap, as for any step back in time), and scans after it. Programs with event
+/// sources are left out: their scans take the runtime's prologue anyway, and it would service
+/// every timed event of the 58 days the first stretch spans.
+#[test]
+fn run_scans_time_step_at_the_range_ends() {
+    use stljit_core::ScanStatus;
+    use stljit_diff::oracle::{apply_stimulus, start_image};
+    use stljit_runtime::Engine;
+    let cfg = GenConfig {
+        scans: 12,
+        ..GenConfig::default()
+    };
+    // (t0, dt, scans): the images are compared after each stretch, so the second one ends
+    // with the scan after the wrap (time 0).
+    let stretches = [(0, 5_000_000_000, 3), (u64::MAX - 20, 7, 4), (3, 1, 2)];
+    let mut cases = 0;
+    for seed in 0..SEEDS / 8 {
+        let case = case_from_seed(seed ^ 0x7173, &cfg);
+        let p = &case.program;
+        if p.has_interrupts() || p.defines_hsc() || p.uses_pulse() || p.uses_ports() {
+            continue;
+        }
+        cases += 1;
+        let run = RunOptions::default();
+        let mut interp =
+            stljit_interp::Interpreter::new(&case.program).expect("interpreter accepts it");
+        for opt in [stljit_jit::OptLevel::None, stljit_jit::OptLevel::Speed] {
+            let mut jit =
+                stljit_jit::JitProgram::compile(&case.program, &stljit_jit::JitOptions::at(opt))
+                    .expect("JIT compiles");
+            let (mut want, mut got) = (
+                start_image(&case.program, &run),
+                start_image(&case.program, &run),
+            );
+            for (k, &(t0, dt, len)) in stretches.iter().enumerate() {
+                apply_stimulus(&mut want, &case.stimulus.scans[k]);
+                apply_stimulus(&mut got, &case.stimulus.scans[k]);
+                let (mut done, mut status) = (0u64, ScanStatus::Ok);
+                while done < len && status == ScanStatus::Ok {
+                    let t = t0.wrapping_add(done.wrapping_mul(dt));
+                    status = interp.scan(&mut want, t);
+                    done += 1;
+                }
+                assert_eq!(
+                    jit.run_scans(&mut got, t0, dt, len),
+                    (done, status),
+                    "seed {seed}, stretch {k}, {opt:?}"
+                );
+                assert!(
+                    got.bytes() == want.bytes(),
+                    "seed {seed}: images differ after stretch {k} ({opt:?})"
+                );
+                if status != ScanStatus::Ok {
+                    break;
+                }
+            }
+        }
+    }
+    assert!(
+        cases > SEEDS / 16,
+        "only {cases} programs without event sources"
+    );
+}

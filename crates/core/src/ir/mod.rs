@@ -116,6 +116,15 @@ impl Program {
         )
     }
 
+    /// Whether any POU has a `STOP` op, the only op that requests STOP (a program without one
+    /// cannot leave RUN by itself).
+    pub fn has_stop(&self) -> bool {
+        self.pous
+            .iter()
+            .flat_map(|p| &p.ops)
+            .any(|op| matches!(op, Op::Stop))
+    }
+
     /// Total number of IR ops over all POUs.
     pub fn op_count(&self) -> usize {
         self.pous.iter().map(|p| p.ops.len()).sum()
