@@ -29,6 +29,91 @@ pub(crate) struct PouInfo {
     /// `stack_live[i]`: bit `k` set if logic-stack level `k` on entry to op `i` (or the end,
     /// `i = ops.len()`) may still be read; the others are dead and need not be kept.
     pub(crate) stack_live: Vec<u32>,
+    /// `bit_target[i]`: the bit position where the value op `i` leaves in S0 is wanted (see
+    /// [`bit_targets`]).
+    pub(crate) bit_target: Vec<Option<u8>>,
+}
+
+/// For every op, the bit position (0..=7) at which the value it leaves in S0 is consumed: the
+/// bit of the coil (`=`) that writes it, or bit 0 for an edge, found through the `A`, `O`,
+/// `NOT`, `ALD` and `OLD` that combine it into the value the coil takes, within a straight run
+/// of ops; `None` where nothing in the run takes it at a known position.
+///
+/// The lowering keeps a boolean at the bit position of one of its operands, and every operand
+/// at another position costs an alignment (`value::and_parts`); where one operand of a
+/// combination already sits at the position its consumer wants, keeping the result there
+/// saves the consumer's alignment. Only a hint: any answer gives the same bits.
+fn bit_targets(pou: &Pou, leader: &[bool], cut: &[bool]) -> Vec<Option<u8>> {
+    // Values are numbered as they are made; a value's `into` is the (later) value it is
+    // combined into, `direct` the position its first direct consumer wants.
+    let mut into: Vec<Option<usize>> = Vec::new();
+    let mut direct: Vec<Option<u8>> = Vec::new();
+    let mut made: Vec<Option<usize>> = Vec::with_capacity(pou.ops.len());
+    // The logic stack as value numbers, S0 last; `None` for a level this run did not make.
+    let mut stack: Vec<Option<usize>> = Vec::new();
+    let fresh = |into: &mut Vec<Option<usize>>, direct: &mut Vec<Option<u8>>| {
+        into.push(None);
+        direct.push(None);
+        into.len() - 1
+    };
+    for (i, op) in pou.ops.iter().enumerate() {
+        if leader[i] && !cut[i] {
+            stack.clear();
+        }
+        let top = stack.last().copied().flatten();
+        match op {
+            Op::Load(_) | Op::Pick(_) => {
+                let v = fresh(&mut into, &mut direct);
+                stack.push(Some(v));
+            }
+            Op::And(_) | Op::Or(_) | Op::Not => {
+                let v = fresh(&mut into, &mut direct);
+                if let Some(t) = top {
+                    into[t].get_or_insert(v);
+                }
+                stack.pop();
+                stack.push(Some(v));
+            }
+            Op::AndBlock | Op::OrBlock => {
+                let v = fresh(&mut into, &mut direct);
+                stack.pop();
+                for t in [top, stack.pop().flatten()].into_iter().flatten() {
+                    into[t].get_or_insert(v);
+                }
+                stack.push(Some(v));
+            }
+            Op::Dup => stack.push(top),
+            Op::ReadSecond => {
+                let s1 = stack.len().checked_sub(2).and_then(|k| stack[k]);
+                stack.pop();
+                stack.push(s1);
+            }
+            Op::Pop => {
+                stack.pop();
+            }
+            Op::Assign { bit, .. } => {
+                if let Some(t) = top {
+                    direct[t].get_or_insert(bit.bit);
+                }
+            }
+            Op::Edge { .. } => {
+                if let Some(t) = top {
+                    direct[t].get_or_insert(0);
+                }
+                let v = fresh(&mut into, &mut direct);
+                stack.pop();
+                stack.push(Some(v));
+            }
+            _ => stack.clear(),
+        }
+        made.push(stack.last().copied().flatten());
+    }
+    // A value is combined only into later ones, so one pass from the last settles every want.
+    let mut want: Vec<Option<u8>> = vec![None; into.len()];
+    for v in (0..into.len()).rev() {
+        want[v] = direct[v].or_else(|| into[v].and_then(|p| want[p]));
+    }
+    made.iter().map(|m| m.and_then(|v| want[v])).collect()
 }
 
 /// Which logic-stack levels are live on entry to every op, by backward dataflow to a fixed
@@ -232,12 +317,14 @@ pub(crate) fn analyse(prog: &Program) -> Vec<PouInfo> {
         .map(|(i, p)| {
             let (gate_one, _) = gate_flow(p, &exits);
             let (leader, cut) = leaders_and_cuts(p);
+            let bit_target = bit_targets(p, &leader, &cut);
             PouInfo {
                 leader,
                 cut,
                 gate_one,
                 exits_one: exits[i],
                 stack_live: stack_liveness(p, prog.logic_stack_depth),
+                bit_target,
             }
         })
         .collect()
@@ -333,5 +420,56 @@ mod tests {
         let plan = plan_chunks(&p, &leaders(&p), 4).expect("split");
         assert_eq!(plan.starts, vec![0, 6]);
         assert_eq!(plan.entries, vec![vec![0, 3], vec![6]]);
+    }
+
+    fn targets(text: &str) -> Vec<Option<u8>> {
+        let p = pou(text);
+        let (leader, cut) = leaders_and_cuts(&p);
+        bit_targets(&p, &leader, &cut)
+    }
+
+    #[test]
+    fn a_rung_is_wanted_at_its_coil_bit() {
+        // ops: 0 LD, 1 A, 2 =: the contacts' combination and what the coil leaves in S0.
+        assert_eq!(
+            targets("LD I0.1\nA I0.2\n= Q0.5\n"),
+            [Some(5), Some(5), Some(5)]
+        );
+        // ALD of an OR block: every value on the way is the coil's.
+        assert_eq!(
+            targets("LD I0.0\nLD I0.1\nO I0.2\nALD\n= Q1.4\n"),
+            [Some(4); 5]
+        );
+        // NOT keeps the want.
+        assert_eq!(targets("LD I0.0\nNOT\n= Q0.3\n"), [Some(3); 3]);
+    }
+
+    #[test]
+    fn branches_edges_and_other_consumers() {
+        // ops: 0 LD, 1 LPS, 2 A, 3 =, 4 LPP, 5 A, 6 =: the shared value goes to the first
+        // combination that takes it, each branch to its own coil.
+        assert_eq!(
+            targets("LD I0.0\nLPS\nA I0.1\n= Q0.3\nLPP\nA I0.2\n= Q0.6\n"),
+            [
+                Some(3),
+                Some(3),
+                Some(3),
+                Some(3),
+                Some(3),
+                Some(6),
+                Some(6)
+            ]
+        );
+        // An edge takes its input at bit 0; its output goes on to the coil.
+        assert_eq!(
+            targets("LD I0.0\nA I0.1\nEU\n= Q0.2\n"),
+            [Some(0), Some(0), Some(2), Some(2)]
+        );
+        // S takes its condition at any position; a label ends the run.
+        assert_eq!(targets("LD I0.0\nA I0.1\nS Q0.0, 1\n"), [None; 3]);
+        assert_eq!(
+            targets("LD I0.0\nA I0.1\nLBL 1\n= Q0.7\n"),
+            [None, None, None, None]
+        );
     }
 }

@@ -157,15 +157,27 @@ impl Lower<'_, '_> {
     /// `A`/`AN`/`O`/`ON` (and the contact forms): combines the contact into S0.
     pub(crate) fn combine(&mut self, c: &Contact, and: bool) {
         let (v, neg) = self.contact(c);
+        let v = if neg { v.not(&mut self.b) } else { v };
         let top = self.block.stack.top();
-        let r = match (and, neg) {
-            (true, false) => top.and(&mut self.b, v),
-            (true, true) => top.and_not(&mut self.b, v),
-            (false, false) => top.or(&mut self.b, v),
-            (false, true) => top.or_not(&mut self.b, v),
+        let want = self.bit_target();
+        let r = if and {
+            top.and_toward(&mut self.b, v, want)
+        } else {
+            top.or_toward(&mut self.b, v, want)
         };
         let r = self.anchor(r);
         self.block.stack.set_top(r);
+    }
+
+    /// Where the value this op leaves in S0 is wanted ([`PouInfo::bit_target`]).
+    ///
+    /// [`PouInfo::bit_target`]: crate::analysis::PouInfo
+    fn bit_target(&self) -> Option<u8> {
+        self.env.info[self.func.pou.index()]
+            .bit_target
+            .get(self.op)
+            .copied()
+            .flatten()
     }
 
     /// `NOT`.
@@ -178,10 +190,11 @@ impl Lower<'_, '_> {
     pub(crate) fn combine_block(&mut self, and: bool) {
         let s0 = self.block.stack.pop();
         let s1 = self.block.stack.top();
+        let want = self.bit_target();
         let r = if and {
-            s0.and(&mut self.b, s1)
+            s0.and_toward(&mut self.b, s1, want)
         } else {
-            s0.or(&mut self.b, s1)
+            s0.or_toward(&mut self.b, s1, want)
         };
         let r = self.anchor(r);
         self.block.stack.set_top(r);

@@ -148,6 +148,12 @@ impl B {
 
     /// `self AND other`.
     pub(crate) fn and(self, b: &mut FunctionBuilder<'_>, o: B) -> B {
+        self.and_toward(b, o, None)
+    }
+
+    /// `self AND other`, kept at bit `want` where an operand already is there (the position
+    /// its consumer writes, `analysis::bit_targets`).
+    pub(crate) fn and_toward(self, b: &mut FunctionBuilder<'_>, o: B, want: Option<u8>) -> B {
         match (self, o) {
             (B::K(false), _) | (_, B::K(false)) => B::K(false),
             (B::K(true), x) | (x, B::K(true)) => x,
@@ -155,25 +161,25 @@ impl B {
                 let (Some(x), Some(y)) = (self.parts(), o.parts()) else {
                     unreachable!("constants handled above")
                 };
-                and_parts(b, x, y)
+                and_parts(b, x, y, want)
             }
         }
     }
 
     /// `self OR other`.
     pub(crate) fn or(self, b: &mut FunctionBuilder<'_>, o: B) -> B {
+        self.or_toward(b, o, None)
+    }
+
+    /// `self OR other`, kept at bit `want` like [`B::and_toward`].
+    pub(crate) fn or_toward(self, b: &mut FunctionBuilder<'_>, o: B, want: Option<u8>) -> B {
         // De Morgan: a OR b = NOT (NOT a AND NOT b).
-        self.neg().and(b, o.neg()).neg()
+        self.neg().and_toward(b, o.neg(), want).neg()
     }
 
     /// `self AND NOT other`.
     pub(crate) fn and_not(self, b: &mut FunctionBuilder<'_>, o: B) -> B {
         self.and(b, o.neg())
-    }
-
-    /// `self OR NOT other`.
-    pub(crate) fn or_not(self, b: &mut FunctionBuilder<'_>, o: B) -> B {
-        self.or(b, o.neg())
     }
 
     /// `NOT self` (free: only the polarity changes).
@@ -218,9 +224,10 @@ fn foldable(b: &FunctionBuilder<'_>, v: Value, neg: bool, other_neg: bool) -> bo
             .is_some_and(|i| dfg.insts[i].opcode() == Opcode::Load)
 }
 
-/// `x AND y` for two non-constant booleans: one instruction, plus an alignment shift of `y`,
-/// or of `x` where only `y` is a load that the instruction can fold.
-fn and_parts(b: &mut FunctionBuilder<'_>, x: Parts, y: Parts) -> B {
+/// `x AND y` for two non-constant booleans: one instruction, plus an alignment shift of the
+/// operand not at bit `want` where the other is, else of `y`, or of `x` where only `y` is a
+/// load that the instruction can fold.
+fn and_parts(b: &mut FunctionBuilder<'_>, x: Parts, y: Parts, want: Option<u8>) -> B {
     let ((v, pos, nx), (w, q, ny)) = (x, y);
     if v == w && pos == q {
         // The same bit: x AND x = x, x AND NOT x = 0.
@@ -234,10 +241,13 @@ fn and_parts(b: &mut FunctionBuilder<'_>, x: Parts, y: Parts) -> B {
     // `andn` that consumes it unshifted and not complemented, so the other operand moves.
     // Where both are foldable loads, the operand still folds: shifting the accumulator (one
     // load kept in a register) saves the operand's separate load.
-    let (v, w, pos) = if foldable(b, w, ny, nx) {
-        (align(b, v, pos, q), w, q)
-    } else {
-        (v, align(b, w, q, pos), pos)
+    // An operand at the wanted bit stays there: the result's consumer then needs no
+    // alignment, which saves an ALU operation where folding the load would only save a load.
+    let (v, w, pos) = match want {
+        Some(t) if q == t => (align(b, v, pos, q), w, q),
+        Some(t) if pos == t => (v, align(b, w, q, pos), pos),
+        _ if foldable(b, w, ny, nx) => (align(b, v, pos, q), w, q),
+        _ => (v, align(b, w, q, pos), pos),
     };
     match (nx, ny) {
         (false, false) => mk(b.ins().band(v, w), pos, false),
