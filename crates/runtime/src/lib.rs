@@ -40,6 +40,7 @@ pub mod pid;
 pub mod pointer;
 pub mod pulse;
 pub mod rtc;
+pub mod rule_ops;
 pub mod rules;
 pub mod scan;
 pub mod string;

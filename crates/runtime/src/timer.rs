@@ -12,9 +12,9 @@
 //! [`crate::ffi::stljit_rt_timer_fast`] (offsets fixed at compile time), so both engines run the
 //! same rules on the same bytes.
 
+use crate::rule_ops::{Native, RuleOps};
 use crate::rules::{Gate, GatePolicy};
 use crate::{block, mem};
-use std::hint::select_unpredictable;
 use stljit_core::ir::TimerKind;
 use stljit_core::layout::{Layout, Sched, TIMER_STATE_SIZE, TimerState};
 use stljit_core::{Area, ErrorCode};
@@ -45,11 +45,11 @@ impl TofPhase {
     }
 }
 
-/// `min(cv + d, 32767)` (spec §5 `sat`). A negative CV written by a program counts up from there.
-/// Computed in `i64`, so it cannot overflow.
+/// `min(cv + d, 32767)` (spec §5 `sat`, [`RuleOps::sat_add`]). A negative CV written by a
+/// program counts up from there. Computed in `i64`, so it cannot overflow.
 #[inline]
 fn sat_add(cv: i16, d: u32) -> i16 {
-    (i64::from(cv) + i64::from(d)).min(i64::from(i16::MAX)) as i16
+    Native.sat_add(i64::from(cv), i64::from(d)) as i16
 }
 
 /// Bytes of a timer's private state block.
@@ -126,76 +126,180 @@ impl Timer {
         mem::set_array(img, s, state);
     }
 
-    /// Executes `TON`/`TONR`/`TOF` on this timer (spec §5.2) under `gate`. Open: `IN = input`.
-    /// Closed under [`GatePolicy::S7Scr`]: `IN = 0`, and a TOF is forced idle (inactive SCR
-    /// rule). Closed under [`GatePolicy::OmronInterlock`]: TON resets, TONR and TOF are not
-    /// executed. `d100` is the scan's 100-ms delta, credited only by a 100-ms timer. Cannot
-    /// panic: no indexing, no division, and the only arithmetic is [`sat_add`].
+    /// Executes `TON`/`TONR`/`TOF` on this timer (spec §5.2) under `gate`: [`timer_rule`] on
+    /// plain integers. `d100` is the scan's 100-ms delta, credited only by a 100-ms timer.
     #[inline]
     pub fn step(&mut self, kind: TimerKind, input: bool, gate: Gate, preset: i16, d100: u32) {
+        let (open, policy) = match gate {
+            // The policy only matters for a closed gate.
+            Gate::Open => (true, GatePolicy::S7Scr),
+            Gate::Closed(policy) => (false, policy),
+        };
         let t = self;
-        let d100 = if t.res == 100 { d100 } else { 0 };
-        if gate == Gate::Closed(GatePolicy::OmronInterlock) {
-            if kind == TimerKind::On {
-                t.run = false;
-                t.cv = 0;
-                t.bit = false;
+        let fields = TimerFields {
+            cv: i64::from(t.cv),
+            bit: i64::from(t.bit),
+            run: i64::from(t.run),
+            tof: t.tof as i64,
+            pt_cache: i64::from(t.pt_cache),
+            res: i64::from(t.res),
+        };
+        let inputs = TimerInputs {
+            input: i64::from(input),
+            gate: i64::from(open),
+            preset: i64::from(preset),
+            d100: i64::from(d100),
+        };
+        let next = timer_rule(&mut Native, kind, policy, fields, inputs);
+        // The rule keeps every field in its type's range (CV saturates, flags are 0/1, the
+        // phase is one of the four).
+        t.cv = next.cv as i16;
+        t.bit = next.bit != 0;
+        t.run = next.run != 0;
+        t.tof = TofPhase::from_u8(next.tof as u8);
+        t.pt_cache = next.pt_cache as i16;
+    }
+}
+
+/// The fields of one timer [`timer_rule`] reads and writes, as [`RuleOps`] values: CV (as
+/// `i16`), the bit, `run` and the PT cache, the TOF phase ([`TofPhase`] as its number) and the
+/// resolution byte (read only).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TimerFields<V> {
+    /// Current value.
+    pub cv: V,
+    /// Timer bit (0/1).
+    pub bit: V,
+    /// TON/TONR: timing active (0/1).
+    pub run: V,
+    /// TOF phase.
+    pub tof: V,
+    /// Preset seen at the last execution.
+    pub pt_cache: V,
+    /// Resolution in ms (1, 10, 100; 0 for an unused timer).
+    pub res: V,
+}
+
+/// The inputs of one timer execution: `IN` (`S0`, 0/1), the gate (1 open, 0 closed), the
+/// preset (as `i16`) and the scan's 100-ms delta (as `u32`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TimerInputs<V> {
+    /// `S0`.
+    pub input: V,
+    /// The gate: 1 open.
+    pub gate: V,
+    /// `PT`.
+    pub preset: V,
+    /// The scan's 100-ms delta ([`Sched::D100`]).
+    pub d100: V,
+}
+
+/// Executes `TON`/`TONR`/`TOF` (spec §5.2) on `t`: the rules of a timer execution, the one
+/// text both engines run ([`crate::rule_ops`]). Open gate: `IN = input`. Closed under
+/// [`GatePolicy::S7Scr`]: `IN = 0`, and a TOF is forced idle (inactive SCR rule). Closed
+/// under [`GatePolicy::OmronInterlock`]: TON resets, TONR and TOF are not executed. Only a
+/// 100-ms timer credits `d100` (1-ms and 10-ms timers count in the clock refresh at scan
+/// start, [`refresh`]).
+pub fn timer_rule<O: RuleOps>(
+    o: &mut O,
+    kind: TimerKind,
+    policy: GatePolicy,
+    t: TimerFields<O::V>,
+    x: TimerInputs<O::V>,
+) -> TimerFields<O::V> {
+    let zero = o.k(0);
+    let hundred = o.k(100);
+    let is_100ms = o.eq(t.res, hundred);
+    let d = o.select(is_100ms, x.d100, zero);
+    let on = o.and(x.input, x.gate);
+    let next = match kind {
+        TimerKind::On | TimerKind::Retentive => {
+            // With IN on a running timer, CV = sat(CV + d); otherwise (starting, or IN off) a
+            // TON's CV is 0 and a TONR's is held. With IN the bit is CV >= PT and the PT cache
+            // takes PT; without, a TON's bit is 0 and a TONR's held. `run` = IN.
+            let timing = o.and(on, t.run);
+            let counted = o.sat_add(t.cv, d);
+            let (held, held_bit) = match kind {
+                TimerKind::On => (zero, zero),
+                _ => (t.cv, t.bit),
+            };
+            let cv = o.select(timing, counted, held);
+            let reached = o.ge(cv, x.preset);
+            TimerFields {
+                cv,
+                bit: o.select(on, reached, held_bit),
+                run: on,
+                tof: t.tof,
+                pt_cache: o.select(on, x.preset, t.pt_cache),
+                res: t.res,
             }
-            return;
         }
-        // Open: `IN = input`; closed under the S7 SCR policy: `IN = 0`.
-        let gate = gate.is_open();
-        let on = input & gate;
-        match kind {
-            TimerKind::On | TimerKind::Retentive => {
-                // Spec §5.2, as selects: with IN on a running timer, CV = sat(CV + d100);
-                // otherwise (starting, or IN off) a TON's CV is 0 and a TONR's is held. With IN
-                // the bit is CV >= PT and the PT cache takes PT; without, a TON's bit is 0 and a
-                // TONR's held. `run` = IN. No branches: the inputs follow the plant from scan to
-                // scan, so a branch on them is mispredicted about half the time, which in the
-                // JIT's timer shim cost more than the rule itself (docs/performance.md).
-                let timing = on & t.run;
-                let held = if kind == TimerKind::On { 0 } else { t.cv };
-                t.cv = select_unpredictable(timing, sat_add(t.cv, d100), held);
-                let held_bit = kind == TimerKind::Retentive && t.bit;
-                // Bit and PT cache are chosen by one select of both packed together: a select
-                // of the old PT cache on its own is compiled as a branch around its load.
-                let pack = |pt: i16, bit: bool| (u32::from(pt as u16) << 16) | u32::from(bit);
-                let chosen = select_unpredictable(
-                    on,
-                    pack(preset, t.cv >= preset),
-                    pack(t.pt_cache, held_bit),
-                );
-                t.pt_cache = (chosen >> 16) as u16 as i16;
-                t.bit = chosen & 1 != 0;
-                t.run = on;
-            }
-            TimerKind::Off => {
-                if !gate {
-                    t.tof = TofPhase::Idle;
-                    t.bit = false;
-                    t.cv = 0;
-                } else if on {
-                    t.tof = TofPhase::On;
-                    t.bit = true;
-                    t.cv = 0;
-                } else {
-                    match t.tof {
-                        TofPhase::On => t.tof = TofPhase::Timing,
-                        TofPhase::Timing => t.cv = sat_add(t.cv, d100),
-                        TofPhase::Idle | TofPhase::Done => {}
-                    }
-                    if t.tof == TofPhase::Timing {
-                        t.pt_cache = preset;
-                        if t.cv >= preset {
-                            t.cv = preset;
-                            t.bit = false;
-                            t.tof = TofPhase::Done;
-                        }
-                    }
-                }
+        TimerKind::Off => tof_rule(o, t, x, on, d),
+    };
+    match policy {
+        GatePolicy::S7Scr => next,
+        GatePolicy::OmronInterlock => {
+            // Closed: a TON resets (`run`, CV and bit cleared), the others keep every field.
+            let closed = o.not(x.gate);
+            let kept = match kind {
+                TimerKind::On => TimerFields {
+                    cv: zero,
+                    bit: zero,
+                    run: zero,
+                    ..t
+                },
+                _ => t,
+            };
+            TimerFields {
+                cv: o.select(closed, kept.cv, next.cv),
+                bit: o.select(closed, kept.bit, next.bit),
+                run: o.select(closed, kept.run, next.run),
+                tof: o.select(closed, kept.tof, next.tof),
+                pt_cache: o.select(closed, kept.pt_cache, next.pt_cache),
+                res: t.res,
             }
         }
+    }
+}
+
+/// A TOF execution (part of [`timer_rule`]). With the gate closed: idle, bit 0, CV 0. With IN
+/// on: phase On, bit 1, CV 0. With IN off: a timer that was On starts timing (CV counts from
+/// the next scan), a timing one counts; a timing timer takes PT into its cache, and on
+/// reaching it stops at CV = PT with the bit off (Done).
+fn tof_rule<O: RuleOps>(
+    o: &mut O,
+    t: TimerFields<O::V>,
+    x: TimerInputs<O::V>,
+    on: O::V,
+    d: O::V,
+) -> TimerFields<O::V> {
+    let [idle, phase_on, timing, done] =
+        [TofPhase::Idle, TofPhase::On, TofPhase::Timing, TofPhase::Done].map(|p| o.k(p as i64));
+    let was_on = o.eq(t.tof, phase_on);
+    let was_timing = o.eq(t.tof, timing);
+    let tof = o.select(was_on, timing, t.tof);
+    let counted = o.sat_add(t.cv, d);
+    let cv = o.select(was_timing, counted, t.cv);
+    let is_timing = o.or(was_on, was_timing);
+    let pt_cache = o.select(is_timing, x.preset, t.pt_cache);
+    let reached = o.ge(cv, x.preset);
+    let finished = o.and(is_timing, reached);
+    let cv = o.select(finished, x.preset, cv);
+    let zero = o.k(0);
+    let bit = o.select(finished, zero, t.bit);
+    let tof = o.select(finished, done, tof);
+    // `falling`: gate open, IN off, the case above; otherwise the bit is IN (1 when on, 0
+    // when the gate is closed), CV is 0 and the phase On or Idle.
+    let off = o.not(on);
+    let falling = o.and(x.gate, off);
+    let forced = o.select(on, phase_on, idle);
+    TimerFields {
+        cv: o.select(falling, cv, zero),
+        bit: o.select(falling, bit, on),
+        run: t.run,
+        tof: o.select(falling, tof, forced),
+        pt_cache: o.select(falling, pt_cache, t.pt_cache),
+        res: t.res,
     }
 }
 
