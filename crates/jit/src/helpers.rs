@@ -13,7 +13,7 @@ use cranelift_codegen::ir::{
 };
 use cranelift_codegen::isa::CallConv;
 use cranelift_module::{FuncId, Linkage, Module};
-use stljit_core::ir::{CounterKind, OmronCounterKind, OmronTimerKind, TimerKind};
+use stljit_core::ir::{OmronCounterKind, OmronTimerKind};
 use stljit_runtime::ffi;
 
 /// The arguments a helper takes before its own.
@@ -74,17 +74,8 @@ helpers! {
     ShiftRegister => "stljit_rt_shift_register", ffi::stljit_rt_shift_register, ImageLayout, [I32, I32, I32, I32, I32, I32] -> I32;
     PointerEnd => "stljit_rt_pointer_end", ffi::stljit_rt_pointer_end, ImageLayout, [I32] -> I32;
     Timer => "stljit_rt_timer", ffi::stljit_rt_timer, ImageLayout, [I32, I32, I32, I32, I32] -> I32;
-    /// `stljit_rt_{ton,tonr,tof}_fast(value, bit, state, d100, ctl, preset)`: pointers, no
-    /// layout; one shim per kind.
-    TonFast => "stljit_rt_ton_fast", ffi::stljit_rt_ton_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
-    TonrFast => "stljit_rt_tonr_fast", ffi::stljit_rt_tonr_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
-    TofFast => "stljit_rt_tof_fast", ffi::stljit_rt_tof_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
     TimerReset => "stljit_rt_timer_reset", ffi::stljit_rt_timer_reset, ImageLayout, [I32, I32] -> I32;
     Counter => "stljit_rt_counter", ffi::stljit_rt_counter, ImageLayout, [I32, I32, I32, I32, I32] -> I32;
-    /// `stljit_rt_{ctu,ctd,ctud}_fast(value, bit, state, first_scan, ctl, preset)`.
-    CtuFast => "stljit_rt_ctu_fast", ffi::stljit_rt_ctu_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
-    CtdFast => "stljit_rt_ctd_fast", ffi::stljit_rt_ctd_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
-    CtudFast => "stljit_rt_ctud_fast", ffi::stljit_rt_ctud_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
     CounterReset => "stljit_rt_counter_reset", ffi::stljit_rt_counter_reset, ImageLayout, [I32, I32] -> I32;
     Pointer => "stljit_rt_pointer", ffi::stljit_rt_pointer, ImageLayout, [I32, I32, I32] -> I64;
     /// `stljit_rt_scan_begin(plan, routines, t_ms) -> scan::Begin`.
@@ -135,24 +126,6 @@ impl Helper {
     /// Whether the first two arguments are the image and layout pointers.
     pub(crate) fn takes_image(self) -> bool {
         self.row().lead == Lead::ImageLayout
-    }
-
-    /// The fast shim of a timer kind.
-    pub(crate) fn timer_fast(kind: TimerKind) -> Helper {
-        match kind {
-            TimerKind::On => Helper::TonFast,
-            TimerKind::Retentive => Helper::TonrFast,
-            TimerKind::Off => Helper::TofFast,
-        }
-    }
-
-    /// The fast shim of a counter kind.
-    pub(crate) fn counter_fast(kind: CounterKind) -> Helper {
-        match kind {
-            CounterKind::Up => Helper::CtuFast,
-            CounterKind::Down => Helper::CtdFast,
-            CounterKind::UpDown => Helper::CtudFast,
-        }
     }
 
     /// The fast shim of an Omron timer kind.

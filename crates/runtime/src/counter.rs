@@ -7,9 +7,9 @@
 //! interpreter reaches them through [`execute`] (layout lookups, range check), the JIT through
 //! [`crate::ffi::stljit_rt_counter_fast`] (offsets fixed at compile time).
 
+use crate::rule_ops::{Native, RuleOps};
 use crate::rules::{Gate, GatePolicy, Rules};
 use crate::{block, mem};
-use crate::rule_ops::{Native, RuleOps};
 use stljit_core::ir::CounterKind;
 use stljit_core::layout::Sched;
 use stljit_core::layout::{COUNTER_STATE_SIZE, CounterState, Layout};
@@ -205,7 +205,13 @@ pub fn counter_rule<O: RuleOps>(
                 prev_up: o.select(closed, c.prev_up, next.prev_up),
                 prev_down: o.select(closed, c.prev_down, next.prev_down),
             };
-            (fields, CounterBit { written: x.gate, bit: out.bit })
+            (
+                fields,
+                CounterBit {
+                    written: x.gate,
+                    bit: out.bit,
+                },
+            )
         }
     }
 }

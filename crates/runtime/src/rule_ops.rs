@@ -39,6 +39,8 @@ pub trait RuleOps {
     fn gt(&mut self, a: Self::V, b: Self::V) -> Self::V;
     /// `a != 0` as a boolean (a byte that stores a flag).
     fn ne0(&mut self, a: Self::V) -> Self::V;
+    /// `a & 1`: bit 0 of `a` as a boolean (a byte whose bit 0 is the flag).
+    fn bit0(&mut self, a: Self::V) -> Self::V;
     /// The low 16 bits of `a`, sign-extended (an `i16` that wraps).
     fn wrap16(&mut self, a: Self::V) -> Self::V;
     /// `c ? a : b` for a boolean `c`, without a branch.
@@ -108,6 +110,10 @@ impl RuleOps for Native {
         i64::from(a != 0)
     }
     #[inline(always)]
+    fn bit0(&mut self, a: i64) -> i64 {
+        a & 1
+    }
+    #[inline(always)]
     fn wrap16(&mut self, a: i64) -> i64 {
         i64::from(a as i16)
     }
@@ -116,6 +122,10 @@ impl RuleOps for Native {
         std::hint::select_unpredictable(c != 0, a, b)
     }
 }
+
+#[cfg(test)]
+#[path = "rule_ops_tests.rs"]
+mod spec_rows;
 
 #[cfg(test)]
 mod tests {
@@ -130,6 +140,6 @@ mod tests {
         assert_eq!(o.lt(-1, 0), 1);
         assert_eq!(o.select(1, 7, 9), 7);
         assert_eq!(o.select(0, 7, 9), 9);
-        assert_eq!((o.not(1), o.not(0), o.ne0(200)), (0, 1, 1));
+        assert_eq!((o.not(1), o.not(0), o.ne0(200), o.bit0(6)), (0, 1, 1, 0));
     }
 }

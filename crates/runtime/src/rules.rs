@@ -9,6 +9,7 @@
 //!   power flow `S0 AND gate`, which is the same under both policies (a coil writes 0, a box
 //!   does not run); the stateful instructions differ, and their rules read the policy here.
 
+use crate::rule_ops::{Native, RuleOps};
 use stljit_core::Family;
 
 /// What the first scan does with edges (spec TC7).
@@ -50,7 +51,18 @@ impl Rules {
     /// ([`stljit_core::layout::Sched::FIRST_SCAN`]) is `first_scan`.
     #[inline]
     pub fn edges_suppressed(self, first_scan: u8) -> bool {
-        self.first_scan_suppresses() && first_scan != 0
+        self.edges_suppressed_in(&mut Native, i64::from(first_scan)) != 0
+    }
+
+    /// [`Rules::edges_suppressed`] as a [`RuleOps`] value (a boolean), for rules written over
+    /// [`RuleOps`]: the JIT emits it inline.
+    #[inline]
+    pub fn edges_suppressed_in<O: RuleOps>(self, o: &mut O, first_scan: O::V) -> O::V {
+        if self.first_scan_suppresses() {
+            o.ne0(first_scan)
+        } else {
+            o.k(0)
+        }
     }
 
     /// Whether the first-scan flag suppresses edges at all (code generators test the flag

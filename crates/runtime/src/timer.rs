@@ -80,16 +80,26 @@ pub struct Timer {
 
 impl Timer {
     /// Decodes the fields from the timer's value bytes (big-endian), bit byte and private state
-    /// block (no indexing that can fail: the arrays have fixed sizes).
+    /// block ([`TimerFields::from_raw`]; no indexing that can fail: the arrays have fixed
+    /// sizes).
     #[inline]
     pub fn decode(value: &[u8; 2], bit: u8, state: &[u8; STATE_BYTES]) -> Timer {
+        let raw = TimerFields {
+            cv: i64::from(i16::from_be_bytes(*value)),
+            bit: i64::from(bit),
+            run: i64::from(state[RUN]),
+            tof: i64::from(state[TOF]),
+            pt_cache: i64::from(i16::from_ne_bytes([state[PT], state[PT + 1]])),
+            res: i64::from(state[RES]),
+        };
+        let t = TimerFields::from_raw(&mut Native, raw);
         Timer {
-            cv: i16::from_be_bytes(*value),
-            bit: bit & 1 != 0,
-            run: state[RUN] != 0,
-            tof: TofPhase::from_u8(state[TOF]),
-            pt_cache: i16::from_ne_bytes([state[PT], state[PT + 1]]),
-            res: state[RES],
+            cv: t.cv as i16,
+            bit: t.bit != 0,
+            run: t.run != 0,
+            tof: TofPhase::from_u8(t.tof as u8),
+            pt_cache: t.pt_cache as i16,
+            res: t.res as u8,
         }
     }
 
@@ -178,6 +188,25 @@ pub struct TimerFields<V> {
     pub pt_cache: V,
     /// Resolution in ms (1, 10, 100; 0 for an unused timer).
     pub res: V,
+}
+
+impl<V: Copy> TimerFields<V> {
+    /// The fields of a timer from its raw bytes, each as a [`RuleOps`] value: CV and PT cache
+    /// already sign-extended, the bit, run, TOF and resolution bytes as they are. The bit is
+    /// bit 0 of its byte, `run` any non-zero byte, and a TOF byte that is no phase counts as
+    /// [`TofPhase::Idle`] (both engines decode through here, so a snapshot with odd private
+    /// bytes runs alike).
+    pub fn from_raw<O: RuleOps<V = V>>(o: &mut O, raw: TimerFields<V>) -> TimerFields<V> {
+        let phases = o.k(TofPhase::Done as i64 + 1);
+        let is_phase = o.lt(raw.tof, phases);
+        let idle = o.k(TofPhase::Idle as i64);
+        TimerFields {
+            bit: o.bit0(raw.bit),
+            run: o.ne0(raw.run),
+            tof: o.select(is_phase, raw.tof, idle),
+            ..raw
+        }
+    }
 }
 
 /// The inputs of one timer execution: `IN` (`S0`, 0/1), the gate (1 open, 0 closed), the
@@ -273,8 +302,13 @@ fn tof_rule<O: RuleOps>(
     on: O::V,
     d: O::V,
 ) -> TimerFields<O::V> {
-    let [idle, phase_on, timing, done] =
-        [TofPhase::Idle, TofPhase::On, TofPhase::Timing, TofPhase::Done].map(|p| o.k(p as i64));
+    let [idle, phase_on, timing, done] = [
+        TofPhase::Idle,
+        TofPhase::On,
+        TofPhase::Timing,
+        TofPhase::Done,
+    ]
+    .map(|p| o.k(p as i64));
     let was_on = o.eq(t.tof, phase_on);
     let was_timing = o.eq(t.tof, timing);
     let tof = o.select(was_on, timing, t.tof);

@@ -24,6 +24,7 @@ pub(crate) mod ext;
 pub(crate) mod flow;
 pub(crate) mod mem;
 pub(crate) mod omron;
+pub(crate) mod rules;
 pub(crate) mod state;
 pub(crate) mod stateful;
 pub(crate) mod value;

@@ -2,15 +2,13 @@
 //! calls into the runtime, which owns these semantics (spec §5).
 
 use super::Lower;
-use super::cache::Addr;
 use super::mem::OnFail;
 use super::value::{B, Stack};
 use crate::helpers::Helper;
 use cranelift_codegen::ir::{BlockArg, InstBuilder, Value, condcodes::IntCC, types::I32};
 use stljit_core::ir::{BitLoc, CounterKind, Operand, TimerKind};
-use stljit_core::layout::Sched;
 use stljit_core::{Area, ErrorCode, Width};
-use stljit_runtime::ffi::{CTL_GATE, FfiCode, fast_shims_apply, gate_word_fixed};
+use stljit_runtime::ffi::{CTL_GATE, FfiCode, gate_word_fixed};
 
 impl Lower<'_, '_> {
     /// Records a non-zero runtime status as a non-fatal error (a diamond, rarely taken).
@@ -19,32 +17,20 @@ impl Lower<'_, '_> {
         self.diamond(bad, |s| s.record_error(status), |_| {});
     }
 
-    /// Executes timer or counter `n` (of kind `code`) with `inputs` (the `ctl` bits) and preset
-    /// `pv`. In range (`ranges` = its bytes) and under the rules the fast shims are specialised
-    /// to: the kind's fast shim on those bytes only, which cannot fail. Otherwise the general
-    /// shim, whose error (no such object) is recorded.
-    fn call_stateful(
+    /// Executes timer or counter `n` (of kind `code`) through the general shim, for an
+    /// object the profile lacks: the shim records the error (no such object).
+    fn call_stateful_general(
         &mut self,
-        ranges: Option<[(Addr, u32); 4]>,
-        (fast, general): (Helper, Helper),
+        general: Helper,
         (n, code): (u16, u8),
         inputs: Value,
         pv: Value,
     ) {
-        match ranges.filter(|_| fast_shims_apply(self.env.rules)) {
-            Some(r) => {
-                let ctl = self.fast_ctl(inputs);
-                let args = self.fast_args(&r, ctl, pv);
-                self.call_touching(fast, &args, &r);
-            }
-            None => {
-                let gate = self.gate_word();
-                let nv = self.iconst(I32, i64::from(n));
-                let k = self.iconst(I32, i64::from(code));
-                let st = self.call_helper(general, &[nv, k, inputs, gate, pv]);
-                self.error_if_status(st);
-            }
-        }
+        let gate = self.gate_word();
+        let nv = self.iconst(I32, i64::from(n));
+        let k = self.iconst(I32, i64::from(code));
+        let st = self.call_helper(general, &[nv, k, inputs, gate, pv]);
+        self.error_if_status(st);
     }
 
     /// Reads a word preset; a failing pointer records 0x0006 and skips the instruction.
@@ -75,27 +61,33 @@ impl Lower<'_, '_> {
         self.join_arms(arms);
     }
 
-    /// `TON`/`TONR`/`TOF Tn, PT`.
+    /// `TON`/`TONR`/`TOF Tn, PT`: the runtime's rule inline ([`Lower::timer_inline`]), or the
+    /// general shim for a timer the profile lacks.
     pub(crate) fn timer(&mut self, kind: TimerKind, n: u16, preset: &Operand) {
         self.with_preset(preset, |s, pv| {
-            let input = s.block.stack.top().to01(&mut s.b);
-            let ranges = s.timer_ranges(n);
-            let calls = (Helper::timer_fast(kind), Helper::Timer);
-            s.call_stateful(ranges, calls, (n, kind.code()), input, pv);
+            if u32::from(n) < s.env.layout.area_size(Area::TimerBit) {
+                s.timer_inline(kind, n, pv);
+            } else {
+                let input = s.block.stack.top().to01(&mut s.b);
+                s.call_stateful_general(Helper::Timer, (n, kind.code()), input, pv);
+            }
         });
     }
 
-    /// `CTU`/`CTD`/`CTUD Cn, PV`.
+    /// `CTU`/`CTD`/`CTUD Cn, PV`: the runtime's rule inline ([`Lower::counter_inline`]), or
+    /// the general shim for a counter the profile lacks.
     pub(crate) fn counter(&mut self, kind: CounterKind, n: u16, preset: &Operand) {
         self.with_preset(preset, |s, pv| {
-            // `counter::execute` reads levels 0..=2 only; packing just those is cheaper.
-            let levels = Stack {
-                lv: (0..3).map(|i| s.block.stack.level(i)).collect(),
-            };
-            let stack = levels.to_reg(&mut s.b);
-            let ranges = s.counter_ranges(n);
-            let calls = (Helper::counter_fast(kind), Helper::Counter);
-            s.call_stateful(ranges, calls, (n, kind.code()), stack, pv);
+            if u32::from(n) < s.env.layout.area_size(Area::CounterBit) {
+                s.counter_inline(kind, n, pv);
+            } else {
+                // `counter::execute` reads levels 0..=2 only; packing just those is cheaper.
+                let levels = Stack {
+                    lv: (0..3).map(|i| s.block.stack.level(i)).collect(),
+                };
+                let stack = levels.to_reg(&mut s.b);
+                s.call_stateful_general(Helper::Counter, (n, kind.code()), stack, pv);
+            }
         });
     }
 
@@ -132,40 +124,6 @@ impl Lower<'_, '_> {
                 self.b.ins().bor(low, at)
             }
         }
-    }
-
-    /// Arguments of a fast shim: pointers to the four ranges of [`Lower::timer_ranges`] /
-    /// [`Lower::counter_ranges`] (image-relative, checked in range at compile time), `ctl`,
-    /// the preset.
-    fn fast_args(&mut self, r: &[(Addr, u32); 4], ctl: Value, preset: Value) -> [Value; 6] {
-        let image = self.func.image;
-        let p = r.map(|(a, _)| {
-            debug_assert!(!a.local, "timer and counter bytes are never in L");
-            self.b.ins().iadd_imm_s(image, i64::from(a.off))
-        });
-        [p[0], p[1], p[2], p[3], ctl, preset]
-    }
-
-    /// The bytes `timer::execute` reads or writes for an existing timer `n`: its own
-    /// ([`Layout::timer_bytes`](stljit_core::layout::Layout::timer_bytes)) and the scan's
-    /// 100-ms delta (`None`: no such timer, the shim fails).
-    fn timer_ranges(&self, n: u16) -> Option<[(Addr, u32); 4]> {
-        let l = self.env.layout;
-        (u32::from(n) < l.area_size(Area::TimerBit)).then(|| {
-            let [v, b, s] = l.timer_bytes(n).map(|(off, len)| (Addr::img(off), len));
-            [v, b, s, (self.sched(Sched::D100), 4)]
-        })
-    }
-
-    /// The bytes `counter::execute` reads or writes for an existing counter `n`: its own
-    /// ([`Layout::counter_bytes`](stljit_core::layout::Layout::counter_bytes)) and the
-    /// first-scan flag.
-    fn counter_ranges(&self, n: u16) -> Option<[(Addr, u32); 4]> {
-        let l = self.env.layout;
-        (u32::from(n) < l.area_size(Area::CounterBit)).then(|| {
-            let [v, b, s] = l.counter_bytes(n).map(|(off, len)| (Addr::img(off), len));
-            [v, b, s, (self.sched(Sched::FIRST_SCAN), 1)]
-        })
     }
 
     /// `R Tn, N` / `R Cn, N` through the runtime's reset (`h`).

@@ -1,6 +1,5 @@
 //! The Omron shims (`stljit_rt_omron_*`): the JIT's way into [`crate::omron_image`], under the
-//! module conventions of [`super`]. The timer and counter shims are lean like the S7 fast
-//! shims (pointers to the object's bytes, computed from the layout at compile time) and return
+//! module conventions of [`super`]. The timer and counter shims are lean (pointers to the object's bytes, computed from the layout at compile time) and return
 //! the condition-flag writes for compiled code to apply; kinds travel as their position in
 //! core's `ALL` lists, set values and operand values as `u32` (Omron value order).
 
@@ -32,7 +31,7 @@ fn ctl_parts(ctl: u32) -> (u16, Gate) {
 
 /// [`omron_image::timer_step`] for `kind` on one timer's bytes.
 ///
-/// **Why no `catch_unwind`** (as the S7 fast shims, `ffi/fast.rs`): between entry and return
+/// **Why no `catch_unwind`:** between entry and return
 /// this does fixed-size array accesses with constant in-bounds indices and runs
 /// `OmronTimer::step`, whose arithmetic saturates, whose divisions are by a timer unit (never
 /// 0, and `max(1)` where it is not a constant) and whose BCD conversions are total; so it cannot

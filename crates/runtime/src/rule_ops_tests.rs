@@ -1,16 +1,15 @@
-//! The fast shims against spec §5.2/§5.3 (expected values derived from the pseudo-code there),
-//! and against the interpreter's path ([`timer::execute`], [`counter::execute`]) on whole images.
+//! The timer and counter rules ([`timer_rule`](crate::timer::timer_rule),
+//! [`counter_rule`](crate::counter::counter_rule)) against spec §5.2/§5.3, on one object's
+//! bytes as the engines decode and encode them (expected values derived from the pseudo-code
+//! there). The JIT emits the same rule text inline; the conformance cases and the differential
+//! fuzzer hold the two engines to each other.
 
-use super::*;
-use crate::image::Image;
-use crate::rules::{Gate, Rules};
-use crate::timer::STATE_BYTES;
+use crate::counter::Counter;
+use crate::rules::Gate;
 use crate::timer::TofPhase::{self, Done, Idle, On as TofOn, Timing};
-use crate::{counter, mem, timer};
-use stljit_core::Area;
-use stljit_core::ProfileId;
+use crate::timer::{STATE_BYTES, Timer};
 use stljit_core::ir::{CounterKind, TimerKind};
-use stljit_core::layout::{CounterState, Layout, Sched, TimerState};
+use stljit_core::layout::TimerState;
 
 /// A timer before or after one execution: (cv, bit, run, tof, pt_cache).
 type T = (i16, bool, bool, TofPhase, i16);
@@ -79,72 +78,26 @@ fn timer_bytes(kind: TimerKind, res: u8, t: T) -> TimerBytes {
     b
 }
 
-fn ctl(low: u32, gate: bool) -> u32 {
-    low | if gate { CTL_GATE } else { 0 }
-}
-
 #[test]
-fn timer_fast_follows_spec_5_2() {
+fn timer_rule_follows_spec_5_2() {
     for (i, &(kind, res, before, input, gate, pt, d100, after)) in TIMER_ROWS.iter().enumerate() {
         let mut b = timer_bytes(kind, res, before);
-        let d = d100.to_ne_bytes();
-        let c = ctl(u32::from(input), gate);
-        // SAFETY: four distinct live locals of the documented sizes.
-        let st = unsafe {
-            timer_fast_fn(kind)(
-                b.value.as_mut_ptr(),
-                &mut b.bit,
-                b.state.as_mut_ptr(),
-                d.as_ptr(),
-                c,
-                i32::from(pt),
-            )
-        };
-        assert_eq!(st, RT_OK, "row {i}");
+        let mut t = Timer::decode(&b.value, b.bit, &b.state);
+        t.step(kind, input, Gate::scr(gate), pt, d100);
+        t.encode(&mut b.value, &mut b.bit, &mut b.state);
         assert_eq!(b, timer_bytes(kind, res, after), "row {i}");
     }
 }
 
-/// Timer `n`'s (value, bit, state) offsets in `l`.
-fn timer_at(l: &Layout, n: u16) -> (usize, usize, usize) {
-    (
-        (l.base(Area::TimerValue) + 2 * u32::from(n)) as usize,
-        (l.base(Area::TimerBit) + u32::from(n)) as usize,
-        l.timer_state(n) as usize,
-    )
-}
-
 #[test]
-fn timer_fast_matches_execute_on_the_image() {
-    let n = 41;
-    for (i, &(kind, res, before, input, gate, pt, d100, _)) in TIMER_ROWS.iter().enumerate() {
-        let mut a = Image::blank(ProfileId::A5);
-        let (buf, l) = a.split_mut();
-        let (v, bt, s) = timer_at(l, n);
-        let tb = timer_bytes(kind, res, before);
-        buf[v..v + 2].copy_from_slice(&tb.value);
-        buf[bt] = tb.bit;
-        buf[s..s + STATE_BYTES].copy_from_slice(&tb.state);
-        mem::set_u32_ne(buf, l.sched(Sched::D100), d100);
-        let mut b = a.clone();
-        let (buf, l) = a.split_mut();
-        timer::execute(buf, l, n, kind, input, Gate::scr(gate), pt).unwrap();
-        let (fb, l) = b.split_mut();
-        let p = fb.as_mut_ptr();
-        // SAFETY: disjoint in-range blocks of a live image (layout offsets of an existing timer).
-        let st = unsafe {
-            timer_fast_fn(kind)(
-                p.add(v),
-                p.add(bt),
-                p.add(s),
-                p.add(l.sched(Sched::D100) as usize),
-                ctl(u32::from(input), gate),
-                i32::from(pt),
-            )
-        };
-        assert_eq!(st, RT_OK);
-        assert!(a.bytes_mut() == b.bytes_mut(), "row {i}");
-    }
+fn timer_decode_reads_odd_private_bytes_as_the_rule_expects() {
+    // A snapshot may carry any private bytes: bit 0 of the bit byte is the bit, any non-zero
+    // run byte is `run`, a TOF byte that is no phase is Idle (`TimerFields::from_raw`).
+    let mut state = [0; STATE_BYTES];
+    state[TimerState::RUN as usize] = 0x80;
+    state[TimerState::TOF as usize] = 9;
+    let t = Timer::decode(&[0, 4], 0xFE, &state);
+    assert_eq!((t.cv, t.bit, t.run, t.tof), (4, false, true, Idle));
 }
 
 /// A counter before or after one execution: (cv, bit, prev_up, prev_down).
@@ -180,34 +133,26 @@ const COUNTER_ROWS: &[CounterRow] = {
     ]
 };
 
-fn stack_of(levels: [u8; 3]) -> u32 {
+fn stack_of(levels: [u8; 3]) -> u16 {
     levels
         .iter()
         .enumerate()
-        .map(|(i, &v)| u32::from(v) << i)
+        .map(|(i, &v)| u16::from(v) << i)
         .sum()
 }
 
 #[test]
-fn counter_fast_follows_spec_5_3() {
+fn counter_rule_follows_spec_5_3() {
     for (i, &(kind, before, levels, gate, first, pv, after)) in COUNTER_ROWS.iter().enumerate() {
         let (cv, bit, up, down) = before;
         let mut value = cv.to_be_bytes();
         let mut bitb = u8::from(bit);
         let mut state = [up, down, kind.code(), 0x5A];
-        let fs = u8::from(first);
-        // SAFETY: four distinct live locals of the documented sizes.
-        let st = unsafe {
-            counter_fast_fn(kind)(
-                value.as_mut_ptr(),
-                &mut bitb,
-                state.as_mut_ptr(),
-                &fs,
-                ctl(stack_of(levels), gate),
-                i32::from(pv),
-            )
-        };
-        assert_eq!(st, RT_OK, "row {i}");
+        let mut c = Counter::decode(value, &state);
+        if let Some(on) = c.step(kind, stack_of(levels), Gate::scr(gate), pv, first) {
+            bitb = u8::from(on);
+        }
+        c.encode(&mut value, &mut state);
         let (cv, bit, up, down) = after;
         let want = (
             cv.to_be_bytes(),
@@ -216,67 +161,4 @@ fn counter_fast_follows_spec_5_3() {
         );
         assert_eq!((value, bitb, state), want, "row {i}");
     }
-}
-
-#[test]
-fn counter_fast_matches_execute_on_the_image() {
-    let n = 29;
-    for (i, &(kind, before, levels, gate, first, pv, _)) in COUNTER_ROWS.iter().enumerate() {
-        let mut a = Image::blank(ProfileId::A5);
-        let (buf, l) = a.split_mut();
-        let v = (l.base(Area::CounterValue) + 2 * u32::from(n)) as usize;
-        let bt = (l.base(Area::CounterBit) + u32::from(n)) as usize;
-        let s = l.counter_state(n) as usize;
-        let (cv, bit, up, down) = before;
-        buf[v..v + 2].copy_from_slice(&cv.to_be_bytes());
-        buf[bt] = u8::from(bit);
-        buf[s + CounterState::PREV_UP as usize] = up;
-        buf[s + CounterState::PREV_DOWN as usize] = down;
-        mem::set_u8(buf, l.sched(Sched::FIRST_SCAN), u8::from(first));
-        let mut b = a.clone();
-        let (buf, l) = a.split_mut();
-        let stack = stack_of(levels) as u16;
-        counter::execute(buf, l, n, kind, stack, Gate::scr(gate), pv, Rules::IN_FORCE).unwrap();
-        let (fb, l) = b.split_mut();
-        let p = fb.as_mut_ptr();
-        // SAFETY: disjoint in-range blocks of a live image (layout offsets of an existing counter).
-        let st = unsafe {
-            counter_fast_fn(kind)(
-                p.add(v),
-                p.add(bt),
-                p.add(s),
-                p.add(l.sched(Sched::FIRST_SCAN) as usize),
-                ctl(u32::from(stack), gate),
-                i32::from(pv),
-            )
-        };
-        assert_eq!(st, RT_OK);
-        assert!(a.bytes_mut() == b.bytes_mut(), "row {i}");
-    }
-}
-
-#[test]
-fn ctl_bits_above_the_gate_are_ignored() {
-    // A TON on, gate open, with garbage in the unused ctl bits behaves like the clean call.
-    let run = |c: u32| {
-        let mut b = timer_bytes(TimerKind::On, 100, (4, false, true, Idle, 5));
-        let d = 3u32.to_ne_bytes();
-        // SAFETY: four distinct live locals of the documented sizes.
-        unsafe {
-            stljit_rt_ton_fast(
-                b.value.as_mut_ptr(),
-                &mut b.bit,
-                b.state.as_mut_ptr(),
-                d.as_ptr(),
-                c,
-                5,
-            )
-        };
-        b
-    };
-    assert_eq!(run(ctl(1, true) | 0xFFFF_0000), run(ctl(1, true)));
-    assert_eq!(
-        run(ctl(1, true)),
-        timer_bytes(TimerKind::On, 100, (7, true, true, Idle, 5))
-    );
 }

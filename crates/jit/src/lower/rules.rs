@@ -1,0 +1,346 @@
+//! The runtime's timer and counter rules, emitted inline.
+//!
+//! [`stljit_runtime::timer::timer_rule`] and [`stljit_runtime::counter::counter_rule`] are
+//! written over [`RuleOps`]; [`Emit`] implements it by building Cranelift instructions, so a
+//! `TON` or `CTU` in compiled code is the interpreter's rule text turned into straight-line
+//! code on the object's bytes, with no call, no spill of the byte cache around one, and no
+//! decoding of fields the kind does not use. What is known at compile time (a constant gate or
+//! input, the first-scan rule) is folded by [`Native`], the same operations the interpreter
+//! runs, so folding cannot change a result.
+
+use super::Lower;
+use super::cache::Addr;
+use super::value::B;
+use cranelift_codegen::ir::{
+    InstBuilder, InstructionData, Opcode, Value, ValueDef,
+    condcodes::{CondCode, IntCC},
+    types::{I16, I32, I64},
+};
+use cranelift_frontend::FunctionBuilder;
+use stljit_core::Width;
+use stljit_core::ir::{CounterKind, TimerKind};
+use stljit_core::layout::{CounterState, Sched, TimerState};
+use stljit_runtime::counter::{CounterFields, CounterInputs, counter_rule};
+use stljit_runtime::rule_ops::{Native, RuleOps};
+use stljit_runtime::timer::{TimerFields, TimerInputs, timer_rule};
+
+/// A rule value: known at compile time, or an `i64` SSA value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Rv {
+    /// A constant.
+    K(i64),
+    /// An `i64` computed at run time.
+    R(Value),
+}
+
+/// [`RuleOps`] that emits Cranelift instructions into `b` (module docs).
+pub(crate) struct Emit<'a, 'f> {
+    pub(crate) b: &'a mut FunctionBuilder<'f>,
+}
+
+impl Emit<'_, '_> {
+    /// The value as an `i64` SSA value.
+    pub(crate) fn value(&mut self, v: Rv) -> Value {
+        match v {
+            Rv::K(k) => self.b.ins().iconst(I64, k),
+            Rv::R(v) => v,
+        }
+    }
+
+    /// A binary op: folded by `fold` when both sides are known, else emitted by `emit`.
+    fn binary(
+        &mut self,
+        (a, b): (Rv, Rv),
+        fold: fn(&mut Native, i64, i64) -> i64,
+        emit: fn(&mut FunctionBuilder<'_>, Value, Value) -> Value,
+    ) -> Rv {
+        if let (Rv::K(x), Rv::K(y)) = (a, b) {
+            return Rv::K(fold(&mut Native, x, y));
+        }
+        let (x, y) = (self.value(a), self.value(b));
+        Rv::R(emit(self.b, x, y))
+    }
+
+    /// The `icmp` (an `i8`) whose zero-extension `v` is, if it is one: a select can test it
+    /// directly (x86 `cmp` + `cmov`, not `setcc`, `movzx`, `test`, `cmov`), and its negation
+    /// is the opposite comparison.
+    fn compare_of(&self, v: Value) -> Option<(Value, IntCC, [Value; 2])> {
+        let dfg = &self.b.func.dfg;
+        let ValueDef::Result(ext, 0) = dfg.value_def(v) else {
+            return None;
+        };
+        let InstructionData::Unary {
+            opcode: Opcode::Uextend,
+            arg,
+        } = dfg.insts[ext]
+        else {
+            return None;
+        };
+        let ValueDef::Result(cmp, 0) = dfg.value_def(arg) else {
+            return None;
+        };
+        match dfg.insts[cmp] {
+            InstructionData::IntCompare {
+                opcode: Opcode::Icmp,
+                cond,
+                args,
+            } => Some((arg, cond, args)),
+            _ => None,
+        }
+    }
+
+    /// A comparison as a 0/1 `i64`.
+    fn emit_compare(&mut self, cc: IntCC, x: Value, y: Value) -> Rv {
+        let c = self.b.ins().icmp(cc, x, y);
+        Rv::R(self.b.ins().uextend(I64, c))
+    }
+
+    /// A signed comparison as a 0/1 `i64`.
+    fn compare(&mut self, cc: IntCC, a: Rv, b: Rv, fold: fn(&mut Native, i64, i64) -> i64) -> Rv {
+        if let (Rv::K(x), Rv::K(y)) = (a, b) {
+            return Rv::K(fold(&mut Native, x, y));
+        }
+        let (x, y) = (self.value(a), self.value(b));
+        self.emit_compare(cc, x, y)
+    }
+}
+
+impl RuleOps for Emit<'_, '_> {
+    type V = Rv;
+
+    fn k(&mut self, v: i64) -> Rv {
+        Rv::K(v)
+    }
+
+    fn and(&mut self, a: Rv, b: Rv) -> Rv {
+        // Booleans only (the trait's contract): 0 absorbs, 1 is the identity.
+        match (a, b) {
+            (Rv::K(0), _) | (_, Rv::K(0)) => Rv::K(0),
+            (Rv::K(1), x) | (x, Rv::K(1)) => x,
+            _ => self.binary((a, b), Native::and, |b, x, y| b.ins().band(x, y)),
+        }
+    }
+
+    fn or(&mut self, a: Rv, b: Rv) -> Rv {
+        match (a, b) {
+            (Rv::K(1), _) | (_, Rv::K(1)) => Rv::K(1),
+            (Rv::K(0), x) | (x, Rv::K(0)) => x,
+            _ => self.binary((a, b), Native::or, |b, x, y| b.ins().bor(x, y)),
+        }
+    }
+
+    fn not(&mut self, a: Rv) -> Rv {
+        match a {
+            Rv::K(x) => Rv::K(Native.not(x)),
+            Rv::R(v) => match self.compare_of(v) {
+                Some((_, cc, [x, y])) => self.emit_compare(cc.complement(), x, y),
+                None => Rv::R(self.b.ins().bxor_imm_s(v, 1)),
+            },
+        }
+    }
+
+    fn add(&mut self, a: Rv, b: Rv) -> Rv {
+        match (a, b) {
+            (Rv::K(0), x) | (x, Rv::K(0)) => x,
+            _ => self.binary((a, b), Native::add, |b, x, y| b.ins().iadd(x, y)),
+        }
+    }
+
+    fn sub(&mut self, a: Rv, b: Rv) -> Rv {
+        match b {
+            Rv::K(0) => a,
+            _ => self.binary((a, b), Native::sub, |b, x, y| b.ins().isub(x, y)),
+        }
+    }
+
+    fn min(&mut self, a: Rv, b: Rv) -> Rv {
+        self.binary((a, b), Native::min, |b, x, y| b.ins().smin(x, y))
+    }
+
+    fn eq(&mut self, a: Rv, b: Rv) -> Rv {
+        self.compare(IntCC::Equal, a, b, Native::eq)
+    }
+
+    fn ge(&mut self, a: Rv, b: Rv) -> Rv {
+        self.compare(IntCC::SignedGreaterThanOrEqual, a, b, Native::ge)
+    }
+
+    fn gt(&mut self, a: Rv, b: Rv) -> Rv {
+        self.compare(IntCC::SignedGreaterThan, a, b, Native::gt)
+    }
+
+    fn ne0(&mut self, a: Rv) -> Rv {
+        self.compare(IntCC::NotEqual, a, Rv::K(0), |o, x, _| o.ne0(x))
+    }
+
+    fn bit0(&mut self, a: Rv) -> Rv {
+        match a {
+            Rv::K(x) => Rv::K(Native.bit0(x)),
+            Rv::R(v) => Rv::R(self.b.ins().band_imm_s(v, 1)),
+        }
+    }
+
+    fn wrap16(&mut self, a: Rv) -> Rv {
+        match a {
+            Rv::K(x) => Rv::K(Native.wrap16(x)),
+            Rv::R(v) => {
+                let low = self.b.ins().ireduce(I16, v);
+                Rv::R(self.b.ins().sextend(I64, low))
+            }
+        }
+    }
+
+    fn select(&mut self, c: Rv, a: Rv, b: Rv) -> Rv {
+        match c {
+            Rv::K(c) => {
+                if c != 0 {
+                    a
+                } else {
+                    b
+                }
+            }
+            Rv::R(_) if a == b => a,
+            Rv::R(c) => {
+                let c = self.compare_of(c).map_or(c, |(flag, ..)| flag);
+                let (x, y) = (self.value(a), self.value(b));
+                Rv::R(self.b.ins().select(c, x, y))
+            }
+        }
+    }
+}
+
+impl Lower<'_, '_> {
+    /// A logic-stack boolean as a rule value.
+    fn rule_bool(&mut self, v: B) -> Rv {
+        match v {
+            B::K(k) => Rv::K(i64::from(k)),
+            v => {
+                let x = v.to01(&mut self.b);
+                Rv::R(self.b.ins().uextend(I64, x))
+            }
+        }
+    }
+
+    /// A byte through the cache, zero-extended.
+    fn rule_byte(&mut self, a: Addr) -> Rv {
+        let v = self.byte(a);
+        Rv::R(self.b.ins().uextend(I64, v))
+    }
+
+    /// A big-endian `i16` (a current value) through the cache, sign-extended.
+    fn rule_word_be(&mut self, a: Addr) -> Rv {
+        let v = self.read_static(a, Width::Word);
+        let w = self.b.ins().ireduce(I16, v);
+        Rv::R(self.b.ins().sextend(I64, w))
+    }
+
+    /// Writes `new` as a byte unless it is `old` itself (writing back the byte just read
+    /// changes nothing).
+    fn rule_set_byte(&mut self, a: Addr, old: Rv, new: Rv) {
+        if new != old {
+            let v = Emit { b: &mut self.b }.value(new);
+            let v = self.b.ins().ireduce(I32, v);
+            self.set_byte(a, v);
+        }
+    }
+
+    /// Writes `new` as a big-endian word unless it is `old` itself.
+    fn rule_set_word_be(&mut self, a: Addr, old: Rv, new: Rv) {
+        if new != old {
+            let v = Emit { b: &mut self.b }.value(new);
+            let v = self.b.ins().ireduce(I32, v);
+            self.write_static(a, Width::Word, v);
+        }
+    }
+
+    /// `TON`/`TONR`/`TOF` on timer `n`, which exists, with preset `pv` (an `i32`, sign-extended
+    /// from the word): [`timer_rule`] emitted on the timer's bytes, decoded and encoded as the
+    /// runtime's `Timer::decode`/`encode` do ([`TimerFields::from_raw`]).
+    pub(crate) fn timer_inline(&mut self, kind: TimerKind, n: u16, pv: Value) {
+        debug_assert!(self.in_box.pf().is_none(), "a timer is not a box");
+        let [(v, _), (b, _), (s, _)] = self.env.layout.timer_bytes(n);
+        let (value, bit, state) = (Addr::img(v), Addr::img(b), Addr::img(s));
+        let pt_at = state.plus(TimerState::PT_CACHE);
+        let pt = self.load_ne(pt_at, I16);
+        let raw = TimerFields {
+            cv: self.rule_word_be(value),
+            bit: self.rule_byte(bit),
+            run: self.rule_byte(state.plus(TimerState::RUN)),
+            tof: self.rule_byte(state.plus(TimerState::TOF)),
+            pt_cache: Rv::R(self.b.ins().sextend(I64, pt)),
+            res: self.rule_byte(state.plus(TimerState::RES)),
+        };
+        let d100 = self.load_ne(self.sched(Sched::D100), I32);
+        let inputs = TimerInputs {
+            input: self.rule_bool(self.block.stack.top()),
+            gate: self.rule_bool(self.block.gate),
+            preset: Rv::R(self.b.ins().sextend(I64, pv)),
+            d100: Rv::R(self.b.ins().uextend(I64, d100)),
+        };
+        let policy = self.gate_policy();
+        let next = {
+            let o = &mut Emit { b: &mut self.b };
+            let t = TimerFields::from_raw(o, raw);
+            timer_rule(o, kind, policy, t, inputs)
+        };
+        self.rule_set_word_be(value, raw.cv, next.cv);
+        self.rule_set_byte(bit, raw.bit, next.bit);
+        self.rule_set_byte(state.plus(TimerState::RUN), raw.run, next.run);
+        self.rule_set_byte(state.plus(TimerState::TOF), raw.tof, next.tof);
+        if next.pt_cache != raw.pt_cache {
+            let v = Emit { b: &mut self.b }.value(next.pt_cache);
+            let v = self.b.ins().ireduce(I16, v);
+            self.store_ne(pt_at, v);
+        }
+    }
+
+    /// `CTU`/`CTD`/`CTUD` on counter `n`, which exists, with preset `pv` (as in
+    /// [`Lower::timer_inline`]): [`counter_rule`] emitted on the counter's bytes.
+    pub(crate) fn counter_inline(&mut self, kind: CounterKind, n: u16, pv: Value) {
+        debug_assert!(self.in_box.pf().is_none(), "a counter is not a box");
+        let [(v, _), (b, _), (s, _)] = self.env.layout.counter_bytes(n);
+        let (value, bit, state) = (Addr::img(v), Addr::img(b), Addr::img(s));
+        let (up_at, down_at) = (
+            state.plus(CounterState::PREV_UP),
+            state.plus(CounterState::PREV_DOWN),
+        );
+        let raw = CounterFields {
+            cv: self.rule_word_be(value),
+            prev_up: self.rule_byte(up_at),
+            prev_down: self.rule_byte(down_at),
+        };
+        let rules = self.env.rules;
+        let first_scan = if rules.first_scan_suppresses() {
+            self.rule_byte(self.sched(Sched::FIRST_SCAN))
+        } else {
+            Rv::K(0)
+        };
+        let levels = [0, 1, 2].map(|i| self.rule_bool(self.block.stack.level(i)));
+        let gate = self.rule_bool(self.block.gate);
+        let preset = Rv::R(self.b.ins().sextend(I64, pv));
+        let policy = self.gate_policy();
+        let (next, out) = {
+            let o = &mut Emit { b: &mut self.b };
+            let quiet = rules.edges_suppressed_in(o, first_scan);
+            let inputs = CounterInputs {
+                levels,
+                gate,
+                preset,
+                quiet,
+            };
+            counter_rule(o, kind, policy, raw, inputs)
+        };
+        self.rule_set_word_be(value, raw.cv, next.cv);
+        self.rule_set_byte(up_at, raw.prev_up, next.prev_up);
+        self.rule_set_byte(down_at, raw.prev_down, next.prev_down);
+        match out.written {
+            Rv::K(0) => {}
+            Rv::K(_) => self.rule_set_byte(bit, Rv::K(-1), out.bit),
+            written => {
+                let old = self.rule_byte(bit);
+                let new = Emit { b: &mut self.b }.select(written, out.bit, old);
+                self.rule_set_byte(bit, old, new);
+            }
+        }
+    }
+}
