@@ -248,15 +248,19 @@ pub fn timer_rule<O: RuleOps>(
             // takes PT; without, a TON's bit is 0 and a TONR's held. `run` = IN.
             let timing = o.and(on, t.run);
             let counted = o.sat_add(t.cv, d);
-            let (held, held_bit) = match kind {
-                TimerKind::On => (zero, zero),
-                _ => (t.cv, t.bit),
+            let held = match kind {
+                TimerKind::On => zero,
+                _ => t.cv,
             };
             let cv = o.select(timing, counted, held);
             let reached = o.ge(cv, x.preset);
+            let bit = match kind {
+                TimerKind::On => o.and(on, reached),
+                _ => o.select(on, reached, t.bit),
+            };
             TimerFields {
                 cv,
-                bit: o.select(on, reached, held_bit),
+                bit,
                 run: on,
                 tof: t.tof,
                 pt_cache: o.select(on, x.preset, t.pt_cache),
