@@ -70,7 +70,7 @@ fn timer_bytes(kind: TimerKind, res: u8, t: T) -> TimerBytes {
         cv,
         bit,
         run,
-        tof,
+        tof: tof as u8,
         pt_cache,
         res,
     };
@@ -90,14 +90,22 @@ fn timer_rule_follows_spec_5_2() {
 }
 
 #[test]
-fn timer_decode_reads_odd_private_bytes_as_the_rule_expects() {
+fn odd_private_bytes_follow_from_raw() {
     // A snapshot may carry any private bytes: bit 0 of the bit byte is the bit, any non-zero
-    // run byte is `run`, a TOF byte that is no phase is Idle (`TimerFields::from_raw`).
+    // run byte is `run` (`TimerFields::from_raw`); a TOF byte that is no phase is kept by TON
+    // and read as Idle by TOF (with IN off and the gate open: stays idle, written as 0).
     let mut state = [0; STATE_BYTES];
     state[TimerState::RUN as usize] = 0x80;
     state[TimerState::TOF as usize] = 9;
+    state[TimerState::RES as usize] = 100;
     let t = Timer::decode(&[0, 4], 0xFE, &state);
-    assert_eq!((t.cv, t.bit, t.run, t.tof), (4, false, true, Idle));
+    assert_eq!((t.cv, t.bit, t.run, t.tof), (4, false, true, 9));
+    let mut on = t;
+    on.step(TimerKind::On, true, Gate::Open, 10, 3);
+    assert_eq!((on.cv, on.bit, on.run, on.tof), (7, false, true, 9));
+    let mut off = t;
+    off.step(TimerKind::Off, false, Gate::Open, 10, 3);
+    assert_eq!((off.cv, off.bit, off.tof), (4, false, Idle as u8));
 }
 
 /// A counter before or after one execution: (cv, bit, prev_up, prev_down).

@@ -155,7 +155,7 @@ mod tests {
             cv: 7,
             bit: true,
             run: true,
-            tof: TofPhase::Timing,
+            tof: TofPhase::Timing as u8,
             pt_cache: 5,
             res: 100,
         };

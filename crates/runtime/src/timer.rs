@@ -33,18 +33,6 @@ pub enum TofPhase {
     Done = 3,
 }
 
-impl TofPhase {
-    #[inline]
-    fn from_u8(v: u8) -> TofPhase {
-        match v {
-            1 => TofPhase::On,
-            2 => TofPhase::Timing,
-            3 => TofPhase::Done,
-            _ => TofPhase::Idle,
-        }
-    }
-}
-
 /// `min(cv + d, 32767)` (spec §5 `sat`, [`RuleOps::sat_add`]). A negative CV written by a
 /// program counts up from there. Computed in `i64`, so it cannot overflow.
 #[inline]
@@ -70,8 +58,9 @@ pub struct Timer {
     pub bit: bool,
     /// TON/TONR: timing active.
     pub run: bool,
-    /// TOF phase.
-    pub tof: TofPhase,
+    /// The TOF phase byte: a [`TofPhase`] as its number. Only a TOF execution reads it (any
+    /// other byte counts as [`TofPhase::Idle`] there); TON and TONR leave it as it is.
+    pub tof: u8,
     /// Preset seen at the last execution (for the clock refresh).
     pub pt_cache: i16,
     /// Resolution in ms (1, 10, 100; 0 for an unused timer). Read only.
@@ -97,7 +86,7 @@ impl Timer {
             cv: t.cv as i16,
             bit: t.bit != 0,
             run: t.run != 0,
-            tof: TofPhase::from_u8(t.tof as u8),
+            tof: t.tof as u8,
             pt_cache: t.pt_cache as i16,
             res: t.res as u8,
         }
@@ -110,7 +99,7 @@ impl Timer {
         *value = self.cv.to_be_bytes();
         *bit = u8::from(self.bit);
         state[RUN] = u8::from(self.run);
-        state[TOF] = self.tof as u8;
+        state[TOF] = self.tof;
         [state[PT], state[PT + 1]] = self.pt_cache.to_ne_bytes();
     }
 
@@ -150,7 +139,7 @@ impl Timer {
             cv: i64::from(t.cv),
             bit: i64::from(t.bit),
             run: i64::from(t.run),
-            tof: t.tof as i64,
+            tof: i64::from(t.tof),
             pt_cache: i64::from(t.pt_cache),
             res: i64::from(t.res),
         };
@@ -162,11 +151,11 @@ impl Timer {
         };
         let next = timer_rule(&mut Native, kind, policy, fields, inputs);
         // The rule keeps every field in its type's range (CV saturates, flags are 0/1, the
-        // phase is one of the four).
+        // phase a byte).
         t.cv = next.cv as i16;
         t.bit = next.bit != 0;
         t.run = next.run != 0;
-        t.tof = TofPhase::from_u8(next.tof as u8);
+        t.tof = next.tof as u8;
         t.pt_cache = next.pt_cache as i16;
     }
 }
@@ -182,7 +171,7 @@ pub struct TimerFields<V> {
     pub bit: V,
     /// TON/TONR: timing active (0/1).
     pub run: V,
-    /// TOF phase.
+    /// The TOF phase byte (raw: see [`TimerFields::from_raw`]).
     pub tof: V,
     /// Preset seen at the last execution.
     pub pt_cache: V,
@@ -193,17 +182,13 @@ pub struct TimerFields<V> {
 impl<V: Copy> TimerFields<V> {
     /// The fields of a timer from its raw bytes, each as a [`RuleOps`] value: CV and PT cache
     /// already sign-extended, the bit, run, TOF and resolution bytes as they are. The bit is
-    /// bit 0 of its byte, `run` any non-zero byte, and a TOF byte that is no phase counts as
-    /// [`TofPhase::Idle`] (both engines decode through here, so a snapshot with odd private
-    /// bytes runs alike).
+    /// bit 0 of its byte and `run` any non-zero byte; the TOF byte stays raw (only
+    /// [`timer_rule`]'s TOF case reads it, as a phase). Both engines decode through here, so a
+    /// snapshot with odd private bytes runs alike.
     pub fn from_raw<O: RuleOps<V = V>>(o: &mut O, raw: TimerFields<V>) -> TimerFields<V> {
-        let phases = o.k(TofPhase::Done as i64 + 1);
-        let is_phase = o.lt(raw.tof, phases);
-        let idle = o.k(TofPhase::Idle as i64);
         TimerFields {
             bit: o.bit0(raw.bit),
             run: o.ne0(raw.run),
-            tof: o.select(is_phase, raw.tof, idle),
             ..raw
         }
     }
@@ -313,9 +298,13 @@ fn tof_rule<O: RuleOps>(
         TofPhase::Done,
     ]
     .map(|p| o.k(p as i64));
-    let was_on = o.eq(t.tof, phase_on);
-    let was_timing = o.eq(t.tof, timing);
-    let tof = o.select(was_on, timing, t.tof);
+    // A byte that is no phase reads as Idle.
+    let beyond = o.k(TofPhase::Done as i64 + 1);
+    let is_phase = o.lt(t.tof, beyond);
+    let phase = o.select(is_phase, t.tof, idle);
+    let was_on = o.eq(phase, phase_on);
+    let was_timing = o.eq(phase, timing);
+    let tof = o.select(was_on, timing, phase);
     let counted = o.sat_add(t.cv, d);
     let cv = o.select(was_timing, counted, t.cv);
     let is_timing = o.or(was_on, was_timing);
@@ -381,12 +370,12 @@ pub fn refresh(img: &mut [u8], layout: &Layout, n: u16) {
     let mut t = Timer::load(img, layout, n);
     let kind = mem::get_u8(img, layout.timer_state(n) + TimerState::KIND);
     if kind == TimerKind::Off.code() {
-        if t.tof == TofPhase::Timing {
+        if t.tof == TofPhase::Timing as u8 {
             t.cv = sat_add(t.cv, d);
             if t.cv >= t.pt_cache {
                 t.cv = t.pt_cache;
                 t.bit = false;
-                t.tof = TofPhase::Done;
+                t.tof = TofPhase::Done as u8;
             }
         }
     } else if (kind == TimerKind::On.code() || kind == TimerKind::Retentive.code()) && t.run {
@@ -410,7 +399,7 @@ pub fn reset_range(
         t.cv = 0;
         t.bit = false;
         t.run = false;
-        t.tof = TofPhase::Idle;
+        t.tof = TofPhase::Idle as u8;
         t.store(img, layout, n);
     }
     Ok(())

@@ -181,7 +181,7 @@ fn inactive_scr_gate_rules() {
     });
     assert_eq!(got, [(false, 0), (true, 2), (false, 0)]);
     let (b, l) = rig.img.split_mut();
-    assert_eq!(Timer::load(b, l, 22).tof, TofPhase::Idle);
+    assert_eq!(Timer::load(b, l, 22).tof, TofPhase::Idle as u8);
 }
 
 #[test]
