@@ -1,7 +1,7 @@
 //! The runtime functions compiled code calls, and their Cranelift signatures.
 //!
 //! Every helper is a runtime `extern "C"` shim (`stljit_rt_*`, see `stljit_runtime::ffi`):
-//! the shims over the image, the per-kind timer and counter fast shims, and the pure value shim
+//! the shims over the image, the per-kind Omron timer and counter fast shims, and the pure value shim
 //! that runs the runtime's box computations (`arith`, `bitops`, `convert`), so that every
 //! intricate flag rule is the runtime's code, not a re-derivation. [`helpers!`] builds the
 //! registry from one table: the enum, [`Helper::ALL`], and per helper its symbol, its host

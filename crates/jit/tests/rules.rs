@@ -1,6 +1,6 @@
 //! Each rule switch of `stljit_runtime::rules::Rules`, flipped, is followed by both engines: the
 //! interpreter (through the runtime's functions) and the JIT (whose inlined edges and counter
-//! shim calls read the same value), scan by scan and byte by byte.
+//! rules read the same value), scan by scan and byte by byte.
 
 use stljit_core::ProfileId;
 use stljit_interp::Interpreter;
@@ -9,7 +9,7 @@ use stljit_runtime::rules::{FirstScanEdges, Rules};
 use stljit_runtime::{Engine, Image};
 
 /// An input on from the first scan: a rising edge only if the first scan detects edges. EU and
-/// ED inline, a counter through the fast shim, and one inside an SCR segment (dynamic gate).
+/// ED inline, a counter (its rule inline too), and one inside an SCR segment (dynamic gate).
 const PROGRAM: &str = "\
 LD I0.0
 EU

@@ -3,9 +3,10 @@
 //! Inputs come from logic-stack levels (spec §4.5); the caller passes the whole stack as a bit
 //! vector (`bit i = S_i`) so that the level assignment lives here and nowhere else.
 //!
-//! The rules of an execution live in [`Counter::step`], over a decoded [`Counter`]. The
-//! interpreter reaches them through [`execute`] (layout lookups, range check), the JIT through
-//! [`crate::ffi::stljit_rt_counter_fast`] (offsets fixed at compile time).
+//! The rules of an execution live in [`counter_rule`], written once over [`RuleOps`]
+//! ([`crate::rule_ops`]): the interpreter runs it on plain integers through [`execute`] and
+//! [`Counter::step`] (layout lookups, range check), the JIT emits it inline on the counter's
+//! bytes (offsets fixed at compile time).
 
 use crate::rule_ops::{Native, RuleOps};
 use crate::rules::{Gate, GatePolicy, Rules};

@@ -12,7 +12,8 @@
 //!
 //! Everything is a function on the image bytes (`&mut [u8]` plus its [`Layout`]), so the
 //! interpreter calls it directly and the Cranelift JIT calls the same code through the
-//! `extern "C"` shims of [`ffi`]. Semantics that both engines must agree on bit for bit exist once,
+//! `extern "C"` shims of [`ffi`]; the S7 timer and counter rules are written over
+//! [`rule_ops::RuleOps`], so that the JIT can emit the same rule text inline. Semantics that both engines must agree on bit for bit exist once,
 //! here. Tooling around the engines (stimulus files, traces, the simulation driver) is not
 //! semantics and lives in the `stljit-sim` crate.
 

@@ -5,12 +5,11 @@
 //! phase, the kind and resolution written at cold start, and the preset seen at the last
 //! execution (used by the clock refresh of 1-ms and 10-ms timers at scan start).
 //!
-//! The rules of an execution live in [`Timer::step`], over a decoded [`Timer`];
-//! [`Timer::decode`]/[`Timer::encode`] are the only code that knows how those fields sit in the
-//! timer's bytes. The interpreter reaches them
-//! through [`execute`] (layout lookups, range check), the JIT through
-//! [`crate::ffi::stljit_rt_timer_fast`] (offsets fixed at compile time), so both engines run the
-//! same rules on the same bytes.
+//! The rules of an execution live in [`timer_rule`], written once over [`RuleOps`]
+//! ([`crate::rule_ops`]): the interpreter runs it on plain integers through [`execute`] and
+//! [`Timer::step`] (layout lookups, range check), the JIT emits it inline on the timer's bytes
+//! (offsets fixed at compile time). Both read the bytes through [`TimerFields::from_raw`] and the
+//! byte positions of [`TimerState`], so both engines run the same rules on the same bytes.
 
 use crate::rule_ops::{Native, RuleOps};
 use crate::rules::{Gate, GatePolicy};

@@ -1,5 +1,6 @@
 //! Timers, counters, their resets and the run-time ranges of `S`/`R`, `BM*`, `FILL`, `SHRB`:
-//! calls into the runtime, which owns these semantics (spec §5).
+//! calls into the runtime, which owns these semantics (spec §5); the timer and counter rules
+//! themselves are emitted inline from the runtime's rule text ([`super::rules`]).
 
 use super::Lower;
 use super::mem::OnFail;
