@@ -1,14 +1,16 @@
-//! The JIT emits the timer and counter rules inline (`lower::rules`) and decodes the objects'
-//! bytes itself; the interpreter decodes them in `Timer::decode`/`Counter::decode`. Both go
-//! through the same `from_raw`, so even private bytes no scan ever writes (a restored snapshot
-//! may carry any: a TOF phase byte of 9, a run byte of 0x80, a bit byte of 0xFE) must leave the
-//! two engines' images equal, scan by scan and byte by byte, for every kind, resolution and
-//! gate. The expected behaviour on clean bytes is spec §5.2/§5.3, checked by the runtime's
+//! The JIT emits the counter rules inline (`lower::rules`), and the timer rules too under rules
+//! the timer fast shims are not specialised to (here: first-scan edges detected), and decodes
+//! the objects' bytes itself; the interpreter decodes them in `Timer::decode`/`Counter::decode`.
+//! Both go through the same `from_raw`, so even private bytes no scan ever writes (a restored
+//! snapshot may carry any: a TOF phase byte of 9, a run byte of 0x80, a bit byte of 0xFE) must
+//! leave the two engines' images equal, scan by scan and byte by byte, for every kind,
+//! resolution and gate, under either rule set. The expected behaviour on clean bytes is spec §5.2/§5.3, checked by the runtime's
 //! rule tables and the conformance cases; this test holds the engines to each other.
 
 use stljit_core::ProfileId;
 use stljit_interp::Interpreter;
 use stljit_jit::{JitOptions, JitProgram, OptLevel};
+use stljit_runtime::rules::{FirstScanEdges, Rules};
 use stljit_runtime::{Engine, Image};
 
 /// Every timer and counter kind on I0.0/I0.1/I0.2, 100-ms and 10-ms timers, a negative and a
@@ -72,9 +74,18 @@ fn scribble(img: &mut Image, fill: u8) {
 fn odd_timer_and_counter_bytes_run_alike_on_both_engines() {
     let c = stljit_front_s7::compile_str("inline.stl", PROGRAM, ProfileId::A5);
     let program = c.program.expect("compiles");
-    for opt in [OptLevel::None, OptLevel::Speed] {
-        let mut interp = Interpreter::new(&program).expect("interpreter accepts the program");
-        let mut jit = JitProgram::compile(&program, &JitOptions::at(opt)).expect("compiles");
+    let detect = Rules {
+        first_scan_edges: FirstScanEdges::Detect,
+    };
+    for (rules, opt) in [Rules::IN_FORCE, detect]
+        .into_iter()
+        .flat_map(|r| [(r, OptLevel::None), (r, OptLevel::Speed)])
+    {
+        let mut interp = Interpreter::new(&program)
+            .expect("interpreter accepts the program")
+            .with_rules(rules);
+        let mut jit = JitProgram::compile_with_rules(&program, &JitOptions::at(opt), rules)
+            .expect("compiles");
         for fill in [0x00, 0x09, 0x80, 0xFE, 0x5B] {
             let (mut a, mut b) = (Image::cold_start(&program), Image::cold_start(&program));
             for scan in 0..24u64 {
@@ -88,11 +99,14 @@ fn odd_timer_and_counter_bytes_run_alike_on_both_engines() {
                 b.set_inputs(&inputs);
                 let t = 40 * scan;
                 let (sa, sb) = (interp.scan(&mut a, t), jit.scan(&mut b, t));
-                assert_eq!(sa, sb, "{opt:?} fill {fill:#x} scan {scan}: status");
+                assert_eq!(
+                    sa, sb,
+                    "{rules:?} {opt:?} fill {fill:#x} scan {scan}: status"
+                );
                 let diff = a.bytes().iter().zip(b.bytes()).position(|(x, y)| x != y);
                 assert_eq!(
                     diff, None,
-                    "{opt:?} fill {fill:#x} scan {scan}: first differing image byte"
+                    "{rules:?} {opt:?} fill {fill:#x} scan {scan}: first differing image byte"
                 );
             }
         }

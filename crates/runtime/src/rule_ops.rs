@@ -125,7 +125,7 @@ impl RuleOps for Native {
 
 #[cfg(test)]
 #[path = "rule_ops_tests.rs"]
-mod spec_rows;
+pub(crate) mod spec_rows;
 
 #[cfg(test)]
 mod tests {

@@ -12,13 +12,13 @@ use stljit_core::ir::{CounterKind, TimerKind};
 use stljit_core::layout::TimerState;
 
 /// A timer before or after one execution: (cv, bit, run, tof, pt_cache).
-type T = (i16, bool, bool, TofPhase, i16);
+pub(crate) type T = (i16, bool, bool, TofPhase, i16);
 
 /// (kind, res, before, input, gate, PT, d100, after).
-type TimerRow = (TimerKind, u8, T, bool, bool, i16, u32, T);
+pub(crate) type TimerRow = (TimerKind, u8, T, bool, bool, i16, u32, T);
 
 #[rustfmt::skip]
-const TIMER_ROWS: &[TimerRow] = {
+pub(crate) const TIMER_ROWS: &[TimerRow] = {
     use TimerKind::{Off, On, Retentive};
     &[
         // TON: the enabling execution credits no time; then + d100 (100-ms only), sat at 32767.
@@ -50,13 +50,13 @@ const TIMER_ROWS: &[TimerRow] = {
 
 /// One timer's bytes: value, bit, private state.
 #[derive(Debug, PartialEq, Eq)]
-struct TimerBytes {
-    value: [u8; 2],
-    bit: u8,
-    state: [u8; STATE_BYTES],
+pub(crate) struct TimerBytes {
+    pub(crate) value: [u8; 2],
+    pub(crate) bit: u8,
+    pub(crate) state: [u8; STATE_BYTES],
 }
 
-fn timer_bytes(kind: TimerKind, res: u8, t: T) -> TimerBytes {
+pub(crate) fn timer_bytes(kind: TimerKind, res: u8, t: T) -> TimerBytes {
     let mut state = [0xA5; STATE_BYTES]; // bytes 6.. unused by S7 timers: must survive
     state[TimerState::KIND as usize] = kind.code();
     state[TimerState::RES as usize] = res;
