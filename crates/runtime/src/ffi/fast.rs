@@ -33,6 +33,11 @@ use super::{CTL_GATE, RT_OK, gate_word_fixed};
 use crate::rules::{Gate, Rules, SCR_POLICY};
 use crate::timer::{STATE_BYTES, Timer};
 use stljit_core::ir::TimerKind;
+use stljit_core::layout::TimerState;
+
+/// Offset of the PT cache in a timer's state block.
+const PT_CACHE: usize = TimerState::PT_CACHE as usize;
+const _: () = assert!(PT_CACHE + 2 <= STATE_BYTES);
 
 /// Whether the fast shims implement `rules` with the SCR gate policy (else compiled code must
 /// call the general shims).
@@ -58,6 +63,13 @@ unsafe fn timer_fast(
     ctl: u32,
     preset: i32,
 ) -> u32 {
+    // The PT cache is read with a volatile load, so that it is loaded whatever IN is: LLVM
+    // otherwise compiles `timer_rule`'s select of the old PT cache as a branch around its load,
+    // which the inputs (following the plant) mispredict about half the time (docs/performance.md,
+    // "Timer and counter rules written once").
+    // SAFETY: the caller guarantees the state block is valid for reads of its size, and
+    // `PT_CACHE + 2 <= STATE_BYTES`; it is read before any reference to the block exists.
+    let pt_cache = unsafe { state.add(PT_CACHE).cast::<[u8; 2]>().read_volatile() };
     // SAFETY: the caller guarantees each range is valid, disjoint from the others and not
     // accessed elsewhere during the call; `[u8; N]` has alignment 1, so any address is aligned.
     let (value, bit, state, d100) = unsafe {
@@ -68,7 +80,9 @@ unsafe fn timer_fast(
             d100.cast::<[u8; 4]>().read(),
         )
     };
-    let mut t = Timer::decode(value, *bit, state);
+    let mut seen = *state;
+    [seen[PT_CACHE], seen[PT_CACHE + 1]] = pt_cache;
+    let mut t = Timer::decode(value, *bit, &seen);
     let gate = Gate::scr(ctl & CTL_GATE != 0);
     t.step(
         kind,
