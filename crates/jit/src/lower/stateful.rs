@@ -1,6 +1,7 @@
 //! Timers, counters, their resets and the run-time ranges of `S`/`R`, `BM*`, `FILL`, `SHRB`:
-//! calls into the runtime, which owns these semantics (spec §5); the timer and counter rules
-//! themselves are emitted inline from the runtime's rule text ([`super::rules`]).
+//! calls into the runtime, which owns these semantics (spec §5). Counters, and timers under
+//! rules the timer fast shims are not specialised to, run the runtime's rule text emitted
+//! inline ([`super::rules`]).
 
 use super::Lower;
 use super::cache::Addr;

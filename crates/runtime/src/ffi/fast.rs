@@ -39,8 +39,8 @@ use stljit_core::layout::TimerState;
 const PT_CACHE: usize = TimerState::PT_CACHE as usize;
 const _: () = assert!(PT_CACHE + 2 <= STATE_BYTES);
 
-/// Whether the fast shims implement `rules` with the SCR gate policy (else compiled code must
-/// call the general shims).
+/// Whether the fast shims implement `rules` with the SCR gate policy (else compiled code emits
+/// the timer rule inline).
 pub fn fast_shims_apply(rules: Rules) -> bool {
     gate_word_fixed(SCR_POLICY, rules) == gate_word_fixed(SCR_POLICY, Rules::IN_FORCE)
 }
