@@ -221,12 +221,18 @@ impl Lower<'_, '_> {
     /// `AENO`.
     pub(crate) fn and_eno(&mut self) {
         let a = self.sched(Sched::ENO);
+        let top = self.block.stack.top();
         let v = self.byte(a);
-        let t = self
-            .block
-            .stack
-            .top()
-            .and(&mut self.b, B::Bit { v, pos: 0 });
+        let eno = match self.block.cache.eno {
+            // The byte is still what the box stored, and the box's ENO implies this top.
+            Some(f) if f.byte == v && f.top == top => {
+                self.block.stack.set_top(f.value);
+                return;
+            }
+            Some(f) if f.byte == v => f.value,
+            _ => B::Bit { v, pos: 0 },
+        };
+        let t = top.and(&mut self.b, eno);
         self.block.stack.set_top(t);
     }
 

@@ -55,7 +55,8 @@ impl Lower<'_, '_> {
             .b
             .ins()
             .ishl_imm_s(n, i64::from(flags::NEGATIVE.trailing_zeros()));
-        self.b.ins().bor(z, n)
+        // The two bits are distinct, so `+` is `|`; x86 does the shift and the add in one `lea`.
+        self.b.ins().iadd(z, n)
     }
 
     fn dst_place(&mut self, dst: &Operand, w: Width, fail: OnFail) -> Place {
@@ -311,11 +312,24 @@ impl Lower<'_, '_> {
         let bits = self.b.ins().select(ovf, ovf_bits, zn);
         self.put_flags(i64::from(flags::RESULT), bits);
         let masked = self.b.ins().band_imm_s(r, i64::from(width.mask()));
-        let out = self.b.ins().select(ovf, d, masked);
-        self.write_place(p, width, out);
-        let ok = self.b.ins().bxor_imm_s(ovf, 1);
-        let ok = self.b.ins().uextend(I32, ok);
-        B::Bit { v: ok, pos: 0 }
+        let ovf32 = self.b.ins().uextend(I32, ovf);
+        let ok = B::Not { v: ovf32, pos: 0 };
+        match self.in_box.pred.as_ref().map(|p| p.flow) {
+            // OUT changes where the box runs and did not overflow, which is its ENO: one
+            // `select` on that instead of one on the overflow and the predicate's on top. The
+            // ENO that `boxed_free` computes from `ok` is the same expression, so it is
+            // emitted once.
+            Some(flow) => {
+                let go = flow.and(&mut self.b, ok).cond(&mut self.b);
+                let out = self.b.ins().select(go, masked, d);
+                self.write_place_unpredicated(p, width, out);
+            }
+            None => {
+                let out = self.b.ins().select(ovf, d, masked);
+                self.write_place(p, width, out);
+            }
+        }
+        ok
     }
 
     /// A box computed by the runtime (value shim): reads IN1 (`src`) and OUT, calls, applies the

@@ -12,6 +12,7 @@
 //! Inside one op that branches (a box that may fail, a conditional call) the arms start from a
 //! copy of the cache and [`Cache::meet`] keeps only the entries no arm changed.
 
+use super::value::B;
 use cranelift_codegen::ir::Value;
 use std::collections::BTreeMap;
 
@@ -58,6 +59,24 @@ pub(crate) struct Cache {
     pub(crate) map: BTreeMap<Addr, Entry>,
     /// The op being lowered (set by the lowering loop).
     pub(crate) now: usize,
+    /// The boolean behind the ENO byte's cached value, while that value is still cached.
+    pub(crate) eno: Option<EnoFact>,
+}
+
+/// What a branch-free box knew when it set ENO: `AENO` right after it can use the boolean
+/// instead of the byte (`top AND (top AND gate AND ok)` is the box's ENO itself), which saves
+/// the byte's alignment and a second `and`.
+///
+/// The fact holds only while the ENO byte's cached value is `byte`: any other write of the
+/// byte puts another value there (or forgets it), so a stale fact is never used.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct EnoFact {
+    /// The value the box stored in the ENO byte (0/1).
+    pub(crate) byte: Value,
+    /// The same boolean as a [`B`] (no alignment or masking paid for).
+    pub(crate) value: B,
+    /// The logic stack's top when the box ran; `value` implies it.
+    pub(crate) top: B,
 }
 
 impl Cache {
@@ -66,6 +85,7 @@ impl Cache {
         Cache {
             map: BTreeMap::new(),
             now,
+            eno: None,
         }
     }
 
@@ -86,6 +106,7 @@ impl Cache {
     /// Forgets everything (memory may have changed anywhere); keeps the op counter.
     pub(crate) fn clear(&mut self) {
         self.map.clear();
+        self.eno = None;
     }
     /// Forgets `len` bytes from `a` (they are about to be overwritten in memory).
     pub(crate) fn forget(&mut self, a: Addr, len: u32) {
@@ -105,9 +126,11 @@ impl Cache {
             .filter(|(a, e)| rest.iter().all(|c| c.map.get(a) == Some(e)))
             .map(|(a, e)| (*a, *e))
             .collect();
+        let eno = first.eno.filter(|f| rest.iter().all(|c| c.eno == Some(*f)));
         Cache {
             map,
             now: first.now,
+            eno,
         }
     }
 }

@@ -8,11 +8,12 @@
 //! untouched by these ops, so their compile-time values stay valid after the join.
 
 use super::Lower;
-use super::cache::Cache;
+use super::cache::{Cache, EnoFact};
 use super::mem::OnFail;
 use super::state::Pred;
 use super::value::B;
 use cranelift_codegen::ir::{Block, InstBuilder, Value, types::I32};
+use stljit_core::layout::Sched;
 
 /// The arms of one branching op on their way to `join`: the cache at the branch, which every
 /// arm starts from, and the cache each finished arm left.
@@ -171,7 +172,7 @@ impl Lower<'_, '_> {
     fn boxed_free(&mut self, pf: B, run: impl FnOnce(&mut Self, OnFail) -> B) {
         self.in_box.pred = match pf {
             B::K(_) => None,
-            B::Bit { .. } | B::Not { .. } => Some(Pred::new(pf.cond(&mut self.b))),
+            B::Bit { .. } | B::Not { .. } => Some(Pred::new(pf, &mut self.b)),
         };
         // No operand is a pointer, so nothing takes this failure path; a compare's fatal code
         // is only a placeholder.
@@ -179,6 +180,13 @@ impl Lower<'_, '_> {
         self.in_box.pred = None;
         let eno = pf.and(&mut self.b, ok);
         self.set_eno(eno);
+        // PF is the top AND the gate, so ENO implies the top (see `and_eno`).
+        let byte = self.block.cache.get(self.sched(Sched::ENO));
+        self.block.cache.eno = byte.map(|byte| EnoFact {
+            byte,
+            value: eno,
+            top: self.block.stack.top(),
+        });
     }
 
     /// Branches to the failure block with a static error code when `cond` holds.

@@ -230,6 +230,18 @@ impl Lower<'_, '_> {
         }
     }
 
+    /// Writes a resolved place inside a branch-free box without the box's predicate: `v`
+    /// already is the old value wherever the box does not run.
+    pub(crate) fn write_place_unpredicated(&mut self, p: Place, width: Width, v: Value) {
+        let pred = self.in_box.pred.take();
+        self.write_place(p, width, v);
+        // Like every write in the box: a later read must see it, not a recorded old value.
+        self.in_box.pred = pred.map(|mut pred| {
+            pred.reads.clear();
+            pred
+        });
+    }
+
     /// Reads an operand's value (zero-extended `i32`), resolving pointers.
     pub(crate) fn read_operand(&mut self, o: &Operand, width: Width, fail: OnFail) -> Value {
         match *o {

@@ -388,7 +388,7 @@ impl Lower<'_, '_> {
         self.in_box = BoxState::new(true);
         self.in_box.pred = match pf {
             B::K(_) => None,
-            _ => Some(Pred::new(pf.cond(&mut self.b))),
+            _ => Some(Pred::new(pf, &mut self.b)),
         };
         f(self);
         self.in_box = BoxState::default();

@@ -140,7 +140,9 @@ impl BoxState {
 /// power flow is zero (see [`Lower::set_byte_pred`](super::Lower::set_byte_pred)).
 #[derive(Debug)]
 pub(crate) struct Pred {
-    /// The box's power flow (non-zero = run).
+    /// The box's power flow as a boolean.
+    pub(crate) flow: B,
+    /// The same as a truth value for `select` (non-zero = run).
     pub(crate) pf: Value,
     /// Multi-byte values read since the box's last write, reused as the "old" value of a
     /// predicated write (every write of such a box is a no-op when PF is 0, so any value read
@@ -149,10 +151,11 @@ pub(crate) struct Pred {
 }
 
 impl Pred {
-    /// A predicate on `pf` with nothing read yet.
-    pub(crate) fn new(pf: Value) -> Pred {
+    /// A predicate on the power flow `flow` (not a constant) with nothing read yet.
+    pub(crate) fn new(flow: B, b: &mut FunctionBuilder<'_>) -> Pred {
         Pred {
-            pf,
+            flow,
+            pf: flow.cond(b),
             reads: Vec::new(),
         }
     }
