@@ -45,6 +45,19 @@ impl Addr {
 pub(crate) struct Entry {
     pub(crate) v: Value,
     pub(crate) at: usize,
+    /// Set where the byte was written as part of a wider value.
+    pub(crate) part: Option<Part>,
+}
+
+/// A cached byte written as bits `shift..shift + 8` of a wider `i32` value (a word or double
+/// word store), so that a wide read of the same bytes can take the value instead of assembling
+/// the bytes one by one (`MOVW IN1, OUT` then `+I IN2, OUT`, how LAD's ADD_I reads in STL).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Part {
+    /// The wide value stored.
+    pub(crate) wide: Value,
+    /// Where the byte sits in it.
+    pub(crate) shift: u32,
 }
 
 /// How many ops a cached byte stays usable. Reusing a value much later keeps it live across
@@ -97,10 +110,23 @@ impl Cache {
             .map(|e| e.v)
     }
 
+    /// The wide value a cached byte was written as part of, if recent enough.
+    pub(crate) fn part(&self, a: Addr) -> Option<Part> {
+        self.map
+            .get(&a)
+            .filter(|e| self.now.saturating_sub(e.at) <= WINDOW)
+            .and_then(|e| e.part)
+    }
+
     /// Records a value just loaded from memory (or just stored to it).
     pub(crate) fn put_clean(&mut self, a: Addr, v: Value) {
+        self.put(a, v, None);
+    }
+
+    /// Records a byte value just stored, which is `part` of a wider value when that is given.
+    pub(crate) fn put(&mut self, a: Addr, v: Value, part: Option<Part>) {
         let at = self.now;
-        self.map.insert(a, Entry { v, at });
+        self.map.insert(a, Entry { v, at, part });
     }
 
     /// Forgets everything (memory may have changed anywhere); keeps the op counter.

@@ -8,7 +8,7 @@
 //! before a pointer write (the cache holds only values equal to memory, so a pointer read needs
 //! nothing).
 
-use super::cache::Addr;
+use super::cache::{Addr, Part};
 use super::{Lower, mf};
 use crate::helpers::Helper;
 use cranelift_codegen::ir::{
@@ -49,6 +49,9 @@ impl Lower<'_, '_> {
             return self.byte(a);
         }
         let n = width.bytes();
+        if let Some(v) = self.reread_wide(a, width) {
+            return v;
+        }
         if (0..n).all(|i| self.block.cache.get(a.plus(i)).is_some()) {
             // All bytes are in registers (typically just written): assemble them.
             let mut acc = self.byte(a);
@@ -70,6 +73,49 @@ impl Lower<'_, '_> {
             pred.reads.push((a, width, v));
         }
         v
+    }
+
+    /// A word or double word read whose bytes are all cached as consecutive parts of one wide
+    /// value just stored ([`Part`]): that value shifted (and byte-swapped where it was stored
+    /// in memory order, by a raw move), instead of the bytes assembled one by one.
+    fn reread_wide(&mut self, a: Addr, width: Width) -> Option<Value> {
+        let n = width.bytes();
+        let parts: Vec<Part> = (0..n)
+            .map(|i| self.block.cache.part(a.plus(i)))
+            .collect::<Option<_>>()?;
+        let wide = parts[0].wide;
+        let low = parts[n as usize - 1].shift;
+        let at = |i: u32| parts[i as usize].shift;
+        if parts.iter().all(|p| p.wide == wide) {
+            // Big-endian inside the value: byte i is 8(n-1-i) bits above the last one.
+            if (0..n).all(|i| at(i) == low + 8 * (n - 1 - i)) {
+                let v = match low {
+                    0 => wide,
+                    s => self.b.ins().ushr_imm_s(wide, i64::from(s)),
+                };
+                return Some(match width {
+                    Width::DWord => v,
+                    _ => self.b.ins().band_imm_s(v, i64::from(width.mask())),
+                });
+            }
+            // Memory order inside the value (a raw move's little-endian load of the bytes).
+            let first = at(0);
+            if (0..n).all(|i| at(i) == first + 8 * i) {
+                let v = match first {
+                    0 => wide,
+                    s => self.b.ins().ushr_imm_s(wide, i64::from(s)),
+                };
+                return Some(match width {
+                    Width::DWord => self.b.ins().bswap(v),
+                    _ => {
+                        let h = self.b.ins().ireduce(I16, v);
+                        let h = self.b.ins().bswap(h);
+                        self.b.ins().uextend(I32, h)
+                    }
+                });
+            }
+        }
+        None
     }
 
     pub(crate) fn load_be(&mut self, base: Value, off: i32, width: Width) -> Value {
@@ -149,7 +195,11 @@ impl Lower<'_, '_> {
                 sh => self.b.ins().ushr_imm_s(v, i64::from(sh)),
             };
             let m = self.b.ins().band_imm_s(s, 0xFF);
-            self.block.cache.put_clean(a.plus(i), m);
+            let part = Part {
+                wide: v,
+                shift: shift(i),
+            };
+            self.block.cache.put(a.plus(i), m, Some(part));
         }
         self.func.stores.stored(a, n, self.block.cache.now);
     }
