@@ -64,7 +64,9 @@ fn scribble(img: &mut Image, fill: u8) {
         for (off, len) in ranges {
             for i in 0..len {
                 let at = (off + i) as usize;
-                buf[at] = fill.wrapping_mul(k as u8 + 1).wrapping_add(i as u8 * 37);
+                buf[at] = fill
+                    .wrapping_mul(k as u8 + 1)
+                    .wrapping_add((i as u8).wrapping_mul(37));
             }
         }
     }

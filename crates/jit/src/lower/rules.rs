@@ -9,15 +9,16 @@
 //! path only under rules their fast shims are not specialised to: LLVM compiles the timer rule
 //! tighter than this does (`stljit_runtime::ffi` `fast.rs`, docs/performance.md).
 
-use super::Lower;
 use super::cache::Addr;
 use super::value::B;
+use super::{Lower, mf};
 use cranelift_codegen::ir::{
-    InstBuilder, InstructionData, Opcode, Value, ValueDef,
+    Inst, InstBuilder, InstructionData, Opcode, Value, ValueDef,
     condcodes::{CondCode, IntCC},
     types::{I16, I32, I64},
 };
 use cranelift_frontend::FunctionBuilder;
+use std::collections::HashSet;
 use stljit_core::Width;
 use stljit_core::ir::{CounterKind, TimerKind};
 use stljit_core::layout::{CounterState, Sched, TimerState};
@@ -101,8 +102,31 @@ impl Emit<'_, '_> {
         if let (Rv::K(x), Rv::K(y)) = (a, b) {
             return Rv::K(fold(&mut Native, x, y));
         }
+        if let (Rv::R(v), Rv::K(k), IntCC::Equal | IntCC::NotEqual) = (a, b, cc)
+            && let (Some(n), Ok(k)) = (self.zero_extended(v), u32::try_from(k))
+        {
+            // (In)equality with a constant that fits is the same on the narrow value, and
+            // x86 then needs no `mov` to zero-extend it first.
+            let k = self.b.ins().iconst(I32, i64::from(k));
+            return self.emit_compare(cc, n, k);
+        }
         let (x, y) = (self.value(a), self.value(b));
         self.emit_compare(cc, x, y)
+    }
+
+    /// The `i32` that `v` zero-extends, if it is one.
+    fn zero_extended(&self, v: Value) -> Option<Value> {
+        let dfg = &self.b.func.dfg;
+        let ValueDef::Result(ext, 0) = dfg.value_def(v) else {
+            return None;
+        };
+        match dfg.insts[ext] {
+            InstructionData::Unary {
+                opcode: Opcode::Uextend,
+                arg,
+            } if dfg.value_type(arg) == I32 => Some(arg),
+            _ => None,
+        }
     }
 }
 
@@ -228,6 +252,69 @@ impl Lower<'_, '_> {
         Rv::R(self.b.ins().uextend(I64, v))
     }
 
+    /// A field byte the rule may not read: the cached value, or else a load that
+    /// [`Lower::drop_unread`] removes again if the rule did not use it (Cranelift keeps a load
+    /// whose result nothing uses: a TON reads neither its bit nor its TOF byte, a CTU not its
+    /// down-edge memory). The load is not cached, so nothing outside the rule can use it.
+    fn rule_field_byte(&mut self, a: Addr, loads: &mut Vec<Inst>) -> Rv {
+        if let Some(v) = self.block.cache.get(a) {
+            return Rv::R(self.b.ins().uextend(I64, v));
+        }
+        let base = self.base(a);
+        let v = self.b.ins().uload8(I64, mf(), base, Self::off32(a));
+        loads.extend(self.b.func.dfg.value_def(v).inst());
+        Rv::R(v)
+    }
+
+    /// Removes the loads of [`Lower::rule_field_byte`] whose result nothing that matters uses,
+    /// with the pure instructions computed from them alone (a decoding step like `bit0`).
+    /// The rule's code follows the loads in the current block, so a backward pass from the
+    /// block's end marks what stores, calls, branches and traps need; a load outside that,
+    /// and every unmarked instruction using a removed value, goes. Nothing else is touched
+    /// (other unused values may be cached for later ops).
+    fn drop_unread(&mut self, loads: Vec<Inst>) {
+        let (Some(&first), Some(block)) = (loads.first(), self.b.current_block()) else {
+            return;
+        };
+        let func = &self.b.func;
+        let mut live = HashSet::new();
+        let mut at = func.layout.last_inst(block);
+        while let Some(i) = at {
+            let op = func.dfg.insts[i].opcode();
+            let root = !loads.contains(&i)
+                && (op.can_store()
+                    || op.can_trap()
+                    || op.can_load()
+                    || op.is_call()
+                    || op.is_branch()
+                    || op.is_terminator()
+                    || op.other_side_effects());
+            if root || func.dfg.inst_results(i).iter().any(|r| live.contains(r)) {
+                live.extend(func.dfg.inst_values(i));
+            }
+            if i == first {
+                break;
+            }
+            at = func.layout.prev_inst(i);
+        }
+        let mut removed: HashSet<Value> = HashSet::new();
+        let mut dead = Vec::new();
+        let mut at = Some(first);
+        while let Some(i) = at {
+            let results = func.dfg.inst_results(i);
+            let unused = results.iter().all(|r| !live.contains(r));
+            let from_removed = func.dfg.inst_values(i).any(|a| removed.contains(&a));
+            if unused && (loads.contains(&i) || from_removed) {
+                removed.extend(results.iter().copied());
+                dead.push(i);
+            }
+            at = func.layout.next_inst(i);
+        }
+        for i in dead {
+            self.b.func.layout.remove_inst(i);
+        }
+    }
+
     /// A big-endian `i16` (a current value) through the cache, sign-extended.
     fn rule_word_be(&mut self, a: Addr) -> Rv {
         let v = self.read_static(a, Width::Word);
@@ -263,11 +350,12 @@ impl Lower<'_, '_> {
         let (value, bit, state) = (Addr::img(v), Addr::img(b), Addr::img(s));
         let pt_at = state.plus(TimerState::PT_CACHE);
         let pt = self.load_ne(pt_at, I16);
+        let mut loads = Vec::new();
         let raw = TimerFields {
             cv: self.rule_word_be(value),
-            bit: self.rule_byte(bit),
+            bit: self.rule_field_byte(bit, &mut loads),
             run: self.rule_byte(state.plus(TimerState::RUN)),
-            tof: self.rule_byte(state.plus(TimerState::TOF)),
+            tof: self.rule_field_byte(state.plus(TimerState::TOF), &mut loads),
             pt_cache: Rv::R(self.b.ins().sextend(I64, pt)),
             res: self.rule_byte(state.plus(TimerState::RES)),
         };
@@ -293,6 +381,7 @@ impl Lower<'_, '_> {
             let v = self.b.ins().ireduce(I16, v);
             self.store_ne(pt_at, v);
         }
+        self.drop_unread(loads);
     }
 
     /// `CTU`/`CTD`/`CTUD` on counter `n`, which exists, with preset `pv` (as in
@@ -305,10 +394,11 @@ impl Lower<'_, '_> {
             state.plus(CounterState::PREV_UP),
             state.plus(CounterState::PREV_DOWN),
         );
+        let mut loads = Vec::new();
         let raw = CounterFields {
             cv: self.rule_word_be(value),
-            prev_up: self.rule_byte(up_at),
-            prev_down: self.rule_byte(down_at),
+            prev_up: self.rule_field_byte(up_at, &mut loads),
+            prev_down: self.rule_field_byte(down_at, &mut loads),
         };
         let rules = self.env.rules;
         let first_scan = if rules.first_scan_suppresses() {
@@ -343,5 +433,6 @@ impl Lower<'_, '_> {
                 self.rule_set_byte(bit, old, new);
             }
         }
+        self.drop_unread(loads);
     }
 }
