@@ -1,8 +1,8 @@
 //! The runtime functions compiled code calls, and their Cranelift signatures.
 //!
 //! Every helper is a runtime `extern "C"` shim (`stljit_rt_*`, see `stljit_runtime::ffi`):
-//! the shims over the image, the per-kind timer fast shims (S7 and Omron) and Omron counter fast
-//! shims, and the pure value shim
+//! the shims over the image, the per-kind Omron timer and counter fast shims, and the pure
+//! value shim
 //! that runs the runtime's box computations (`arith`, `bitops`, `convert`), so that every
 //! intricate flag rule is the runtime's code, not a re-derivation. [`helpers!`] builds the
 //! registry from one table: the enum, [`Helper::ALL`], and per helper its symbol, its host
@@ -14,7 +14,7 @@ use cranelift_codegen::ir::{
 };
 use cranelift_codegen::isa::CallConv;
 use cranelift_module::{FuncId, Linkage, Module};
-use stljit_core::ir::{OmronCounterKind, OmronTimerKind, TimerKind};
+use stljit_core::ir::{OmronCounterKind, OmronTimerKind};
 use stljit_runtime::ffi;
 
 /// The arguments a helper takes before its own.
@@ -22,7 +22,7 @@ use stljit_runtime::ffi;
 enum Lead {
     /// `image: i64, layout: i64` (the shims over the image).
     ImageLayout,
-    /// Nothing (the fast shims take pointers to their bytes; the value shim takes none).
+    /// Nothing (the fast Omron shims take pointers to their bytes; the value shim takes none).
     Nothing,
 }
 
@@ -75,11 +75,6 @@ helpers! {
     ShiftRegister => "stljit_rt_shift_register", ffi::stljit_rt_shift_register, ImageLayout, [I32, I32, I32, I32, I32, I32] -> I32;
     PointerEnd => "stljit_rt_pointer_end", ffi::stljit_rt_pointer_end, ImageLayout, [I32] -> I32;
     Timer => "stljit_rt_timer", ffi::stljit_rt_timer, ImageLayout, [I32, I32, I32, I32, I32] -> I32;
-    /// `stljit_rt_{ton,tonr,tof}_fast(value, bit, state, d100, ctl, preset)`: pointers, no
-    /// layout; one shim per kind.
-    TonFast => "stljit_rt_ton_fast", ffi::stljit_rt_ton_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
-    TonrFast => "stljit_rt_tonr_fast", ffi::stljit_rt_tonr_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
-    TofFast => "stljit_rt_tof_fast", ffi::stljit_rt_tof_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
     TimerReset => "stljit_rt_timer_reset", ffi::stljit_rt_timer_reset, ImageLayout, [I32, I32] -> I32;
     Counter => "stljit_rt_counter", ffi::stljit_rt_counter, ImageLayout, [I32, I32, I32, I32, I32] -> I32;
     CounterReset => "stljit_rt_counter_reset", ffi::stljit_rt_counter_reset, ImageLayout, [I32, I32] -> I32;
@@ -132,15 +127,6 @@ impl Helper {
     /// Whether the first two arguments are the image and layout pointers.
     pub(crate) fn takes_image(self) -> bool {
         self.row().lead == Lead::ImageLayout
-    }
-
-    /// The fast shim of a timer kind.
-    pub(crate) fn timer_fast(kind: TimerKind) -> Helper {
-        match kind {
-            TimerKind::On => Helper::TonFast,
-            TimerKind::Retentive => Helper::TonrFast,
-            TimerKind::Off => Helper::TofFast,
-        }
     }
 
     /// The fast shim of an Omron timer kind.

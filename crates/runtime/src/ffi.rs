@@ -23,9 +23,6 @@
 //! | `stljit_rt_timer_reset(img, l, first, count)` | [`timer::reset_range`] | status |
 //! | `stljit_rt_counter(img, l, n, kind, stack, gate, preset: i32)` | [`counter::execute`] | status |
 //! | `stljit_rt_counter_reset(img, l, first, count)` | [`counter::reset_range`] | status |
-//! | `stljit_rt_ton_fast(value, bit, state, d100, ctl, preset: i32)` | [`crate::timer::Timer::step`] | [`RT_OK`] |
-//! | `stljit_rt_tonr_fast(value, bit, state, d100, ctl, preset: i32)` | [`crate::timer::Timer::step`] | [`RT_OK`] |
-//! | `stljit_rt_tof_fast(value, bit, state, d100, ctl, preset: i32)` | [`crate::timer::Timer::step`] | [`RT_OK`] |
 //! | `stljit_rt_pointer(img, l, ptr, width, write)` | [`pointer::resolve`] | u64: image offset |
 //! | `stljit_rt_set_range(img, l, area, byte, bit, frame, count, value, immediate)` | [`crate::block::set_range_imm`] | status |
 //! | `stljit_rt_block_move(img, l, src, src_end, dst, dst_end, width, count)` | [`crate::block::block_move`] | status |
@@ -55,27 +52,25 @@
 //! [`FfiCode`]s: the position in the enum's declaration order (`ArithOp`: Add 0, Sub 1, Mul 2,
 //! Div 3; `Area`: its position in `Area::ALL`).
 //!
-//! Two kinds of shim break the first convention on purpose. The `_fast` shims (`ffi/fast.rs`
-//! for the S7 timers and `ffi/omron.rs` for the Omron timers and counters; one per kind) take
-//! pointers to the few bytes one execution touches, computed by the JIT from the layout at
-//! compile time, and they cannot panic, so they skip the layout, the slice and `catch_unwind`.
-//! (S7 counters need no shim on an existing object: the JIT emits their rule inline,
-//! [`crate::rule_ops`]; `stljit_rt_timer` and `stljit_rt_counter` remain for an object the
-//! profile lacks, whose error they record.) The value shim (`ffi/value.rs`) takes no image at all:
-//! it returns the value and the SMB1 masks of one box computation for compiled code to apply.
+//! Two kinds of shim break the first convention on purpose. The `_fast` shims (`ffi/omron.rs`,
+//! for the Omron timers and counters; one per kind) take pointers to the few bytes one
+//! execution touches, computed by the JIT from the layout at compile time, and they cannot
+//! panic, so they skip the layout, the slice and `catch_unwind`. (S7 timers and counters need
+//! no shim on an existing object: the JIT emits their rules inline, [`crate::rule_ops`];
+//! `stljit_rt_timer` and `stljit_rt_counter` remain for an object the profile lacks, whose
+//! error they record.) The value shim (`ffi/value.rs`) takes no image at all: it returns the
+//! value and the SMB1 masks of one box computation for compiled code to apply.
 //!
 //! These are exactly the shims compiled code links (the JIT's helper table names each one);
 //! the rest of the scan cycle's rules the JIT inlines from the same constants.
 #![allow(unsafe_code)]
 
 mod ext;
-mod fast;
 mod interrupts;
 mod omron;
 mod ops;
 mod value;
 pub use ext::*;
-pub use fast::*;
 pub use interrupts::*;
 pub use omron::*;
 pub use ops::*;
@@ -91,8 +86,8 @@ use stljit_core::{Area, ErrorCode, ScanStatus, Width};
 /// Status: success.
 pub const RT_OK: u32 = 0;
 
-/// Gate word bit (the `gate` argument of the timer and counter shims, bits 8– of a fast shim's
-/// `ctl`): the gate is open.
+/// Gate word bit (the `gate` argument of the timer and counter shims, bits 8– of a fast Omron
+/// shim's `ctl`): the gate is open.
 pub const GATE_OPEN: u32 = 1;
 /// `ctl` bit of the fast Omron shims: the gate is open.
 pub const CTL_GATE: u32 = GATE_OPEN << 8;

@@ -3,10 +3,9 @@
 //!
 //! [`crate::timer::timer_rule`] and [`crate::counter::counter_rule`] are generic over
 //! [`RuleOps`]: with [`Native`] they compute on plain integers (the interpreter, through
-//! [`crate::timer::Timer::step`] and [`crate::counter::Counter::step`], and the timer fast
-//! shims); the JIT implements the same trait by emitting Cranelift instructions, so where it
-//! inlines a rule (counters; timers under rules the shims are not specialised to) the compiled
-//! code is the rule itself, not a second copy of it. A rule written here cannot branch on a run-time value:
+//! [`crate::timer::Timer::step`] and [`crate::counter::Counter::step`]); the JIT implements
+//! the same trait by emitting Cranelift instructions, so a timer or counter in compiled code
+//! is the rule itself, not a second copy of it. A rule written here cannot branch on a run-time value:
 //! every decision is a [`RuleOps::select`], which is also what the rules want (the inputs
 //! follow the plant from scan to scan, so a branch on them is mispredicted about half the time;
 //! docs/performance.md).

@@ -7,9 +7,8 @@
 //!
 //! The rules of an execution live in [`timer_rule`], written once over [`RuleOps`]
 //! ([`crate::rule_ops`]): the interpreter runs it on plain integers through [`execute`] and
-//! [`Timer::step`] (layout lookups, range check), the JIT through the timer fast shims
-//! ([`crate::ffi::stljit_rt_ton_fast`] and its siblings, offsets fixed at compile time) or,
-//! under other rules, by emitting it inline on the timer's bytes. Every path reads the bytes
+//! [`Timer::step`] (layout lookups, range check), the JIT by emitting it inline on the timer's
+//! bytes (offsets fixed at compile time). Both paths read the bytes
 //! through [`TimerFields::from_raw`] and the byte positions of [`TimerState`], so both engines
 //! run the same rules on the same bytes.
 

@@ -2,12 +2,12 @@
 //!
 //! [`stljit_runtime::timer::timer_rule`] and [`stljit_runtime::counter::counter_rule`] are
 //! written over [`RuleOps`]; [`Emit`] implements it by building Cranelift instructions, so a
-//! `CTU` in compiled code is the interpreter's rule text turned into straight-line code on the
-//! counter's bytes, with no call and no spill of the byte cache around one. What is known at
-//! compile time (a constant gate or input, the first-scan rule) is folded by [`Native`], the
-//! same operations the interpreter runs, so folding cannot change a result. Timers take this
-//! path only under rules their fast shims are not specialised to: LLVM compiles the timer rule
-//! tighter than this does (`stljit_runtime::ffi` `fast.rs`, docs/performance.md).
+//! `TON` or `CTU` in compiled code is the interpreter's rule text turned into straight-line
+//! code on the object's bytes, with no call and no spill of the byte cache around one. What is
+//! known at compile time (a constant gate or input, the first-scan rule) is folded by
+//! [`Native`], the same operations the interpreter runs, so folding cannot change a result.
+//! Field bytes a rule never reads (a TON's bit, a CTU's down-edge memory) are not loaded
+//! ([`Lower::drop_unread`]).
 
 use super::cache::Addr;
 use super::value::B;

@@ -1,18 +1,15 @@
 //! Timers, counters, their resets and the run-time ranges of `S`/`R`, `BM*`, `FILL`, `SHRB`:
-//! calls into the runtime, which owns these semantics (spec §5). Counters, and timers under
-//! rules the timer fast shims are not specialised to, run the runtime's rule text emitted
-//! inline ([`super::rules`]).
+//! the runtime owns these semantics (spec §5). Timers and counters the profile has run the
+//! runtime's rule text emitted inline ([`super::rules`]); the rest calls into the runtime.
 
 use super::Lower;
-use super::cache::Addr;
 use super::mem::OnFail;
 use super::value::{B, Stack};
 use crate::helpers::Helper;
 use cranelift_codegen::ir::{BlockArg, InstBuilder, Value, condcodes::IntCC, types::I32};
 use stljit_core::ir::{BitLoc, CounterKind, Operand, TimerKind};
-use stljit_core::layout::Sched;
 use stljit_core::{Area, ErrorCode, Width};
-use stljit_runtime::ffi::{CTL_GATE, FfiCode, fast_shims_apply, gate_word_fixed};
+use stljit_runtime::ffi::{CTL_GATE, FfiCode, gate_word_fixed};
 
 impl Lower<'_, '_> {
     /// Records a non-zero runtime status as a non-fatal error (a diamond, rarely taken).
@@ -35,28 +32,6 @@ impl Lower<'_, '_> {
         let k = self.iconst(I32, i64::from(code));
         let st = self.call_helper(general, &[nv, k, inputs, gate, pv]);
         self.error_if_status(st);
-    }
-
-    /// Arguments of a fast shim: pointers to the four ranges of [`Lower::timer_ranges`]
-    /// (image-relative, checked in range at compile time), `ctl`, the preset.
-    fn fast_args(&mut self, r: &[(Addr, u32); 4], ctl: Value, preset: Value) -> [Value; 6] {
-        let image = self.func.image;
-        let p = r.map(|(a, _)| {
-            debug_assert!(!a.local, "timer bytes are never in L");
-            self.b.ins().iadd_imm_s(image, i64::from(a.off))
-        });
-        [p[0], p[1], p[2], p[3], ctl, preset]
-    }
-
-    /// The bytes `timer::execute` reads or writes for an existing timer `n`: its own
-    /// ([`Layout::timer_bytes`](stljit_core::layout::Layout::timer_bytes)) and the scan's
-    /// 100-ms delta (`None`: no such timer, the shim fails).
-    fn timer_ranges(&self, n: u16) -> Option<[(Addr, u32); 4]> {
-        let l = self.env.layout;
-        (u32::from(n) < l.area_size(Area::TimerBit)).then(|| {
-            let [v, b, s] = l.timer_bytes(n).map(|(off, len)| (Addr::img(off), len));
-            [v, b, s, (self.sched(Sched::D100), 4)]
-        })
     }
 
     /// Reads a word preset; a failing pointer records 0x0006 and skips the instruction.
@@ -87,20 +62,15 @@ impl Lower<'_, '_> {
         self.join_arms(arms);
     }
 
-    /// `TON`/`TONR`/`TOF Tn, PT`: the kind's fast shim on the timer's bytes under the rules it
-    /// is specialised to, the runtime's rule inline ([`Lower::timer_inline`]) under others, or
-    /// the general shim for a timer the profile lacks (why a shim at all: `ffi/fast.rs`).
+    /// `TON`/`TONR`/`TOF Tn, PT`: the runtime's rule inline ([`Lower::timer_inline`]), or the
+    /// general shim for a timer the profile lacks (it records the error).
     pub(crate) fn timer(&mut self, kind: TimerKind, n: u16, preset: &Operand) {
         self.with_preset(preset, |s, pv| {
-            let input = s.block.stack.top().to01(&mut s.b);
-            match s.timer_ranges(n) {
-                Some(r) if fast_shims_apply(s.env.rules) => {
-                    let ctl = s.fast_ctl(input);
-                    let args = s.fast_args(&r, ctl, pv);
-                    s.call_touching(Helper::timer_fast(kind), &args, &r);
-                }
-                Some(_) => s.timer_inline(kind, n, pv),
-                None => s.call_stateful_general(Helper::Timer, (n, kind.code()), input, pv),
+            if u32::from(n) < s.env.layout.area_size(Area::TimerBit) {
+                s.timer_inline(kind, n, pv);
+            } else {
+                let input = s.block.stack.top().to01(&mut s.b);
+                s.call_stateful_general(Helper::Timer, (n, kind.code()), input, pv);
             }
         });
     }
@@ -144,8 +114,8 @@ impl Lower<'_, '_> {
         }
     }
 
-    /// The `ctl` argument of the fast shims: `low` (bits 0–7: the inputs) | the SCR gate at
-    /// [`CTL_GATE`]. Outside SCR segments the gate is a constant: one `or` or nothing.
+    /// The `ctl` argument of the fast Omron shims: `low` (bits 0–7: the inputs) | the gate at
+    /// [`CTL_GATE`]. Outside IL/ILC the gate is a constant: one `or` or nothing.
     pub(crate) fn fast_ctl(&mut self, low: Value) -> Value {
         match self.block.gate {
             B::K(false) => low,
