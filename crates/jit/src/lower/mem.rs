@@ -52,8 +52,15 @@ impl Lower<'_, '_> {
         if let Some(v) = self.reread_wide(a, width) {
             return v;
         }
-        if (0..n).all(|i| self.block.cache.get(a.plus(i)).is_some()) {
-            // All bytes are in registers (typically just written): assemble them.
+        let cached = (0..n)
+            .filter(|&i| self.block.cache.get(a.plus(i)).is_some())
+            .count() as u32;
+        let now = self.block.cache.now;
+        if cached == n || (cached > 0 && !self.func.stores.is_cold(a, n, now)) {
+            // All bytes are in registers (typically just written): assemble them. So too where
+            // some are and the range was stored recently (`MOVB` into the word, then `+I` on
+            // it): a word load over a byte store still in flight waits until the store
+            // commits, byte loads of the others do not.
             let mut acc = self.byte(a);
             for i in 1..n {
                 let hi = self.b.ins().ishl_imm_s(acc, 8);
