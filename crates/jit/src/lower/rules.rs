@@ -142,6 +142,11 @@ impl RuleOps for Emit<'_, '_> {
         match (a, b) {
             (Rv::K(0), _) | (_, Rv::K(0)) => Rv::K(0),
             (Rv::K(1), x) | (x, Rv::K(1)) => x,
+            // `x AND (p < q)` as `select(p < q, x, 0)`: x86 `cmp` + `cmov`, without
+            // materialising the comparison as 0/1 first (`setcc`, `movzx`, `and`).
+            (Rv::R(c), x) | (x, Rv::R(c)) if self.compare_of(c).is_some() => {
+                self.select(Rv::R(c), x, Rv::K(0))
+            }
             _ => self.binary((a, b), Native::and, |b, x, y| b.ins().band(x, y)),
         }
     }
@@ -359,12 +364,15 @@ impl Lower<'_, '_> {
             pt_cache: Rv::R(self.b.ins().sextend(I64, pt)),
             res: self.rule_byte(state.plus(TimerState::RES)),
         };
-        let d100 = self.load_ne(self.sched(Sched::D100), I32);
+        // The delta is a native-endian `u32`; loaded zero-extended in one instruction.
+        let d100_at = self.sched(Sched::D100);
+        let base = self.base(d100_at);
+        let d100 = self.b.ins().uload32(mf(), base, Self::off32(d100_at));
         let inputs = TimerInputs {
             input: self.rule_bool(self.block.stack.top()),
             gate: self.rule_bool(self.block.gate),
             preset: Rv::R(self.b.ins().sextend(I64, pv)),
-            d100: Rv::R(self.b.ins().uextend(I64, d100)),
+            d100: Rv::R(d100),
         };
         let policy = self.gate_policy();
         let next = {
