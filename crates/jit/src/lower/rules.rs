@@ -68,16 +68,7 @@ impl Emit<'_, '_> {
     /// is the opposite comparison.
     fn compare_of(&self, v: Value) -> Option<(Value, IntCC, [Value; 2])> {
         let dfg = &self.b.func.dfg;
-        let ValueDef::Result(ext, 0) = dfg.value_def(v) else {
-            return None;
-        };
-        let InstructionData::Unary {
-            opcode: Opcode::Uextend,
-            arg,
-        } = dfg.insts[ext]
-        else {
-            return None;
-        };
+        let arg = self.uextend_arg(v)?;
         let ValueDef::Result(cmp, 0) = dfg.value_def(arg) else {
             return None;
         };
@@ -87,6 +78,21 @@ impl Emit<'_, '_> {
                 cond,
                 args,
             } => Some((arg, cond, args)),
+            _ => None,
+        }
+    }
+
+    /// The value `v` is the zero-extension of, if it is one.
+    fn uextend_arg(&self, v: Value) -> Option<Value> {
+        let dfg = &self.b.func.dfg;
+        let ValueDef::Result(ext, 0) = dfg.value_def(v) else {
+            return None;
+        };
+        match dfg.insts[ext] {
+            InstructionData::Unary {
+                opcode: Opcode::Uextend,
+                arg,
+            } => Some(arg),
             _ => None,
         }
     }
@@ -116,17 +122,8 @@ impl Emit<'_, '_> {
 
     /// The `i32` that `v` zero-extends, if it is one.
     fn zero_extended(&self, v: Value) -> Option<Value> {
-        let dfg = &self.b.func.dfg;
-        let ValueDef::Result(ext, 0) = dfg.value_def(v) else {
-            return None;
-        };
-        match dfg.insts[ext] {
-            InstructionData::Unary {
-                opcode: Opcode::Uextend,
-                arg,
-            } if dfg.value_type(arg) == I32 => Some(arg),
-            _ => None,
-        }
+        self.uextend_arg(v)
+            .filter(|&a| self.b.func.dfg.value_type(a) == I32)
     }
 }
 
