@@ -279,6 +279,10 @@ impl Lower<'_, '_> {
             return;
         };
         let func = &self.b.func;
+        if func.layout.inst_block(first) != Some(block) {
+            // Not straight-line code after all: keep every load (correct, one load more).
+            return;
+        }
         let mut live = HashSet::new();
         let mut at = func.layout.last_inst(block);
         while let Some(i) = at {
