@@ -104,18 +104,19 @@ impl Cache {
 
     /// The cached value of a byte, if recent enough.
     pub(crate) fn get(&self, a: Addr) -> Option<Value> {
-        self.map
-            .get(&a)
-            .filter(|e| self.now.saturating_sub(e.at) <= WINDOW)
-            .map(|e| e.v)
+        self.entry(a).map(|e| e.v)
     }
 
     /// The wide value a cached byte was written as part of, if recent enough.
     pub(crate) fn part(&self, a: Addr) -> Option<Part> {
+        self.entry(a).and_then(|e| e.part)
+    }
+
+    /// A byte's entry, if recent enough.
+    fn entry(&self, a: Addr) -> Option<&Entry> {
         self.map
             .get(&a)
             .filter(|e| self.now.saturating_sub(e.at) <= WINDOW)
-            .and_then(|e| e.part)
     }
 
     /// Records a value just loaded from memory (or just stored to it).

@@ -259,8 +259,8 @@ impl Lower<'_, '_> {
     /// whose result nothing uses: a TON reads neither its bit nor its TOF byte, a CTU not its
     /// down-edge memory). The load is not cached, so nothing outside the rule can use it.
     fn rule_field_byte(&mut self, a: Addr, loads: &mut Vec<Inst>) -> Rv {
-        if let Some(v) = self.block.cache.get(a) {
-            return Rv::R(self.b.ins().uextend(I64, v));
+        if self.block.cache.get(a).is_some() {
+            return self.rule_byte(a);
         }
         let base = self.base(a);
         let v = self.b.ins().uload8(I64, mf(), base, Self::off32(a));
