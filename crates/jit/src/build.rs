@@ -16,7 +16,10 @@ use cranelift_codegen::ir::{
     types::{I32, I64},
 };
 use cranelift_codegen::settings::{self, Configurable};
-use cranelift_codegen::{Context, isa::CallConv};
+use cranelift_codegen::{
+    Context,
+    isa::{CallConv, OwnedTargetIsa},
+};
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::{JITBuilder, JITModule};
 use cranelift_module::{FuncId, Linkage, Module, default_libcall_names};
@@ -29,13 +32,20 @@ fn cg(e: impl std::fmt::Display) -> JitError {
     JitError::Codegen(e.to_string())
 }
 
-/// A fresh module for the host with the runtime's symbols registered.
+/// A fresh module for the host with the runtime's symbols registered. Its ISA is at
+/// `opt_level = none` whatever `opts` says: [`crate::midend::Midend`] runs the optimisations.
 pub(crate) fn new_module(opts: &JitOptions) -> Result<JITModule, JitError> {
+    let isa = host_isa(opts, "none")?;
+    let mut jb = JITBuilder::with_isa(isa, default_libcall_names());
+    for h in Helper::ALL {
+        jb.symbol(h.name(), h.address());
+    }
+    Ok(JITModule::new(jb))
+}
+
+/// The host ISA with the flags every compilation uses, at Cranelift's `opt_level` `opt`.
+pub(crate) fn host_isa(opts: &JitOptions, opt: &str) -> Result<OwnedTargetIsa, JitError> {
     let mut flags = settings::builder();
-    let opt = match opts.opt {
-        OptLevel::None => "none",
-        OptLevel::Speed => "speed",
-    };
     flags.set("opt_level", opt).map_err(cg)?;
     // `none` means fastest compile: the single-pass allocator is several times cheaper than
     // the backtracking one, which dominates compile time on long straight-line PLC code.
@@ -53,15 +63,10 @@ pub(crate) fn new_module(opts: &JitOptions) -> Result<JITModule, JitError> {
     flags.set("enable_verifier", verify).map_err(cg)?;
     flags.set("use_colocated_libcalls", "false").map_err(cg)?;
     flags.set("is_pic", "false").map_err(cg)?;
-    let isa = cranelift_native::builder()
+    cranelift_native::builder()
         .map_err(|m| JitError::UnsupportedHost(m.to_string()))?
         .finish(settings::Flags::new(flags))
-        .map_err(cg)?;
-    let mut jb = JITBuilder::with_isa(isa, default_libcall_names());
-    for h in Helper::ALL {
-        jb.symbol(h.name(), h.address());
-    }
-    Ok(JITModule::new(jb))
+        .map_err(cg)
 }
 
 /// The signature of every POU function: `(image: i64, depth: i32) -> i32`.
@@ -179,13 +184,16 @@ pub(crate) fn build(
         info,
         plans,
         hot_ops: opts.hot_ops,
+        opt: opts.opt,
         rules,
         ext: &ext,
     };
     let mut ctx = module.make_context();
     let mut fbc = FunctionBuilderContext::new();
+    let midend = crate::midend::Midend::new(opts)?;
     let define_fn = |module: &mut JITModule, ctx: &mut Context, id| -> Result<(), JitError> {
         if define {
+            midend.run(ctx)?;
             module
                 .define_function(id, ctx)
                 .map_err(|e| cg(format!("{e:?}")))?;

@@ -4,6 +4,7 @@
 //! comment naming the file, line and op wherever that location changes.
 
 use crate::build::{self, Part};
+use crate::midend::Midend;
 use crate::{JitError, JitOptions};
 use cranelift_codegen::entity::SecondaryMap;
 use cranelift_codegen::ir::{Block, Function, Inst, Value};
@@ -64,8 +65,9 @@ pub fn clif_text(program: &Program, opts: &JitOptions) -> Result<String, JitErro
     annotated_clif(program, opts, false)
 }
 
-/// The annotated CLIF after Cranelift's mid-end (`Context::optimize`: unreachable-code removal
-/// and, at `--opt speed`, the e-graph pass), i.e. what is lowered to machine code.
+/// The annotated CLIF after the mid-end ([`crate::midend`]: Cranelift's unreachable-code
+/// removal, at `--opt speed` its e-graph pass, then the shorter byte loads), i.e. what is
+/// lowered to machine code.
 pub fn optimized_clif_text(program: &Program, opts: &JitOptions) -> Result<String, JitError> {
     annotated_clif(program, opts, true)
 }
@@ -75,14 +77,13 @@ fn annotated_clif(
     opts: &JitOptions,
     optimized: bool,
 ) -> Result<String, JitError> {
-    render(program, opts, |isa, func, pou, part, out| {
+    render(program, opts, |midend, _isa, func, pou, part, out| {
         let Some(p) = program.pous.get(pou) else {
             return Ok(());
         };
         let mut ctx = cranelift_codegen::Context::for_function(func.clone());
         if optimized {
-            let mut cp = cranelift_codegen::control::ControlPlane::default();
-            ctx.optimize(isa, &mut cp).map_err(|e| format!("{e:?}"))?;
+            midend.run(&mut ctx).map_err(|e| e.to_string())?;
         }
         let part = match part {
             Part::Whole => String::new(),
@@ -111,8 +112,9 @@ fn annotated_clif(
 /// The machine code Cranelift generates for every function of `program` at `opts`, as its
 /// VCode disassembly (for `stljit dump-clif --asm`: counting host instructions per op).
 pub fn asm_text(program: &Program, opts: &JitOptions) -> Result<String, JitError> {
-    render(program, opts, |isa, func, pou, part, out| {
+    render(program, opts, |midend, isa, func, pou, part, out| {
         let mut ctx = cranelift_codegen::Context::for_function(func.clone());
+        midend.run(&mut ctx).map_err(|e| e.to_string())?;
         ctx.set_disasm(true);
         let mut cp = cranelift_codegen::control::ControlPlane::default();
         let code = ctx
@@ -129,16 +131,24 @@ pub fn asm_text(program: &Program, opts: &JitOptions) -> Result<String, JitError
 fn render(
     program: &Program,
     opts: &JitOptions,
-    mut write: impl FnMut(&dyn TargetIsa, &Function, usize, Part, &mut String) -> Result<(), String>,
+    mut write: impl FnMut(
+        &Midend,
+        &dyn TargetIsa,
+        &Function,
+        usize,
+        Part,
+        &mut String,
+    ) -> Result<(), String>,
 ) -> Result<String, JitError> {
     let layout = Layout::of(program.profile);
     let module = build::new_module(opts)?;
+    let midend = Midend::new(opts)?;
     let isa = cranelift_module::Module::isa(&module);
     let mut out = String::new();
     let mut failure = None;
     let mut sink = |func: &Function, pou: usize, part: Part| {
         if failure.is_none()
-            && let Err(e) = write(isa, func, pou, part, &mut out)
+            && let Err(e) = write(&midend, isa, func, pou, part, &mut out)
         {
             failure = Some(e);
         }

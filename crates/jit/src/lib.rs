@@ -18,6 +18,7 @@ mod dse;
 mod engine;
 mod helpers;
 mod lower;
+mod midend;
 mod rebase;
 mod scan_loop;
 #[cfg(test)]

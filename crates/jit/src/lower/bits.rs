@@ -260,14 +260,12 @@ impl Lower<'_, '_> {
     /// root, stops a later double use from marking the whole rung as used twice.
     pub(crate) fn anchor(&mut self, x: B) -> B {
         use cranelift_codegen::ir::{Opcode, types::I64};
-        use cranelift_codegen::settings::OptLevel;
-        use cranelift_module::Module;
         let (v, pos, neg) = match x {
             B::Bit { v, pos } => (v, pos, false),
             B::Not { v, pos } => (v, pos, true),
             B::K(_) => return x,
         };
-        if self.module.isa().flags().opt_level() == OptLevel::None {
+        if self.env.opt == crate::OptLevel::None {
             return x;
         }
         let dfg = &self.b.func.dfg;

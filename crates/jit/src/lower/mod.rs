@@ -74,6 +74,8 @@ pub(crate) struct Env<'a> {
     pub(crate) plans: Vec<Option<ChunkPlan>>,
     /// [`crate::JitOptions::hot_ops`].
     pub(crate) hot_ops: usize,
+    /// [`crate::JitOptions::opt`] (the module's ISA is always at `none`: [`crate::midend`]).
+    pub(crate) opt: crate::OptLevel,
     /// The semantic switches the inlined code follows (`Rules::IN_FORCE` but in tests).
     pub(crate) rules: Rules,
     /// The payloads of the s7-200-more ops, passed to the runtime by address.

@@ -1,0 +1,134 @@
+//! Tests of [`super::narrow_byte_loads`] and [`super::Midend`] on hand-built functions: a byte
+//! load whose value the back end sees used once becomes `uextend(load.i8)` and is emitted as
+//! `movzbl`; one it sees used more than once, directly or through a pure instruction, keeps
+//! its `uload8` (its `movzbq` is then one instruction, not a load and a register extension).
+
+use super::{Midend, narrow_byte_loads};
+use crate::lower::mf;
+use crate::{JitOptions, OptLevel};
+use cranelift_codegen::Context;
+use cranelift_codegen::ir::{Function, InstBuilder, InstructionData, Opcode, types::*};
+
+/// The opcodes of `func`'s instructions in layout order.
+fn opcodes(func: &Function) -> Vec<Opcode> {
+    func.layout
+        .blocks()
+        .flat_map(|b| func.layout.block_insts(b))
+        .map(|i| func.dfg.insts[i].opcode())
+        .collect()
+}
+
+/// `fn(image)`: `x = uload8.i32 image+5`, then `use_it` makes the uses of `x`, the last value
+/// it returns is stored to image+9.
+fn with_byte_load(
+    use_it: impl FnOnce(
+        &mut cranelift_frontend::FunctionBuilder,
+        cranelift_codegen::ir::Value,
+    ) -> cranelift_codegen::ir::Value,
+) -> Function {
+    crate::test_fn::build(1, |b, p| {
+        let x = b.ins().uload8(I32, mf(), p[0], 5);
+        let y = use_it(b, x);
+        b.ins().istore8(mf(), y, p[0], 9);
+    })
+}
+
+#[test]
+fn a_byte_used_once_is_loaded_as_a_byte_and_extended() {
+    let mut f = with_byte_load(|b, x| b.ins().band_imm_u(x, 4));
+    assert_eq!(narrow_byte_loads(&mut f), 1);
+    let ops = opcodes(&f);
+    assert!(!ops.contains(&Opcode::Uload8), "{ops:?}");
+    let load = f
+        .layout
+        .blocks()
+        .flat_map(|b| f.layout.block_insts(b))
+        .find(|&i| f.dfg.insts[i].opcode() == Opcode::Load)
+        .expect("a load");
+    // Same address and offset as before, one byte wide, and its only user is the extension.
+    assert_eq!(f.dfg.value_type(f.dfg.first_result(load)), I8);
+    let InstructionData::Load { offset, .. } = f.dfg.insts[load] else {
+        panic!()
+    };
+    assert_eq!(i32::from(offset), 5);
+    let next = f.layout.next_inst(load).expect("the extension");
+    assert_eq!(f.dfg.insts[next].opcode(), Opcode::Uextend);
+    assert_eq!(f.dfg.value_type(f.dfg.first_result(next)), I32);
+}
+
+#[test]
+fn a_byte_used_twice_keeps_its_uload8() {
+    let mut f = with_byte_load(|b, x| {
+        let y = b.ins().band_imm_u(x, 4);
+        b.ins().bor(y, x)
+    });
+    assert_eq!(narrow_byte_loads(&mut f), 0);
+    assert!(opcodes(&f).contains(&Opcode::Uload8));
+}
+
+#[test]
+fn a_byte_under_a_shared_pure_value_keeps_its_uload8() {
+    // `y` is used twice; the back end may compute it at each use, so `x` counts as used twice.
+    let mut f = with_byte_load(|b, x| {
+        let y = b.ins().band_imm_u(x, 4);
+        let z = b.ins().ishl_imm_u(y, 1);
+        b.ins().bor(z, y)
+    });
+    assert_eq!(narrow_byte_loads(&mut f), 0);
+}
+
+#[test]
+fn a_byte_under_a_two_result_instruction_counts_once() {
+    // Multi-result instructions are roots for the back end: their results' uses do not
+    // multiply their operands'.
+    let mut f = with_byte_load(|b, x| {
+        let wide = b.ins().uextend(I64, x);
+        let pair = b.ins().iconcat(wide, wide);
+        let (lo, _) = b.ins().isplit(pair);
+        let lo = b.ins().ireduce(I32, lo);
+        let y = b.ins().band_imm_u(lo, 4);
+        b.ins().bor(y, lo)
+    });
+    // `wide` is used twice by the iconcat, which is single-result: the byte is shared.
+    assert_eq!(narrow_byte_loads(&mut f), 0);
+    let mut f = with_byte_load(|b, x| {
+        let wide = b.ins().uextend(I64, x);
+        let other = b.ins().iconst(I64, 0);
+        let pair = b.ins().iconcat(wide, other);
+        let (lo, _) = b.ins().isplit(pair);
+        let lo = b.ins().ireduce(I32, lo);
+        let y = b.ins().band_imm_u(lo, 4);
+        b.ins().bor(y, lo)
+    });
+    assert_eq!(narrow_byte_loads(&mut f), 1);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[test]
+fn the_back_end_emits_movzbl_for_a_narrowed_load_and_movzbq_for_a_shared_one() {
+    for opt in [OptLevel::None, OptLevel::Speed] {
+        let opts = JitOptions::at(opt);
+        let isa = crate::build::host_isa(&opts, "none").expect("host ISA");
+        let midend = Midend::new(&opts).expect("mid-end");
+        let asm = |f: Function| {
+            let mut ctx = Context::for_function(f);
+            midend.run(&mut ctx).expect("mid-end runs");
+            ctx.set_disasm(true);
+            let mut cp = cranelift_codegen::control::ControlPlane::default();
+            let code = ctx.compile(isa.as_ref(), &mut cp).expect("compiles");
+            code.vcode.clone().unwrap_or_default()
+        };
+        let once = asm(with_byte_load(|b, x| b.ins().band_imm_u(x, 4)));
+        assert!(once.contains("movzbl 5("), "{opt:?}: {once}");
+        assert!(
+            !once.contains("movzbl %") && !once.contains("movzbq"),
+            "{opt:?}: one load, no register extension: {once}"
+        );
+        // (x << 3) ^ x: nothing for the e-graph to simplify.
+        let twice = asm(with_byte_load(|b, x| {
+            let y = b.ins().ishl_imm_u(x, 3);
+            b.ins().bxor(y, x)
+        }));
+        assert!(twice.contains("movzbq 5("), "{opt:?}: {twice}");
+    }
+}
