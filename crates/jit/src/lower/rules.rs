@@ -227,6 +227,18 @@ impl RuleOps for Emit<'_, '_> {
                 }
             }
             Rv::R(_) if a == b => a,
+            // x86 `cmov` takes the first arm as its source operand, and a constant there is
+            // loaded from the constant pool (an 8-byte rip-relative `cmov`); as the value the
+            // select starts from it is an immediate move (or a zeroing `xor`). So a constant
+            // goes second, under the complemented condition.
+            Rv::R(c) if matches!((a, b), (Rv::K(_), Rv::R(_))) => {
+                let not_c = match self.compare_of(c) {
+                    Some((_, cond, [x, y])) => self.b.ins().icmp(cond.complement(), x, y),
+                    None => self.b.ins().icmp_imm_s(IntCC::Equal, c, 0),
+                };
+                let (x, y) = (self.value(b), self.value(a));
+                Rv::R(self.b.ins().select(not_c, x, y))
+            }
             Rv::R(c) => {
                 let c = self.compare_of(c).map_or(c, |(flag, ..)| flag);
                 let (x, y) = (self.value(a), self.value(b));
