@@ -50,6 +50,7 @@ impl Isr for Routines<'_> {
 /// The interpreter bound to one image for one scan.
 pub(crate) struct Machine<'a> {
     prog: &'a Program,
+    timer_res: &'a [Option<u8>],
     mask: u16,
     rules: Rules,
     pub(crate) img: &'a mut [u8],
@@ -64,6 +65,7 @@ impl<'a> Machine<'a> {
     ) -> Machine<'a> {
         Machine {
             prog: &interp.program,
+            timer_res: &interp.timer_res,
             mask: interp.stack_mask,
             rules: interp.rules,
             img,
@@ -258,6 +260,7 @@ impl<'a> Machine<'a> {
                         *st & 1 != 0,
                         gate,
                         pt as u16 as i16,
+                        self.timer_res.get(usize::from(timer.0)).copied().flatten(),
                     )
                 });
                 if let Err(e) = r {

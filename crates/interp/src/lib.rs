@@ -32,6 +32,8 @@ pub struct Interpreter {
     rules: Rules,
     /// What the scan prologue touches for this program.
     plan: scan::ScanPlan,
+    /// Each timer number's resolution (`timer::declared_resolutions`).
+    timer_res: Vec<Option<u8>>,
 }
 
 impl Interpreter {
@@ -44,6 +46,7 @@ impl Interpreter {
             stack_mask: ((1u32 << program.logic_stack_depth) - 1) as u16,
             rules: Rules::in_force(program.profile.profile().family),
             plan: scan::ScanPlan::of(program),
+            timer_res: stljit_runtime::timer::declared_resolutions(program),
         })
     }
 

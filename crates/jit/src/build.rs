@@ -185,6 +185,7 @@ pub(crate) fn build(
         plans,
         hot_ops: opts.hot_ops,
         opt: opts.opt,
+        timer_res: stljit_runtime::timer::declared_resolutions(prog),
         rules,
         ext: &ext,
     };

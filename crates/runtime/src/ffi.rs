@@ -332,7 +332,9 @@ pub unsafe extern "C" fn stljit_rt_timer(
     // SAFETY: forwarded caller contract.
     unsafe {
         status_of(image, layout, |b, l| {
-            timer::execute(b, l, n, kind, input != 0, gate, preset as i16)
+            // Only reached for a timer the profile lacks (`execute` reports it), so no
+            // declaration: the resolution byte.
+            timer::execute(b, l, n, kind, input != 0, gate, preset as i16, None)
         })
     }
 }

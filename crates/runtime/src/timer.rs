@@ -10,12 +10,16 @@
 //! [`Timer::step`] (layout lookups, range check), the JIT by emitting it inline on the timer's
 //! bytes (offsets fixed at compile time). Both paths read the bytes
 //! through [`TimerFields::from_raw`] and the byte positions of [`TimerState`], so both engines
-//! run the same rules on the same bytes.
+//! run the same rules on the same bytes. The one exception is the resolution an execution
+//! credits time by: both take it from the program's declaration ([`declared_resolutions`]; spec
+//! §5.2: "compile time, from the timer number"), the JIT as a constant, and the stored byte
+//! only for a timer the program does not declare. The clock refresh at scan start reads the
+//! byte, which cold start writes from the same declaration.
 
 use crate::rule_ops::{Native, RuleOps};
 use crate::rules::{Gate, GatePolicy};
 use crate::{block, mem};
-use stljit_core::ir::TimerKind;
+use stljit_core::ir::{Program, TimerKind};
 use stljit_core::layout::{Layout, Sched, TIMER_STATE_SIZE, TimerState};
 use stljit_core::{Area, ErrorCode};
 
@@ -334,9 +338,27 @@ fn check(layout: &Layout, n: u16) -> Result<(), ErrorCode> {
     block::object_run(layout, Area::TimerBit, n, 1).map(drop)
 }
 
+/// The resolution in ms each timer number runs with, indexed by number: its declaration's
+/// (`TimerDecl::resolution`; spec §5.2: "compile time, from the timer number"), `None` for a
+/// number the program does not declare. Both engines take an execution's resolution from here,
+/// the JIT as a constant, so a resolution byte a restored snapshot changed does not matter.
+pub fn declared_resolutions(program: &Program) -> Vec<Option<u8>> {
+    let mut res = Vec::new();
+    for t in &program.timers {
+        let n = usize::from(t.id.0);
+        if res.len() <= n {
+            res.resize(n + 1, None);
+        }
+        res[n] = Some(t.resolution.millis() as u8);
+    }
+    res
+}
+
 /// Executes `TON`/`TONR`/`TOF Tn, PT` (spec §5.2) on the image: [`Timer::step`] with the scan's
-/// `d100`. `input` is `S0`; `gate` the gate it runs under. Errors only for a timer the profile
-/// lacks.
+/// `d100`. `input` is `S0`; `gate` the gate it runs under; `res` the timer's resolution from
+/// [`declared_resolutions`] (`None`: the resolution byte stored at cold start). Errors only for
+/// a timer the profile lacks.
+#[allow(clippy::too_many_arguments)]
 pub fn execute(
     img: &mut [u8],
     layout: &Layout,
@@ -345,9 +367,13 @@ pub fn execute(
     input: bool,
     gate: Gate,
     preset: i16,
+    res: Option<u8>,
 ) -> Result<(), ErrorCode> {
     check(layout, n)?;
     let mut t = Timer::load(img, layout, n);
+    if let Some(res) = res {
+        t.res = res;
+    }
     let d100 = mem::sched_u32(img, layout, Sched::D100);
     t.step(kind, input, gate, preset, d100);
     t.store(img, layout, n);

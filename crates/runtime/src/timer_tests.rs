@@ -22,7 +22,7 @@ fn t08_ton_t37() {
         let input = (1..=12).contains(&k);
         let mut got = (false, 0);
         rig.scan(|b, l| {
-            execute(b, l, 37, On, input, Gate::scr(true), 100).unwrap();
+            execute(b, l, 37, On, input, Gate::scr(true), 100, None).unwrap();
             got = state(b, l, 37);
         });
         assert_eq!(got, w, "scan {k}");
@@ -49,7 +49,7 @@ fn t09_tonr_t3_with_reset() {
     for (k, (i0, i1, q, vw)) in rows.into_iter().enumerate() {
         let mut got = (false, 0);
         rig.scan(|b, l| {
-            execute(b, l, 3, Retentive, i0 == 1, Gate::scr(true), 100).unwrap();
+            execute(b, l, 3, Retentive, i0 == 1, Gate::scr(true), 100, None).unwrap();
             got.0 = state(b, l, 3).0;
             if i1 == 1 {
                 reset_range(b, l, 3, 1).unwrap();
@@ -81,7 +81,7 @@ fn t10_tof_t2() {
     for (k, (i0, q, vw)) in rows.into_iter().enumerate() {
         let mut got = (false, 0);
         rig.scan(|b, l| {
-            execute(b, l, 2, Off, i0 == 1, Gate::scr(true), 20).unwrap();
+            execute(b, l, 2, Off, i0 == 1, Gate::scr(true), 20, None).unwrap();
             got = state(b, l, 2);
         });
         assert_eq!(got, (q, vw), "scan {k}");
@@ -95,8 +95,8 @@ fn x3_100ms_timer_twice_per_scan_gains_time_10ms_does_not() {
         for (k, w) in want.into_iter().enumerate() {
             let mut got = 0;
             rig.scan(|b, l| {
-                execute(b, l, n, On, true, Gate::scr(true), 1000).unwrap();
-                execute(b, l, n, On, true, Gate::scr(true), 1000).unwrap();
+                execute(b, l, n, On, true, Gate::scr(true), 1000, None).unwrap();
+                execute(b, l, n, On, true, Gate::scr(true), 1000, None).unwrap();
                 got = state(b, l, n).1;
             });
             assert_eq!(got, w, "T{n} scan {k}");
@@ -113,7 +113,7 @@ fn x4_skipped_100ms_timer_loses_time() {
         let mut got = 0;
         rig.scan(|b, l| {
             if inputs[k] == 0 {
-                execute(b, l, 40, On, true, Gate::scr(true), 1000).unwrap();
+                execute(b, l, 40, On, true, Gate::scr(true), 1000, None).unwrap();
             }
             got = state(b, l, 40).1;
         });
@@ -125,7 +125,7 @@ fn x4_skipped_100ms_timer_loses_time() {
 fn skipped_10ms_timer_keeps_timing() {
     // §5.2: a 10-ms timer, once enabled, is refreshed at scan start even when not executed.
     let mut rig = Rig::new(100).timer(10, 1, 10);
-    rig.scan(|b, l| execute(b, l, 10, On, true, Gate::scr(true), 25).unwrap());
+    rig.scan(|b, l| execute(b, l, 10, On, true, Gate::scr(true), 25, None).unwrap());
     for k in 1..=3 {
         let mut got = (false, 0);
         rig.scan(|b, l| got = state(b, l, 10));
@@ -137,9 +137,9 @@ fn skipped_10ms_timer_keeps_timing() {
 fn saturates_at_32767_and_keeps_bit() {
     // TC5.
     let mut rig = Rig::new(1000).timer(1, 1, 1);
-    rig.scan(|b, l| execute(b, l, 1, On, true, Gate::scr(true), 5).unwrap());
+    rig.scan(|b, l| execute(b, l, 1, On, true, Gate::scr(true), 5, None).unwrap());
     for _ in 0..40 {
-        rig.scan(|b, l| execute(b, l, 1, On, true, Gate::scr(true), 5).unwrap());
+        rig.scan(|b, l| execute(b, l, 1, On, true, Gate::scr(true), 5, None).unwrap());
     }
     let (b, l) = rig.img.split_mut();
     assert_eq!(state(b, l, 1), (true, 32767));
@@ -151,7 +151,7 @@ fn negative_preset_turns_ton_on_at_once() {
     let mut rig = Rig::new(10).timer(30, 1, 100);
     let mut got = (false, 0);
     rig.scan(|b, l| {
-        execute(b, l, 30, On, true, Gate::scr(true), -1).unwrap();
+        execute(b, l, 30, On, true, Gate::scr(true), -1, None).unwrap();
         got = state(b, l, 30);
     });
     assert_eq!(got, (true, 0));
@@ -166,17 +166,17 @@ fn inactive_scr_gate_rules() {
         .timer(22, 3, 100);
     for i in 0..3 {
         rig.scan(|b, l| {
-            execute(b, l, 20, On, true, Gate::scr(true), 1).unwrap();
-            execute(b, l, 21, Retentive, true, Gate::scr(true), 1).unwrap();
-            execute(b, l, 22, Off, i == 0, Gate::scr(true), 100).unwrap();
+            execute(b, l, 20, On, true, Gate::scr(true), 1, None).unwrap();
+            execute(b, l, 21, Retentive, true, Gate::scr(true), 1, None).unwrap();
+            execute(b, l, 22, Off, i == 0, Gate::scr(true), 100, None).unwrap();
         });
     }
     let mut got = [(false, 0); 3];
     rig.scan(|b, l| {
         assert!(state(b, l, 22).0, "TOF still timing before the gate closes");
-        execute(b, l, 20, On, true, Gate::scr(false), 1).unwrap();
-        execute(b, l, 21, Retentive, true, Gate::scr(false), 1).unwrap();
-        execute(b, l, 22, Off, true, Gate::scr(false), 100).unwrap();
+        execute(b, l, 20, On, true, Gate::scr(false), 1, None).unwrap();
+        execute(b, l, 21, Retentive, true, Gate::scr(false), 1, None).unwrap();
+        execute(b, l, 22, Off, true, Gate::scr(false), 100, None).unwrap();
         got = [state(b, l, 20), state(b, l, 21), state(b, l, 22)];
     });
     assert_eq!(got, [(false, 0), (true, 2), (false, 0)]);
@@ -187,12 +187,12 @@ fn inactive_scr_gate_rules() {
 #[test]
 fn tof_after_reset_needs_a_fresh_transition() {
     let mut rig = Rig::new(10).timer(4, 3, 10);
-    rig.scan(|b, l| execute(b, l, 4, Off, true, Gate::scr(true), 5).unwrap());
+    rig.scan(|b, l| execute(b, l, 4, Off, true, Gate::scr(true), 5, None).unwrap());
     rig.scan(|b, l| reset_range(b, l, 4, 1).unwrap());
     for _ in 0..3 {
         let mut got = (true, 1);
         rig.scan(|b, l| {
-            execute(b, l, 4, Off, false, Gate::scr(true), 5).unwrap();
+            execute(b, l, 4, Off, false, Gate::scr(true), 5, None).unwrap();
             got = state(b, l, 4);
         });
         assert_eq!(got, (false, 0));
@@ -207,7 +207,60 @@ fn reset_range_checks_the_end() {
     assert_eq!(reset_range(b, l, 60, 4), Ok(()));
     assert_eq!(reset_range(b, l, 63, 0), Ok(()));
     assert_eq!(
-        execute(b, l, 64, On, true, Gate::scr(true), 1),
+        execute(b, l, 64, On, true, Gate::scr(true), 1, None),
         Err(ErrorCode::OperandRange)
+    );
+}
+
+#[test]
+fn the_declared_resolution_rules_over_the_state_byte() {
+    // Spec §5.2: a timer's resolution is "compile time, from the timer number". T37 is a
+    // 100-ms TON; a restored snapshot whose resolution byte says 0 (an unused timer, which the
+    // byte alone would never credit) still gets the scan's 100-ms delta when the resolution is
+    // passed: scan_ms = 1000, so 10 per scan after the starting one. The byte is left as it
+    // was. (The clock refresh at scan start reads the byte; 0 leaves the timer alone there.)
+    let mut rig = Rig::new(1000).timer(37, 1, 0);
+    let mut cvs = Vec::new();
+    for _ in 0..3 {
+        rig.scan(|b, l| {
+            execute(b, l, 37, On, true, Gate::scr(true), 100, Some(100)).unwrap();
+            cvs.push(state(b, l, 37).1);
+            assert_eq!(b[(l.timer_state(37) + TimerState::RES) as usize], 0);
+        });
+    }
+    assert_eq!(cvs, [0, 10, 20]);
+}
+
+#[test]
+fn declared_resolutions_are_indexed_by_timer_number() {
+    use stljit_core::TimerId;
+    use stljit_core::ir::TimerDecl;
+    use stljit_core::profile::Resolution;
+    let program = Program {
+        profile: stljit_core::ProfileId::A5,
+        pous: vec![],
+        counters: vec![],
+        edges: vec![],
+        logic_stack_depth: 9,
+        files: vec![],
+        data: Vec::new(),
+        timers: vec![
+            TimerDecl {
+                id: TimerId(37),
+                kind: On,
+                resolution: Resolution::Ms100,
+            },
+            TimerDecl {
+                id: TimerId(33),
+                kind: Retentive,
+                resolution: Resolution::Ms10,
+            },
+        ],
+    };
+    let res = declared_resolutions(&program);
+    assert_eq!(res.len(), 38);
+    assert_eq!(
+        (res[37], res[33], res[0], res[36]),
+        (Some(100), Some(10), None, None)
     );
 }

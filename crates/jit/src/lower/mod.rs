@@ -74,6 +74,8 @@ pub(crate) struct Env<'a> {
     pub(crate) plans: Vec<Option<ChunkPlan>>,
     /// [`crate::JitOptions::hot_ops`].
     pub(crate) hot_ops: usize,
+    /// Each timer number's resolution (`stljit_runtime::timer::declared_resolutions`).
+    pub(crate) timer_res: Vec<Option<u8>>,
     /// [`crate::JitOptions::opt`] (the module's ISA is always at `none`: [`crate::midend`]).
     pub(crate) opt: crate::OptLevel,
     /// The semantic switches the inlined code follows (`Rules::IN_FORCE` but in tests).

@@ -375,7 +375,12 @@ impl Lower<'_, '_> {
             run: self.rule_byte(state.plus(TimerState::RUN)),
             tof: self.rule_field_byte(state.plus(TimerState::TOF), &mut loads),
             pt_cache: Rv::R(self.b.ins().sextend(I64, pt)),
-            res: self.rule_byte(state.plus(TimerState::RES)),
+            // The declared resolution, as the interpreter takes it (spec §5.2: compile time):
+            // a 100-ms timer's delta needs no compare, a 1-ms or 10-ms timer's rule credits none.
+            res: match self.env.timer_res.get(usize::from(n)).copied().flatten() {
+                Some(res) => Rv::K(i64::from(res)),
+                None => self.rule_byte(state.plus(TimerState::RES)),
+            },
         };
         // The delta is a native-endian `u32`; loaded zero-extended in one instruction.
         let d100_at = self.sched(Sched::D100);

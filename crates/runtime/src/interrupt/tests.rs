@@ -408,8 +408,17 @@ fn t32_reaching_its_preset_is_an_event_at_the_scan_instant() {
     });
     let ton = |b: &mut [u8], l: &Layout| {
         let gate = crate::rules::Gate::Open;
-        crate::timer::execute(b, l, 32, stljit_core::ir::TimerKind::On, true, gate, 15)
-            .expect("T32");
+        crate::timer::execute(
+            b,
+            l,
+            32,
+            stljit_core::ir::TimerKind::On,
+            true,
+            gate,
+            15,
+            Some(1),
+        )
+        .expect("T32");
     };
     plc.scan(0, &mut isr, |b, l| {
         run(b, l, attach(0, 21));
