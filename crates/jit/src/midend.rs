@@ -13,13 +13,21 @@
 //! may no longer fold the load into it (then it emits `movzbq` and a `movzbl` of the register).
 //! Lowering and the passes before this one keep writing and recognising `uload8`; this changes
 //! only the instruction that loads, not the value.
+//!
+//! **Short byte masks.** A coil or a flag writes a byte as `(old AND mask) OR bits`, and the
+//! mask of a bit 0..=6 (`0xF7`, ...) does not fit x86's sign-extended 8-bit immediate: `and`
+//! takes a 4-byte one (1,135 of them in mixed_10k). With all upper bits set (`0xFFFFFFF7`,
+//! i.e. -9) it fits, and the low byte is the same. The rewrite is exact where nothing observes
+//! the upper bits: the result of an `and`/`or`/`xor` only ever reaches byte stores through
+//! bitwise operations and selects (`low_byte_only`), or an `and` whose other operand has no
+//! bit above the low byte anyway (a byte load, say: `zero_above_byte`).
 
 use crate::{JitError, JitOptions, OptLevel};
 use cranelift_codegen::Context;
 use cranelift_codegen::control::ControlPlane;
 use cranelift_codegen::cursor::{Cursor, FuncCursor};
 use cranelift_codegen::entity::SecondaryMap;
-use cranelift_codegen::ir::{Function, InstBuilder, InstructionData, Opcode, Value, types};
+use cranelift_codegen::ir::{Function, Inst, InstBuilder, InstructionData, Opcode, Value, types};
 use cranelift_codegen::isa::OwnedTargetIsa;
 
 /// The mid-end of one compilation (module docs).
@@ -45,6 +53,7 @@ impl Midend {
                 .map_err(|e| JitError::Codegen(format!("{e:?}")))?;
         }
         narrow_byte_loads(&mut ctx.func);
+        short_byte_masks(&mut ctx.func);
         Ok(())
     }
 }
@@ -80,6 +89,148 @@ pub(crate) fn narrow_byte_loads(func: &mut Function) -> usize {
         pos.func.replace(inst).uextend(types::I32, byte);
     }
     loads.len()
+}
+
+/// Gives byte masks whose result only reaches byte stores an 8-bit immediate (module docs);
+/// returns how many masks changed.
+pub(crate) fn short_byte_masks(func: &mut Function) -> usize {
+    let low = low_byte_only(func);
+    let mut masks = Vec::new();
+    for block in func.layout.blocks() {
+        for inst in func.layout.block_insts(block) {
+            let InstructionData::Binary { opcode, args } = func.dfg.insts[inst] else {
+                continue;
+            };
+            if !matches!(opcode, Opcode::Band | Opcode::Bor | Opcode::Bxor)
+                || func.dfg.ctrl_typevar(inst) != types::I32
+            {
+                continue;
+            }
+            for (i, &arg) in args.iter().enumerate() {
+                let Some(k) = iconst_of(func, arg).filter(|k| (0x80..=0xff).contains(k)) else {
+                    continue;
+                };
+                // An `and` of a byte value keeps its upper bits zero either way; otherwise
+                // nothing may look at the upper bits of the result.
+                let other = args[1 - i];
+                if low[func.dfg.first_result(inst)]
+                    || (opcode == Opcode::Band && zero_above_byte(func, other, 8))
+                {
+                    masks.push((inst, i, k));
+                }
+            }
+        }
+    }
+    for &(inst, i, k) in &masks {
+        let mut pos = FuncCursor::new(func).at_inst(inst);
+        // The same low byte with every higher bit set: -128..=-1, an 8-bit immediate.
+        let short = pos.ins().iconst(types::I32, k | 0xffff_ff00);
+        if let InstructionData::Binary { args, .. } = &mut pos.func.dfg.insts[inst] {
+            args[i] = short;
+        }
+    }
+    masks.len()
+}
+
+/// Whether `v`, an `i32`, is known to have only its low 8 bits set (a byte load, a byte
+/// zero-extended, a small constant, an `and` with one of them, an `or`/`xor` of two), looking
+/// `depth` definitions deep.
+fn zero_above_byte(func: &Function, v: Value, depth: u32) -> bool {
+    if let Some(k) = iconst_of(func, v) {
+        return k <= 0xff;
+    }
+    let Some(inst) = func.dfg.value_def(v).inst() else {
+        return false;
+    };
+    if depth == 0 {
+        return false;
+    }
+    match func.dfg.insts[inst] {
+        InstructionData::Load {
+            opcode: Opcode::Uload8,
+            ..
+        } => true,
+        InstructionData::Unary {
+            opcode: Opcode::Uextend,
+            arg,
+        } => func.dfg.value_type(arg) == types::I8,
+        InstructionData::Binary {
+            opcode: Opcode::Band,
+            args: [a, b],
+        } => zero_above_byte(func, a, depth - 1) || zero_above_byte(func, b, depth - 1),
+        InstructionData::Binary {
+            opcode: Opcode::Bor | Opcode::Bxor,
+            args: [a, b],
+        } => zero_above_byte(func, a, depth - 1) && zero_above_byte(func, b, depth - 1),
+        _ => false,
+    }
+}
+
+/// The value of `v` if an `iconst` defines it, as its low 32 bits.
+fn iconst_of(func: &Function, v: Value) -> Option<i64> {
+    let inst = func.dfg.value_def(v).inst()?;
+    match func.dfg.insts[inst] {
+        InstructionData::UnaryImm {
+            opcode: Opcode::Iconst,
+            imm,
+        } => Some(imm.bits() & 0xffff_ffff),
+        _ => None,
+    }
+}
+
+/// The values only whose low 8 bits anything observes: every use is the stored value of an
+/// `istore8`, the operand of a bitwise `and`/`or`/`xor`/`not` whose own value is such a value,
+/// or an arm of such a `select`. Computed as the greatest fixed point: all values start in, and a
+/// value leaves at any other use (a block argument, a shift, a compare, a wider store ...).
+fn low_byte_only(func: &Function) -> SecondaryMap<Value, bool> {
+    let mut low: SecondaryMap<Value, bool> = SecondaryMap::with_default(true);
+    // Uses before definitions, so one pass settles straight-line code; a second confirms.
+    let order: Vec<Inst> = func
+        .layout
+        .blocks()
+        .flat_map(|b| func.layout.block_insts(b))
+        .collect();
+    loop {
+        let mut changed = false;
+        for &inst in order.iter().rev() {
+            let data = &func.dfg.insts[inst];
+            let through = |v: Value| low[v];
+            let keeps: [bool; 3] = match *data {
+                InstructionData::Store {
+                    opcode: Opcode::Istore8,
+                    ..
+                } => [true, false, false],
+                InstructionData::Binary {
+                    opcode: Opcode::Band | Opcode::Bor | Opcode::Bxor,
+                    ..
+                } => {
+                    let r = through(func.dfg.first_result(inst));
+                    [r, r, false]
+                }
+                InstructionData::Unary {
+                    opcode: Opcode::Bnot,
+                    ..
+                } => [through(func.dfg.first_result(inst)), false, false],
+                InstructionData::Ternary {
+                    opcode: Opcode::Select,
+                    ..
+                } => {
+                    let r = through(func.dfg.first_result(inst));
+                    [false, r, r]
+                }
+                _ => [false; 3],
+            };
+            for (i, v) in func.dfg.inst_values(inst).enumerate() {
+                if !keeps.get(i).copied().unwrap_or(false) && low[v] {
+                    low[v] = false;
+                    changed = true;
+                }
+            }
+        }
+        if !changed {
+            return low;
+        }
+    }
 }
 
 /// The values the back end counts as used more than once (`ValueUseState::Multiple` in

@@ -132,3 +132,71 @@ fn the_back_end_emits_movzbl_for_a_narrowed_load_and_movzbq_for_a_shared_one() {
         assert!(twice.contains("movzbq 5("), "{opt:?}: {twice}");
     }
 }
+
+/// The constant operand of `f`'s `and`, as its low 32 bits.
+fn and_mask(f: &Function) -> i64 {
+    let and = f
+        .layout
+        .blocks()
+        .flat_map(|b| f.layout.block_insts(b))
+        .find(|&i| f.dfg.insts[i].opcode() == Opcode::Band)
+        .expect("the and");
+    f.dfg
+        .inst_args(and)
+        .iter()
+        .find_map(|&a| super::iconst_of(f, a))
+        .expect("a constant operand")
+}
+
+#[test]
+fn a_coil_mask_on_a_byte_gets_an_eight_bit_immediate() {
+    // (x AND 0xF7) OR 8, stored as a byte: the upper bits of the mask never matter.
+    let mut f = with_byte_load(|b, x| {
+        let k = b.ins().iconst(I32, 0xF7);
+        let cleared = b.ins().band(x, k);
+        let eight = b.ins().iconst(I32, 8);
+        b.ins().bor(cleared, eight)
+    });
+    assert_eq!(super::short_byte_masks(&mut f), 1);
+    assert_eq!(and_mask(&f), 0xFFFF_FFF7);
+}
+
+#[test]
+fn a_mask_whose_upper_bits_are_seen_keeps_its_value() {
+    // p OR 0x80 of an arbitrary word p, shifted right before the store: the shift moves
+    // upper bits into the stored byte, and p's upper bits may be set.
+    let mut f = crate::test_fn::build(2, |b, p| {
+        let word = b.ins().ireduce(I32, p[1]);
+        let k = b.ins().iconst(I32, 0x80);
+        let ored = b.ins().bor(word, k);
+        let shifted = b.ins().ushr_imm_u(ored, 4);
+        b.ins().istore8(mf(), shifted, p[0], 9);
+    });
+    assert_eq!(super::short_byte_masks(&mut f), 0);
+    // An `and` of that word with 0x80, compared: p's upper bits would leak into the compare.
+    let mut f = crate::test_fn::build(2, |b, p| {
+        let word = b.ins().ireduce(I32, p[1]);
+        let k = b.ins().iconst(I32, 0x80);
+        let bit7 = b.ins().band(word, k);
+        let set = b
+            .ins()
+            .icmp_imm_s(cranelift_codegen::ir::condcodes::IntCC::NotEqual, bit7, 0);
+        b.ins().istore8(mf(), set, p[0], 9);
+    });
+    assert_eq!(super::short_byte_masks(&mut f), 0);
+}
+
+#[test]
+fn an_and_of_a_byte_load_gets_the_short_mask_whatever_reads_it() {
+    // (x AND 0x80) != 0 for a byte x: x has no upper bits, so AND -128 is the same test.
+    let mut f = with_byte_load(|b, x| {
+        let k = b.ins().iconst(I32, 0x80);
+        let bit7 = b.ins().band(x, k);
+        let set = b
+            .ins()
+            .icmp_imm_s(cranelift_codegen::ir::condcodes::IntCC::NotEqual, bit7, 0);
+        b.ins().uextend(I32, set)
+    });
+    assert_eq!(super::short_byte_masks(&mut f), 1);
+    assert_eq!(and_mask(&f), 0xFFFF_FF80);
+}
