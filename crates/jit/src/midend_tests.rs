@@ -200,3 +200,38 @@ fn an_and_of_a_byte_load_gets_the_short_mask_whatever_reads_it() {
     assert_eq!(super::short_byte_masks(&mut f), 1);
     assert_eq!(and_mask(&f), 0xFFFF_FF80);
 }
+
+#[test]
+fn a_bit_test_that_only_chooses_is_made_on_the_low_byte() {
+    // select(x AND 4, 1, 2) for a 32-bit x: the condition becomes (ireduce.i8 x) AND 4.
+    let build = |also_store: bool| {
+        crate::test_fn::build(2, |b, p| {
+            let x = b.ins().ireduce(I32, p[1]);
+            let bit = b.ins().band_imm_u(x, 4);
+            let (one, two) = (b.ins().iconst(I32, 1), b.ins().iconst(I32, 2));
+            let chosen = b.ins().select(bit, one, two);
+            b.ins().istore8(mf(), chosen, p[0], 9);
+            if also_store {
+                b.ins().istore8(mf(), bit, p[0], 10);
+            }
+        })
+    };
+    let mut f = build(false);
+    assert_eq!(super::byte_tests(&mut f), 1);
+    let select = f
+        .layout
+        .blocks()
+        .flat_map(|b| f.layout.block_insts(b))
+        .find(|&i| f.dfg.insts[i].opcode() == Opcode::Select)
+        .expect("the select");
+    let cond = f.dfg.inst_args(select)[0];
+    assert_eq!(f.dfg.value_type(cond), I8);
+    let and = f.dfg.value_def(cond).inst().expect("an and");
+    assert_eq!(f.dfg.insts[and].opcode(), Opcode::Band);
+    let low = f.dfg.inst_args(and)[0];
+    let reduce = f.dfg.value_def(low).inst().expect("a reduce");
+    assert_eq!(f.dfg.insts[reduce].opcode(), Opcode::Ireduce);
+    // Also stored: a value, not only a condition, so it stays 32 bits wide.
+    let mut f = build(true);
+    assert_eq!(super::byte_tests(&mut f), 0);
+}
