@@ -141,13 +141,15 @@ pub(crate) fn short_byte_masks(func: &mut Function) -> usize {
 
 /// Narrows bit tests of a low byte to 8 bits (module docs); returns how many.
 pub(crate) fn byte_tests(func: &mut Function) -> usize {
-    // Every use of every value: (user, operand index); branch arguments count as operands.
-    let mut uses: SecondaryMap<Value, Vec<(Inst, usize)>> = SecondaryMap::new();
+    // Per value: its uses, and how many of them are the condition of a branch or a select.
+    let mut uses: SecondaryMap<Value, (u32, u32)> = SecondaryMap::new();
     let mut tests = Vec::new();
     for block in func.layout.blocks() {
         for inst in func.layout.block_insts(block) {
+            let chooses = is_choice(&func.dfg.insts[inst]);
             for (i, v) in func.dfg.inst_values(inst).enumerate() {
-                uses[v].push((inst, i));
+                uses[v].0 += 1;
+                uses[v].1 += u32::from(chooses && i == 0);
             }
             if let InstructionData::Binary {
                 opcode: Opcode::Band,
@@ -164,36 +166,55 @@ pub(crate) fn byte_tests(func: &mut Function) -> usize {
             }
         }
     }
-    let mut narrowed = 0;
+    let mut narrowed: SecondaryMap<Value, Option<Value>> = SecondaryMap::new();
+    let mut count = 0;
     for (inst, x, k) in tests {
         let v = func.dfg.first_result(inst);
-        let as_condition = |&(user, i): &(Inst, usize)| {
-            i == 0
-                && matches!(
-                    func.dfg.insts[user],
-                    InstructionData::Brif { .. }
-                        | InstructionData::Ternary {
-                            opcode: Opcode::Select,
-                            ..
-                        }
-                )
-        };
-        if uses[v].is_empty() || !uses[v].iter().all(as_condition) {
+        let (all, conditions) = uses[v];
+        if all == 0 || all != conditions {
             continue;
         }
         let mut pos = FuncCursor::new(func).at_inst(inst);
         let low = pos.ins().ireduce(types::I8, x);
-        let bits = pos.ins().band_imm_u(low, k);
-        for &(user, _) in &uses[v] {
-            match &mut pos.func.dfg.insts[user] {
-                InstructionData::Brif { arg, .. } => *arg = bits,
-                InstructionData::Ternary { args, .. } => args[0] = bits,
+        narrowed[v] = Some(pos.ins().band_imm_u(low, k));
+        count += 1;
+    }
+    if count > 0 {
+        let choices: Vec<Inst> = func
+            .layout
+            .blocks()
+            .flat_map(|b| func.layout.block_insts(b))
+            .filter(|&i| is_choice(&func.dfg.insts[i]))
+            .collect();
+        for inst in choices {
+            match &mut func.dfg.insts[inst] {
+                InstructionData::Brif { arg, .. } => {
+                    if let Some(bits) = narrowed[*arg] {
+                        *arg = bits;
+                    }
+                }
+                InstructionData::Ternary { args, .. } => {
+                    if let Some(bits) = narrowed[args[0]] {
+                        args[0] = bits;
+                    }
+                }
                 _ => {}
             }
         }
-        narrowed += 1;
     }
-    narrowed
+    count
+}
+
+/// Whether `data` is a branch or a select, whose first operand is a condition.
+fn is_choice(data: &InstructionData) -> bool {
+    matches!(
+        data,
+        InstructionData::Brif { .. }
+            | InstructionData::Ternary {
+                opcode: Opcode::Select,
+                ..
+            }
+    )
 }
 
 /// Whether `v`, an `i32`, is known to have only its low 8 bits set (a byte load, a byte
