@@ -14,8 +14,8 @@ pub(crate) struct Args {
     /// Print the generated machine code (Cranelift's disassembly) instead of the IR.
     #[arg(long, conflicts_with = "optimized")]
     asm: bool,
-    /// Print the IR after Cranelift's optimiser (what `--opt speed` lowers to machine code)
-    /// instead of the IR the JIT generates.
+    /// Print the IR after the mid-end (Cranelift's optimiser, then stljit's encoding passes:
+    /// what is lowered to machine code) instead of the IR the JIT generates.
     #[arg(long)]
     optimized: bool,
 }
