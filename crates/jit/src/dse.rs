@@ -57,7 +57,8 @@ fn root_of(func: &Function, mut v: Value, offset: Offset32) -> Place {
     (v, off)
 }
 
-fn iconst(func: &Function, v: Value) -> Option<i64> {
+/// The immediate of the `iconst` that defines `v`, if one does.
+pub(crate) fn iconst(func: &Function, v: Value) -> Option<i64> {
     let ValueDef::Result(inst, 0) = func.dfg.value_def(v) else {
         return None;
     };

@@ -69,16 +69,14 @@ impl Midend {
 /// many.
 pub(crate) fn narrow_byte_loads(func: &mut Function) -> usize {
     let mut loads = Vec::new();
-    for block in func.layout.blocks() {
-        for inst in func.layout.block_insts(block) {
-            if let InstructionData::Load {
-                opcode: Opcode::Uload8,
-                ..
-            } = func.dfg.insts[inst]
-                && func.dfg.ctrl_typevar(inst) == types::I32
-            {
-                loads.push(inst);
-            }
+    for inst in layout_insts(func) {
+        if let InstructionData::Load {
+            opcode: Opcode::Uload8,
+            ..
+        } = func.dfg.insts[inst]
+            && func.dfg.ctrl_typevar(inst) == types::I32
+        {
+            loads.push(inst);
         }
     }
     let shared = used_more_than_once(func);
@@ -103,28 +101,26 @@ pub(crate) fn narrow_byte_loads(func: &mut Function) -> usize {
 pub(crate) fn short_byte_masks(func: &mut Function) -> usize {
     let low = low_byte_only(func);
     let mut masks = Vec::new();
-    for block in func.layout.blocks() {
-        for inst in func.layout.block_insts(block) {
-            let InstructionData::Binary { opcode, args } = func.dfg.insts[inst] else {
+    for inst in layout_insts(func) {
+        let InstructionData::Binary { opcode, args } = func.dfg.insts[inst] else {
+            continue;
+        };
+        if !matches!(opcode, Opcode::Band | Opcode::Bor | Opcode::Bxor)
+            || func.dfg.ctrl_typevar(inst) != types::I32
+        {
+            continue;
+        }
+        for (i, &arg) in args.iter().enumerate() {
+            let Some(k) = iconst_of(func, arg).filter(|k| (0x80..=0xff).contains(k)) else {
                 continue;
             };
-            if !matches!(opcode, Opcode::Band | Opcode::Bor | Opcode::Bxor)
-                || func.dfg.ctrl_typevar(inst) != types::I32
+            // An `and` of a byte value keeps its upper bits zero either way; otherwise
+            // nothing may look at the upper bits of the result.
+            let other = args[1 - i];
+            if low[func.dfg.first_result(inst)]
+                || (opcode == Opcode::Band && zero_above_byte(func, other, 8))
             {
-                continue;
-            }
-            for (i, &arg) in args.iter().enumerate() {
-                let Some(k) = iconst_of(func, arg).filter(|k| (0x80..=0xff).contains(k)) else {
-                    continue;
-                };
-                // An `and` of a byte value keeps its upper bits zero either way; otherwise
-                // nothing may look at the upper bits of the result.
-                let other = args[1 - i];
-                if low[func.dfg.first_result(inst)]
-                    || (opcode == Opcode::Band && zero_above_byte(func, other, 8))
-                {
-                    masks.push((inst, i, k));
-                }
+                masks.push((inst, i, k));
             }
         }
     }
@@ -144,24 +140,22 @@ pub(crate) fn byte_tests(func: &mut Function) -> usize {
     // Per value: its uses, and how many of them are the condition of a branch or a select.
     let mut uses: SecondaryMap<Value, (u32, u32)> = SecondaryMap::new();
     let mut tests = Vec::new();
-    for block in func.layout.blocks() {
-        for inst in func.layout.block_insts(block) {
-            let chooses = is_choice(&func.dfg.insts[inst]);
-            for (i, v) in func.dfg.inst_values(inst).enumerate() {
-                uses[v].0 += 1;
-                uses[v].1 += u32::from(chooses && i == 0);
-            }
-            if let InstructionData::Binary {
-                opcode: Opcode::Band,
-                args,
-            } = func.dfg.insts[inst]
-                && func.dfg.ctrl_typevar(inst) == types::I32
-            {
-                for i in 0..2 {
-                    if let Some(k) = iconst_of(func, args[i]).filter(|&k| k <= 0xff) {
-                        tests.push((inst, args[1 - i], k));
-                        break;
-                    }
+    for inst in layout_insts(func) {
+        let chooses = is_choice(&func.dfg.insts[inst]);
+        for (i, v) in func.dfg.inst_values(inst).enumerate() {
+            uses[v].0 += 1;
+            uses[v].1 += u32::from(chooses && i == 0);
+        }
+        if let InstructionData::Binary {
+            opcode: Opcode::Band,
+            args,
+        } = func.dfg.insts[inst]
+            && func.dfg.ctrl_typevar(inst) == types::I32
+        {
+            for i in 0..2 {
+                if let Some(k) = iconst_of(func, args[i]).filter(|&k| k <= 0xff) {
+                    tests.push((inst, args[1 - i], k));
+                    break;
                 }
             }
         }
@@ -180,10 +174,7 @@ pub(crate) fn byte_tests(func: &mut Function) -> usize {
         count += 1;
     }
     if count > 0 {
-        let choices: Vec<Inst> = func
-            .layout
-            .blocks()
-            .flat_map(|b| func.layout.block_insts(b))
+        let choices: Vec<Inst> = layout_insts(func)
             .filter(|&i| is_choice(&func.dfg.insts[i]))
             .collect();
         for inst in choices {
@@ -253,14 +244,7 @@ fn zero_above_byte(func: &Function, v: Value, depth: u32) -> bool {
 
 /// The value of `v` if an `iconst` defines it, as its low 32 bits.
 fn iconst_of(func: &Function, v: Value) -> Option<i64> {
-    let inst = func.dfg.value_def(v).inst()?;
-    match func.dfg.insts[inst] {
-        InstructionData::UnaryImm {
-            opcode: Opcode::Iconst,
-            imm,
-        } => Some(imm.bits() & 0xffff_ffff),
-        _ => None,
-    }
+    crate::dse::iconst(func, v).map(|k| k & 0xffff_ffff)
 }
 
 /// The values only whose low 8 bits anything observes: every use is the stored value of an
@@ -270,16 +254,11 @@ fn iconst_of(func: &Function, v: Value) -> Option<i64> {
 fn low_byte_only(func: &Function) -> SecondaryMap<Value, bool> {
     let mut low: SecondaryMap<Value, bool> = SecondaryMap::with_default(true);
     // Uses before definitions, so one pass settles straight-line code; a second confirms.
-    let order: Vec<Inst> = func
-        .layout
-        .blocks()
-        .flat_map(|b| func.layout.block_insts(b))
-        .collect();
+    let order: Vec<Inst> = layout_insts(func).collect();
     loop {
         let mut changed = false;
         for &inst in order.iter().rev() {
             let data = &func.dfg.insts[inst];
-            let through = |v: Value| low[v];
             let keeps: [bool; 3] = match *data {
                 InstructionData::Store {
                     opcode: Opcode::Istore8,
@@ -289,18 +268,18 @@ fn low_byte_only(func: &Function) -> SecondaryMap<Value, bool> {
                     opcode: Opcode::Band | Opcode::Bor | Opcode::Bxor,
                     ..
                 } => {
-                    let r = through(func.dfg.first_result(inst));
+                    let r = low[func.dfg.first_result(inst)];
                     [r, r, false]
                 }
                 InstructionData::Unary {
                     opcode: Opcode::Bnot,
                     ..
-                } => [through(func.dfg.first_result(inst)), false, false],
+                } => [low[func.dfg.first_result(inst)], false, false],
                 InstructionData::Ternary {
                     opcode: Opcode::Select,
                     ..
                 } => {
-                    let r = through(func.dfg.first_result(inst));
+                    let r = low[func.dfg.first_result(inst)];
                     [false, r, r]
                 }
                 _ => [false; 3],
@@ -324,11 +303,9 @@ fn low_byte_only(func: &Function) -> SecondaryMap<Value, bool> {
 /// A load is folded into its user only if its value is not among them.
 fn used_more_than_once(func: &Function) -> SecondaryMap<Value, bool> {
     let mut uses: SecondaryMap<Value, u8> = SecondaryMap::new();
-    for block in func.layout.blocks() {
-        for inst in func.layout.block_insts(block) {
-            for v in func.dfg.inst_values(inst) {
-                uses[v] = uses[v].saturating_add(1);
-            }
+    for inst in layout_insts(func) {
+        for v in func.dfg.inst_values(inst) {
+            uses[v] = uses[v].saturating_add(1);
         }
     }
     let mut shared: SecondaryMap<Value, bool> = SecondaryMap::new();
@@ -355,6 +332,13 @@ fn used_more_than_once(func: &Function) -> SecondaryMap<Value, bool> {
         }
     }
     shared
+}
+
+/// `func`'s instructions in layout order.
+fn layout_insts(func: &Function) -> impl Iterator<Item = Inst> + '_ {
+    func.layout
+        .blocks()
+        .flat_map(|b| func.layout.block_insts(b))
 }
 
 #[cfg(test)]
