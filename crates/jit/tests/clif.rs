@@ -93,3 +93,22 @@ fn a_split_pou_dumps_its_chunks_and_dispatcher() {
     );
     assert!(asm.contains("ret"), "{asm}");
 }
+
+#[test]
+fn integer_boxes_in_a_row_derive_smb1_once() {
+    // Three +/- boxes under three power flows: each box's SM1.0–SM1.2 depend only on its
+    // result and overflow, so the JIT selects those along the chain and tests the surviving
+    // result for zero once; the first two boxes' SMB1 stores are overwritten unread and go,
+    // and their flag computations with them. (What the bytes must be is conformance case
+    // `t20_box_flag_chain.toml`.)
+    let p = stl("LD I0.0\n+I VW0, VW2\nLD I0.1\n-I VW4, VW6\nLD I0.2\nINCW VW8\n");
+    let opt = optimized_clif_text(&p, &JitOptions::at(OptLevel::Speed)).expect("dump");
+    let main = opt.split("; the scan loop").next().unwrap_or(&opt);
+    let zero_tests = main.lines().filter(|l| l.contains("icmp eq")).count();
+    let smb1_stores = main
+        .lines()
+        // SMB1 is image byte 81 in the a5 layout.
+        .filter(|l| l.contains("istore8") && l.ends_with("v0+81"))
+        .count();
+    assert_eq!((zero_tests, smb1_stores), (1, 1), "{main}");
+}

@@ -8,7 +8,7 @@
 //! are done as a write of the old value (`select`), which leaves the same bytes without a branch.
 
 use super::Lower;
-use super::cache::Addr;
+use super::cache::{Addr, FlagsChain};
 use super::mem::{OnFail, Place};
 use super::mf;
 use super::state::BoxState;
@@ -38,6 +38,57 @@ impl Lower<'_, '_> {
         let kept = self.b.ins().band_imm_s(old, !clear_mask & 0xFF);
         let new = self.b.ins().bor(kept, bits);
         self.set_byte_pred(a, new);
+    }
+
+    /// SM1.0–SM1.2 of an integer `+`/`-` whose result is `r` (sign-extended to `i32`) and
+    /// whose signed overflow is `ovf`: overflow alone, or zero and negative of the result.
+    /// Written as a link of a [`FlagsChain`]: where the previous SMB1 write was such a box's
+    /// and is still cached, this box's result and overflow are selected over that box's by
+    /// its power flow and the byte is derived from the chain's start, so the previous box's
+    /// flag computation dies with its store (`dse`).
+    fn put_result_flags(&mut self, r: Value, ovf: Value) {
+        let a = self.smb1();
+        let chain = self
+            .block
+            .cache
+            .flags
+            .filter(|c| self.block.cache.get(a) == Some(c.smb1));
+        let pred = self.in_box.pred.as_ref().map(|p| (p.flow, p.pf));
+        let (base, r, ovf, ran, ran_cond) = match (chain, pred) {
+            (None, None) => (self.byte(a), r, ovf, B::K(true), None),
+            (None, Some((flow, pf))) => (self.byte(a), r, ovf, flow, Some(pf)),
+            (Some(c), None) => (c.base, r, ovf, B::K(true), None),
+            (Some(c), Some((flow, pf))) => {
+                let r = self.b.ins().select(pf, r, c.r);
+                let ovf = self.b.ins().select(pf, ovf, c.ovf);
+                let ran = flow.or(&mut self.b, c.ran);
+                let cond = match ran {
+                    B::K(true) => None,
+                    _ => Some(ran.cond(&mut self.b)),
+                };
+                (c.base, r, ovf, ran, cond)
+            }
+        };
+        let zn = self.zn_bits(r);
+        let ovf_bits = self.iconst(I32, i64::from(flags::OVERFLOW));
+        let bits = self.b.ins().select(ovf, ovf_bits, zn);
+        let kept = self
+            .b
+            .ins()
+            .band_imm_s(base, !i64::from(flags::RESULT) & 0xFF);
+        let new = self.b.ins().bor(kept, bits);
+        let new = match ran_cond {
+            Some(c) => self.b.ins().select(c, new, base),
+            None => new,
+        };
+        self.set_byte(a, new);
+        self.block.cache.flags = Some(FlagsChain {
+            smb1: new,
+            base,
+            r,
+            ovf,
+            ran,
+        });
     }
 
     /// SM1.0 and SM1.2 bits of a result (`r` sign-extended to i32 for the negative test).
@@ -307,10 +358,7 @@ impl Lower<'_, '_> {
                 (r, self.b.ins().icmp(IntCC::NotEqual, back, r))
             }
         };
-        let zn = self.zn_bits(r);
-        let ovf_bits = self.iconst(I32, i64::from(flags::OVERFLOW));
-        let bits = self.b.ins().select(ovf, ovf_bits, zn);
-        self.put_flags(i64::from(flags::RESULT), bits);
+        self.put_result_flags(r, ovf);
         let masked = self.b.ins().band_imm_s(r, i64::from(width.mask()));
         let ovf32 = self.b.ins().uextend(I32, ovf);
         let ok = B::Not { v: ovf32, pos: 0 };

@@ -74,6 +74,9 @@ pub(crate) struct Cache {
     pub(crate) now: usize,
     /// The boolean behind the ENO byte's cached value, while that value is still cached.
     pub(crate) eno: Option<EnoFact>,
+    /// What the last integer `+`/`-` box left in SMB1, while SMB1's cached value is still
+    /// the one it stored.
+    pub(crate) flags: Option<FlagsChain>,
 }
 
 /// What a branch-free box knew when it set ENO: `AENO` right after it can use the boolean
@@ -92,6 +95,28 @@ pub(crate) struct EnoFact {
     pub(crate) top: B,
 }
 
+/// SMB1 as left by a run of integer `+`/`-` boxes (`+I`, `-D`, `INCW`, ...), kept as the
+/// operands of its rule rather than as the byte: SM1.0–SM1.2 of such a box depend only on its
+/// result and overflow, so a box that follows selects its own result and overflow over the
+/// chain's and derives the byte once, from where the chain started. Every box still stores
+/// the byte it computes; the dead-store pass drops all but the last store of a block, and
+/// with it the flag computations nobody reads (about ten instructions a box).
+///
+/// The fact holds only while SMB1's cached value is `smb1`, like [`EnoFact`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct FlagsChain {
+    /// The SMB1 value the chain's last box stored.
+    pub(crate) smb1: Value,
+    /// SMB1 before the chain's first box.
+    pub(crate) base: Value,
+    /// The result (sign-extended to `i32`) of the chain's last box that ran.
+    pub(crate) r: Value,
+    /// That box's signed-overflow flag (an `i8` 0/1).
+    pub(crate) ovf: Value,
+    /// Whether any box of the chain ran.
+    pub(crate) ran: B,
+}
+
 impl Cache {
     /// An empty cache whose op clock is at `now`.
     pub(crate) fn at(now: usize) -> Cache {
@@ -99,6 +124,7 @@ impl Cache {
             map: BTreeMap::new(),
             now,
             eno: None,
+            flags: None,
         }
     }
 
@@ -134,6 +160,7 @@ impl Cache {
     pub(crate) fn clear(&mut self) {
         self.map.clear();
         self.eno = None;
+        self.flags = None;
     }
     /// Forgets `len` bytes from `a` (they are about to be overwritten in memory).
     pub(crate) fn forget(&mut self, a: Addr, len: u32) {
@@ -154,10 +181,14 @@ impl Cache {
             .map(|(a, e)| (*a, *e))
             .collect();
         let eno = first.eno.filter(|f| rest.iter().all(|c| c.eno == Some(*f)));
+        let flags = first
+            .flags
+            .filter(|f| rest.iter().all(|c| c.flags == Some(*f)));
         Cache {
             map,
             now: first.now,
             eno,
+            flags,
         }
     }
 }
