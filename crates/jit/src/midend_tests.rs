@@ -1,9 +1,11 @@
-//! Tests of [`super::narrow_byte_loads`] and [`super::Midend`] on hand-built functions: a byte
+//! Tests of the mid-end passes and [`super::Midend`] on hand-built functions. A byte
 //! load whose value the back end sees used once becomes `uextend(load.i8)` and is emitted as
 //! `movzbl`; one it sees used more than once, directly or through a pure instruction, keeps
 //! its `uload8` (its `movzbq` is then one instruction, not a load and a register extension).
+//! Byte masks and bit tests get short immediates where nothing sees the upper bits, and a
+//! constant used far from its previous use is defined again next to it.
 
-use super::{Midend, narrow_byte_loads};
+use super::{CONSTANT_REACH, Midend, local_constants, narrow_byte_loads};
 use crate::lower::mf;
 use crate::{JitOptions, OptLevel};
 use cranelift_codegen::Context;
@@ -234,4 +236,63 @@ fn a_bit_test_that_only_chooses_is_made_on_the_low_byte() {
     // Also stored: a value, not only a condition, so it stays 32 bits wide.
     let mut f = build(true);
     assert_eq!(super::byte_tests(&mut f), 0);
+}
+
+/// `fn(image)`: the constant 0x7FFF defined first, then `select(byte, 0x7FFF, byte)` stored at
+/// three places: the first two selects right after each other, the third after `gap` byte
+/// loads and stores in between.
+fn selects_of_one_constant(gap: usize) -> Function {
+    crate::test_fn::build(1, |b, p| {
+        let k = b.ins().iconst(I32, 0x7FFF);
+        let select_at = |b: &mut cranelift_frontend::FunctionBuilder, off: i32| {
+            let x = b.ins().uload8(I32, mf(), p[0], off);
+            let y = b.ins().select(x, k, x);
+            b.ins().istore8(mf(), y, p[0], off);
+        };
+        select_at(b, 0);
+        select_at(b, 1);
+        for i in 0..gap {
+            let x = b.ins().uload8(I32, mf(), p[0], 100 + i as i32);
+            b.ins().istore8(mf(), x, p[0], 200 + i as i32);
+        }
+        select_at(b, 2);
+    })
+}
+
+/// The `iconst` each `select` takes as its second argument, in layout order.
+fn select_constants(f: &Function) -> Vec<cranelift_codegen::ir::Value> {
+    f.layout
+        .blocks()
+        .flat_map(|b| f.layout.block_insts(b))
+        .filter(|&i| f.dfg.insts[i].opcode() == Opcode::Select)
+        .map(|i| f.dfg.inst_args(i)[1])
+        .collect()
+}
+
+#[test]
+fn a_constant_used_far_apart_is_defined_again_near_the_later_use() {
+    let mut f = selects_of_one_constant(CONSTANT_REACH);
+    // The first select gets a definition of its own right before it, the second (three
+    // instructions on) shares it, the third is too far from the second.
+    assert_eq!(local_constants(&mut f), 2);
+    let ks = select_constants(&f);
+    assert_eq!(ks[0], ks[1]);
+    assert_ne!(ks[1], ks[2]);
+    for k in ks {
+        let def = f.dfg.value_def(k).inst().expect("an instruction");
+        assert_eq!(f.dfg.insts[def].opcode(), Opcode::Iconst);
+        assert_eq!(crate::dse::iconst(&f, k), Some(0x7FFF));
+        // Each definition sits right before the select that first takes it.
+        let next = f.layout.next_inst(def).expect("a user");
+        assert_eq!(f.dfg.insts[next].opcode(), Opcode::Select);
+    }
+}
+
+#[test]
+fn uses_within_reach_share_one_definition() {
+    let mut f = selects_of_one_constant(0);
+    // Select, store, load, select: the third select is three instructions after the second.
+    assert_eq!(local_constants(&mut f), 1);
+    let ks = select_constants(&f);
+    assert!(ks.iter().all(|&k| k == ks[0]), "{ks:?}");
 }
