@@ -67,7 +67,7 @@ pub fn clif_text(program: &Program, opts: &JitOptions) -> Result<String, JitErro
 
 /// The annotated CLIF after the mid-end ([`crate::midend`]: Cranelift's unreachable-code
 /// removal, at `--opt speed` its e-graph pass, then the encoding passes: byte loads, bit
-/// tests, byte masks), i.e. what is lowered to machine code.
+/// tests, byte masks, constants near their uses), i.e. what is lowered to machine code.
 pub fn optimized_clif_text(program: &Program, opts: &JitOptions) -> Result<String, JitError> {
     annotated_clif(program, opts, true)
 }

@@ -6,7 +6,8 @@
 //! every box stores ENO and most store SMB1, and a box is usually followed by another one in
 //! the same block long before anything loads those bytes (`AENO` and the next box take them
 //! from the byte cache, not from memory). Removing the earlier store also lets Cranelift drop
-//! the computation of a value nobody reads any more (an ENO without an `AENO`).
+//! the computation of a value nobody reads any more (an ENO without an `AENO`, the flags of a
+//! box whose SMB1 the next box of a chain derives anew: `lower::cache::FlagsChain`).
 //!
 //! **Rule.** Walking a block backwards, a byte is *covered* when a later store of the same
 //! block writes it and nothing between that store and the current point may read it. A store
