@@ -10,7 +10,8 @@
 //!
 //! **Rule.** Among the function's loads and stores whose address is exactly the image pointer
 //! (its first parameter) or an opaque copy of it, find the 256-byte window of offsets beyond -128..=127 that holds the
-//! most accesses; if it holds at least [`MIN_ACCESSES`], define `image + bias` once at the
+//! most accesses; if it holds at least [`MIN_ACCESSES`], and at least one per
+//! [`MAX_INSTS_PER_ACCESS`] instructions of the function, define `image + bias` once at the
 //! entry (the window's middle, so every offset in it becomes -128..=127) and let those accesses
 //! use it. Repeat for up to [`MAX_EXTRA_BASES`] windows. The new base is passed through
 //! `iconcat`/`isplit`, which Cranelift cannot see through, because otherwise the x86 back end
@@ -32,6 +33,14 @@ use cranelift_codegen::ir::{
 /// Accesses a window must hold to get a base pointer of its own (each saves three bytes; the
 /// pointer costs a register and a 7-byte `lea`).
 pub(crate) const MIN_ACCESSES: usize = 16;
+
+/// A base pointer lives across the whole function, and where its window's accesses are
+/// sparse the register allocator spills it and reloads it before each use (five bytes and an
+/// instruction, more than the three bytes a short displacement saves). So a window needs at
+/// least one access per this many instructions of the function too. Measured on eight
+/// generated programs: mostly the second pointer goes (mixed_10k's second windows hold one
+/// access per 78–167 instructions, its first ones one per 27–41), 0.5 % fewer bytes in all.
+pub(crate) const MAX_INSTS_PER_ACCESS: usize = 40;
 
 /// At most this many extra base pointers per function.
 pub(crate) const MAX_EXTRA_BASES: usize = 2;
@@ -65,12 +74,17 @@ pub(crate) fn shorten_displacements(func: &mut Function) -> usize {
             }
         }
     }
+    let insts: usize = func
+        .layout
+        .blocks()
+        .map(|b| func.layout.block_insts(b).count())
+        .sum();
     let mut rewritten = 0;
     for _ in 0..MAX_EXTRA_BASES {
         let Some((bias, n)) = densest_window(&far) else {
             break;
         };
-        if n < MIN_ACCESSES {
+        if n < MIN_ACCESSES || n * MAX_INSTS_PER_ACCESS < insts {
             break;
         }
         let (base, copy) = opaque_offset(func, entry, image, bias);

@@ -2,7 +2,7 @@
 //! the same image byte, far ones get short displacements when a window is dense enough, and
 //! functions with calls are left alone.
 
-use super::{MAX_EXTRA_BASES, MIN_ACCESSES, SHORT, shorten_displacements};
+use super::{MAX_EXTRA_BASES, MAX_INSTS_PER_ACCESS, MIN_ACCESSES, SHORT, shorten_displacements};
 use crate::lower::mf;
 use cranelift_codegen::ir::{
     Function, InstBuilder, InstructionData, Opcode, Signature, Value, ValueDef, types::*,
@@ -223,4 +223,16 @@ fn a_function_that_calls_is_left_alone() {
 fn an_empty_function_is_fine() {
     let (_, n) = run(&[], false);
     assert_eq!(n, 0);
+}
+
+#[test]
+fn a_window_sparse_in_a_long_function_keeps_long_displacements() {
+    // The same dense window of far accesses, alone and among enough near ones (which need no
+    // base) that it holds fewer than one access per `MAX_INSTS_PER_ACCESS` instructions: a
+    // pointer that long-lived and that little used would be spilled and reloaded.
+    let far = cluster(600, MIN_ACCESSES);
+    assert_eq!(run(&far, false).1, MIN_ACCESSES);
+    let mut long = far.clone();
+    long.extend((0..MIN_ACCESSES * MAX_INSTS_PER_ACCESS).map(|i| (i % 100) as i32));
+    assert_eq!(run(&long, false).1, 0);
 }
