@@ -34,7 +34,7 @@
 //! between, and the register allocator spills other values (often the extra base pointers) to
 //! make room. Each use whose previous use of the same constant is more than
 //! [`CONSTANT_REACH`] instructions back gets a definition of its own just before it (measured:
-//! 0.4-2.2 % fewer code bytes on nine generated S7 programs of 3,000-10,000 instructions, where
+//! 0.4-2.2 % fewer code bytes on eight generated S7 programs of 3,000-10,000 instructions, where
 //! every use on its own was worse for the zeros of Omron programs). A use that takes an
 //! immediate costs nothing either way.
 
