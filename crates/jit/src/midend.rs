@@ -36,7 +36,8 @@
 //! [`CONSTANT_REACH`] instructions back gets a definition of its own just before it (measured:
 //! 0.4-2.2 % fewer code bytes on eight generated S7 programs of 3,000-10,000 instructions, where
 //! every use on its own was worse for the zeros of Omron programs). A use that takes an
-//! immediate costs nothing either way.
+//! immediate costs nothing either way. At `--opt none` there is no e-graph pass and the pass
+//! does not run: lowering already defines a constant where it uses it.
 
 use crate::{JitError, JitOptions, OptLevel};
 use cranelift_codegen::Context;
@@ -73,7 +74,10 @@ impl Midend {
         byte_tests(&mut ctx.func);
         narrow_byte_loads(&mut ctx.func);
         short_byte_masks(&mut ctx.func);
-        local_constants(&mut ctx.func);
+        // Only the e-graph pass shares constants across a block; lowering defines one per use.
+        if self.egraph.is_some() {
+            local_constants(&mut ctx.func);
+        }
         Ok(())
     }
 }
