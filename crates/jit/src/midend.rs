@@ -397,7 +397,7 @@ fn used_more_than_once(func: &Function) -> SecondaryMap<Value, bool> {
 }
 
 /// `func`'s instructions in layout order.
-fn layout_insts(func: &Function) -> impl Iterator<Item = Inst> + '_ {
+pub(crate) fn layout_insts(func: &Function) -> impl Iterator<Item = Inst> + '_ {
     func.layout
         .blocks()
         .flat_map(|b| func.layout.block_insts(b))

@@ -74,11 +74,7 @@ pub(crate) fn shorten_displacements(func: &mut Function) -> usize {
             }
         }
     }
-    let insts: usize = func
-        .layout
-        .blocks()
-        .map(|b| func.layout.block_insts(b).count())
-        .sum();
+    let insts = crate::midend::layout_insts(func).count();
     let mut rewritten = 0;
     for _ in 0..MAX_EXTRA_BASES {
         let Some((bias, n)) = densest_window(&far) else {

@@ -35,9 +35,14 @@ impl Lower<'_, '_> {
     fn put_flags(&mut self, clear_mask: i64, bits: Value) {
         let a = self.smb1();
         let old = self.byte(a);
-        let kept = self.b.ins().band_imm_s(old, !clear_mask & 0xFF);
-        let new = self.b.ins().bor(kept, bits);
+        let new = self.merge_flags(old, clear_mask, bits);
         self.set_byte_pred(a, new);
+    }
+
+    /// `(smb1 AND NOT clear_mask) OR bits`.
+    fn merge_flags(&mut self, smb1: Value, clear_mask: i64, bits: Value) -> Value {
+        let kept = self.b.ins().band_imm_s(smb1, !clear_mask & 0xFF);
+        self.b.ins().bor(kept, bits)
     }
 
     /// SM1.0–SM1.2 of an integer `+`/`-` whose result is `r` (sign-extended to `i32`) and
@@ -55,8 +60,11 @@ impl Lower<'_, '_> {
             .filter(|c| self.block.cache.get(a) == Some(c.smb1));
         let pred = self.in_box.pred.as_ref().map(|p| (p.flow, p.pf));
         let (base, r, ovf, ran, ran_cond) = match (chain, pred) {
-            (None, None) => (self.byte(a), r, ovf, B::K(true), None),
-            (None, Some((flow, pf))) => (self.byte(a), r, ovf, flow, Some(pf)),
+            // A new chain: this box alone, under its own predicate if it has one.
+            (None, _) => {
+                let ran = pred.map_or(B::K(true), |(flow, _)| flow);
+                (self.byte(a), r, ovf, ran, pred.map(|(_, pf)| pf))
+            }
             (Some(c), None) => (c.base, r, ovf, B::K(true), None),
             (Some(c), Some((flow, pf))) => {
                 let r = self.b.ins().select(pf, r, c.r);
@@ -72,11 +80,7 @@ impl Lower<'_, '_> {
         let zn = self.zn_bits(r);
         let ovf_bits = self.iconst(I32, i64::from(flags::OVERFLOW));
         let bits = self.b.ins().select(ovf, ovf_bits, zn);
-        let kept = self
-            .b
-            .ins()
-            .band_imm_s(base, !i64::from(flags::RESULT) & 0xFF);
-        let new = self.b.ins().bor(kept, bits);
+        let new = self.merge_flags(base, i64::from(flags::RESULT), bits);
         let new = match ran_cond {
             Some(c) => self.b.ins().select(c, new, base),
             None => new,
