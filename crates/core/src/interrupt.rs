@@ -279,6 +279,54 @@ const fn timed_event(channel: u8) -> u8 {
 /// The events of timed interrupts 0 and 1 (10, 11).
 pub const TIMED_EVENTS: [u8; 2] = [timed_event(0), timed_event(1)];
 
+/// A set of event numbers: bit `n` for event `n` (every number is below [`EVENT_SLOTS`], 64).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct EventSet(pub u64);
+
+impl EventSet {
+    /// The numbers in the set, ascending.
+    pub fn numbers(self) -> impl Iterator<Item = u8> {
+        let mut rest = self.0;
+        std::iter::from_fn(move || {
+            let n = rest.trailing_zeros();
+            (rest != 0).then(|| {
+                rest &= rest - 1;
+                n as u8
+            })
+        })
+    }
+
+    /// Whether event `n` is in the set.
+    pub fn contains(self, n: u8) -> bool {
+        n < 64 && self.0 & (1 << n) != 0
+    }
+}
+
+/// The events of [`EVENTS`] whose source is an input edge (`by_edge`) or a timer reaching its
+/// preset (otherwise), read off the table at compile time.
+const fn events_of_source(by_edge: bool) -> EventSet {
+    let mut set = 0u64;
+    let mut i = 0;
+    while i < EVENTS.len() {
+        let hit = match EVENTS[i].source {
+            EventSource::InputEdge { .. } => by_edge,
+            EventSource::TimerReached { .. } => !by_edge,
+            _ => false,
+        };
+        if hit {
+            set |= 1 << EVENTS[i].number;
+        }
+        i += 1;
+    }
+    EventSet(set)
+}
+
+/// The input-edge events (§3.5.2), whatever the profile.
+pub const INPUT_EDGE_EVENTS: EventSet = events_of_source(true);
+
+/// The timer events T32/T96 `CT = PT` (§3.5.3), whatever the profile.
+pub const TIMER_REACHED_EVENTS: EventSet = events_of_source(false);
+
 /// What a CPU offers for interrupts.
 #[derive(Debug)]
 pub struct InterruptProfile {
@@ -288,15 +336,36 @@ pub struct InterruptProfile {
     pub queue_depth: [u8; 3],
     /// CALL nesting levels an interrupt routine may use (§1.6).
     pub isr_call_depth: u8,
+    /// `events` as a set, for the runtime's per-scan walks over one kind of event.
+    set: EventSet,
 }
 
 impl InterruptProfile {
     /// No interrupts (the Omron profiles).
-    pub const NONE: InterruptProfile = InterruptProfile {
-        events: &[],
-        queue_depth: [0; 3],
-        isr_call_depth: 0,
-    };
+    pub const NONE: InterruptProfile = InterruptProfile::new(&[], [0; 3], 0);
+
+    /// A CPU with `events` (ascending, each below [`EVENT_SLOTS`]), `queue_depth` entries per
+    /// queue and `isr_call_depth` CALL levels below a routine.
+    pub const fn new(events: &'static [u8], queue_depth: [u8; 3], isr_call_depth: u8) -> Self {
+        let mut set = 0u64;
+        let mut i = 0;
+        while i < events.len() {
+            set |= 1 << events[i];
+            i += 1;
+        }
+        InterruptProfile {
+            events,
+            queue_depth,
+            isr_call_depth,
+            set: EventSet(set),
+        }
+    }
+
+    /// The CPU's events in `of` (a set of [`EVENTS`] by source, such as
+    /// [`INPUT_EDGE_EVENTS`]), ascending: a walk over those alone, not over the whole table.
+    pub fn infos_in(&self, of: EventSet) -> impl Iterator<Item = &'static EventInfo> + use<> {
+        EventSet(self.set.0 & of.0).numbers().filter_map(event)
+    }
 
     /// Whether the CPU has event `n`.
     pub fn has(&self, n: u8) -> bool {
@@ -329,37 +398,37 @@ impl InterruptProfile {
 /// The A5 (Appendix A, `a5` profile default [design]): events 0–15, 23, 25–28; no T32/T96
 /// events (its timer table differs). Queue depths as the S7-200 CPU 221–224 [design: the seed
 /// is silent]; one CALL level from a routine, as the classic S7-200.
-pub static A5_INTERRUPTS: InterruptProfile = InterruptProfile {
-    events: &[
+pub static A5_INTERRUPTS: InterruptProfile = InterruptProfile::new(
+    &[
         0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 23, 25, 26, 27, 28,
     ],
-    queue_depth: [4, 16, 8],
-    isr_call_depth: 1,
-};
+    [4, 16, 8],
+    1,
+);
 
 /// The S7-200 CPU 226: events 0–33, a communication queue of 8 (§3.3 [S7-200 help]), one CALL
 /// level from a routine [S7-200 manual].
-pub static S7_200_INTERRUPTS: InterruptProfile = InterruptProfile {
-    events: &[
+pub static S7_200_INTERRUPTS: InterruptProfile = InterruptProfile::new(
+    &[
         0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24,
         25, 26, 27, 28, 29, 30, 31, 32, 33,
     ],
-    queue_depth: [8, 16, 8],
-    isr_call_depth: 1,
-};
+    [8, 16, 8],
+    1,
+);
 
 /// The S7-200 SMART (§3.2 [SMART manual, recalled; uncertain I1]): events 0–13 and 16–38
 /// (14, 15 reserved; 29–33 for HSC3–HSC5, which the profile has; 34 PLS2; 35–38 the signal
 /// board's I7.0/I7.1 edges), the queue depths of all SMART CPUs, four CALL levels from a
 /// routine [SMART manual 7.10.3].
-pub static SMART_INTERRUPTS: InterruptProfile = InterruptProfile {
-    events: &[
+pub static SMART_INTERRUPTS: InterruptProfile = InterruptProfile::new(
+    &[
         0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26,
         27, 28, 29, 30, 31, 32, 33, 34, 35, 36, 37, 38,
     ],
-    queue_depth: [4, 16, 8],
-    isr_call_depth: 4,
-};
+    [4, 16, 8],
+    4,
+);
 
 #[cfg(test)]
 mod tests {
@@ -392,6 +461,32 @@ mod tests {
         assert_eq!(S7_200_INTERRUPTS.slots(), 32);
         assert!(!SMART_INTERRUPTS.has(14) && SMART_INTERRUPTS.has(38));
         assert_eq!(TIMED_EVENTS, [10, 11]);
+        for p in [&A5_INTERRUPTS, &S7_200_INTERRUPTS, &SMART_INTERRUPTS] {
+            let edges: Vec<u8> = p.infos_in(INPUT_EDGE_EVENTS).map(|e| e.number).collect();
+            let by_table: Vec<u8> = p
+                .infos()
+                .filter(|e| matches!(e.source, EventSource::InputEdge { .. }))
+                .map(|e| e.number)
+                .collect();
+            assert_eq!(edges, by_table);
+            let timers: Vec<u8> = p.infos_in(TIMER_REACHED_EVENTS).map(|e| e.number).collect();
+            let by_table: Vec<u8> = p
+                .infos()
+                .filter(|e| matches!(e.source, EventSource::TimerReached { .. }))
+                .map(|e| e.number)
+                .collect();
+            assert_eq!(timers, by_table);
+        }
+        assert_eq!(
+            S7_200_INTERRUPTS
+                .infos_in(TIMER_REACHED_EVENTS)
+                .map(|e| e.number)
+                .collect::<Vec<_>>(),
+            [21, 22]
+        );
+        assert_eq!(SMART_INTERRUPTS.infos_in(INPUT_EDGE_EVENTS).count(), 12);
+        assert_eq!(EventSet(0b1010).numbers().collect::<Vec<_>>(), [1, 3]);
+        assert!(EventSet(1 << 63).contains(63) && !EventSet(1).contains(64));
     }
 
     #[test]

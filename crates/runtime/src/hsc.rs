@@ -25,7 +25,10 @@
 //! * CV wraps at the ends of the DINT range (§8.4 [uncertain: wrap]).
 //! * The status byte's bits 0–4 are kept; HSC with bit 7 clear only disables (§8.1).
 
-use crate::interrupt::{self, sources::Happening};
+use crate::interrupt::{
+    self,
+    sources::{Happening, SourceKind},
+};
 use crate::mem;
 use stljit_core::hsc::{HscEvent, HscInfo, InputBit, Mode};
 use stljit_core::interrupt::{EventSource, hsc_event};
@@ -279,6 +282,10 @@ pub(crate) struct Counter {
 }
 
 impl Happening for Counter {
+    fn kind(&self) -> SourceKind {
+        SourceKind::Counter
+    }
+
     fn next(&self, img: &[u8], layout: &Layout) -> Option<u64> {
         info(layout, self.n)?;
         let n = self.n;

@@ -21,7 +21,10 @@
 //! * A delta calculation error (§9.3) stops the channel: idle (status .7 and .4), no event.
 //! * Stopping with control bit 7 clear sets status .7 (idle) whatever ran.
 
-use crate::interrupt::{self, sources::Happening};
+use crate::interrupt::{
+    self,
+    sources::{Happening, SourceKind},
+};
 use crate::mem;
 use stljit_core::interrupt::pulse_event;
 use stljit_core::layout::{Layout, PulseState};
@@ -283,6 +286,10 @@ pub(crate) struct Generator {
 }
 
 impl Happening for Generator {
+    fn kind(&self) -> SourceKind {
+        SourceKind::Pulse
+    }
+
     fn next(&self, img: &[u8], layout: &Layout) -> Option<u64> {
         info(layout, self.n)?;
         (get(img, layout, self.n, PulseState::STATE) == PTO).then(|| {

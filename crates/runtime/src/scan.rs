@@ -26,6 +26,7 @@
 //! visits every timer as the rule is written; both plans give the same bytes for any image a
 //! program's cold start produced, because only declared timers have a kind (`Image::cold_start`).
 
+use crate::interrupt::sources::Sources;
 use crate::interrupt::{self, Isr};
 use crate::mem;
 use crate::timer;
@@ -87,6 +88,8 @@ pub struct ScanPlan {
     /// The program starts communication (XMT, RCV, network jobs), which the event phases
     /// complete.
     ports: bool,
+    /// The happening sources the event phases visit (from the four fields above).
+    sources: Sources,
 }
 
 impl ScanPlan {
@@ -120,13 +123,19 @@ impl ScanPlan {
                 }
             }
         }
+        let (hsc, pulse, ports) = (
+            program.defines_hsc(),
+            program.uses_pulse(),
+            program.uses_ports(),
+        );
         ScanPlan {
             family: profile.family,
             clock_timers: clock_timers.into(),
+            sources: Sources::new(hsc, pulse, !routines.is_empty(), ports),
             routines: routines.into(),
-            hsc: program.defines_hsc(),
-            pulse: program.uses_pulse(),
-            ports: program.uses_ports(),
+            hsc,
+            pulse,
+            ports,
         }
     }
 
@@ -142,9 +151,13 @@ impl ScanPlan {
         self.has_interrupts() || self.hsc || self.pulse || self.ports
     }
 
-    /// The interrupt routines by number.
-    pub fn routines(&self) -> &[Option<PouId>] {
-        &self.routines
+    /// What the event phases need: the routines, and the happening sources the program can
+    /// set going (a counter without `HDEF`, a pulse output without `PLS`, ... stays idle).
+    pub fn events(&self) -> interrupt::Events<'_> {
+        interrupt::Events {
+            routines: &self.routines,
+            sources: self.sources,
+        }
     }
 
     /// The timers step 4 refreshes from the clock.
@@ -173,6 +186,7 @@ impl ScanPlan {
             hsc: false,
             pulse: false,
             ports: false,
+            sources: Sources::new(false, false, false, false),
         }
     }
 }
@@ -283,10 +297,10 @@ pub fn begin(
         crate::pulse::run_entry(img, layout);
     }
     // E1 (s7-200-more §3.6.2 step 2): the interval since the previous scan; none in scan 0.
-    let routines = plan.routines();
+    let events = plan.events();
     if plan.has_events()
         && !first
-        && interrupt::interval_phase(img, layout, routines, isr, micros(t_prev), micros(t_ms))
+        && interrupt::interval_phase(img, layout, events, isr, micros(t_prev), micros(t_ms))
             .is_err()
     {
         return Begin::Fatal;
@@ -324,7 +338,7 @@ pub fn begin(
         crate::comm::instant(img, layout);
     }
     if plan.has_events()
-        && interrupt::instant_phase(img, layout, routines, isr, micros(t_ms)).is_err()
+        && interrupt::instant_phase(img, layout, events, isr, micros(t_ms)).is_err()
     {
         return Begin::Fatal;
     }

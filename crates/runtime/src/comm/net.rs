@@ -7,7 +7,10 @@
 
 use super::{mode, regs};
 use crate::block::Span;
-use crate::interrupt::{self, sources::Happening};
+use crate::interrupt::{
+    self,
+    sources::{Happening, SourceKind},
+};
 use crate::mem;
 use crate::pointer;
 use stljit_core::comm::{self, NET_LATENCY_US, Protocol};
@@ -111,6 +114,10 @@ impl NetJobs {
 }
 
 impl Happening for NetJobs {
+    fn kind(&self) -> SourceKind {
+        SourceKind::Network
+    }
+
     fn next(&self, img: &[u8], layout: &Layout) -> Option<u64> {
         Self::due(img, layout).map(|(t, _)| t)
     }

@@ -4,7 +4,10 @@
 
 use super::{get, get_u64, mode, regs, set, set_tx_idle, set_u64, sm};
 use crate::block::Span;
-use crate::interrupt::{self, sources::Happening};
+use crate::interrupt::{
+    self,
+    sources::{Happening, SourceKind},
+};
 use crate::mem;
 use stljit_core::ErrorCode;
 use stljit_core::comm::{self, PortRegs, Protocol, rcv};
@@ -201,6 +204,10 @@ impl Port {
 }
 
 impl Happening for Port {
+    fn kind(&self) -> SourceKind {
+        SourceKind::Port
+    }
+
     fn next(&self, img: &[u8], layout: &Layout) -> Option<u64> {
         if layout.block_size(Block::Ports) == 0 {
             return None;

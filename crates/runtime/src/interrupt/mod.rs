@@ -35,7 +35,7 @@ pub mod sources;
 mod tests;
 
 pub(crate) use queue::raise;
-pub use service::{Isr, NoIsr, PhaseFatal, instant_phase, interval_phase};
+pub use service::{Events, Isr, NoIsr, PhaseFatal, instant_phase, interval_phase};
 
 use crate::mem;
 use stljit_core::interrupt::{self, EVENT_SLOTS, EventSource, TIMED_INTERVAL_SMB};

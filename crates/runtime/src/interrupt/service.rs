@@ -1,7 +1,7 @@
 //! The event phases and the service loop (s7-200-more §3.6.3, §3.6.4), and [`Isr`], the one
 //! thing an engine supplies: running a routine's body.
 
-use super::sources::{self, HAPPENINGS};
+use super::sources::{self, HAPPENINGS, Sources};
 use super::{attached, queue, set, set_now};
 use crate::{mem, scan};
 use stljit_core::layout::{IntState, Layout, Sched};
@@ -34,6 +34,16 @@ impl Isr for NoIsr {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PhaseFatal;
 
+/// What the event phases need of the program: its interrupt routines by number and the
+/// sources it can set going (from its scan plan).
+#[derive(Clone, Copy, Debug)]
+pub struct Events<'a> {
+    /// The interrupt routines by number.
+    pub routines: &'a [Option<PouId>],
+    /// The happening sources that may act.
+    pub sources: Sources,
+}
+
 /// The routines of a program by interrupt number, and the engine that runs them.
 struct Service<'a> {
     routines: &'a [Option<PouId>],
@@ -47,10 +57,10 @@ fn swap_inputs(img: &mut [u8], layout: &Layout) {
         layout.phys_in as usize,
         layout.int_state(IntState::PREV_IN) as usize,
     );
-    if a + n <= img.len() && b + n <= img.len() && (a + n <= b || b + n <= a) {
-        for i in 0..n {
-            img.swap(a + i, b + i);
-        }
+    let (lo, hi) = (a.min(b), a.max(b));
+    if lo + n <= hi && hi + n <= img.len() {
+        let (first, second) = img.split_at_mut(hi);
+        first[lo..lo + n].swap_with_slice(&mut second[..n]);
     }
 }
 
@@ -62,18 +72,21 @@ fn swap_inputs(img: &mut [u8], layout: &Layout) {
 pub fn interval_phase(
     img: &mut [u8],
     layout: &Layout,
-    routines: &[Option<PouId>],
+    events: Events<'_>,
     isr: &mut dyn Isr,
     ta: u64,
     tb: u64,
 ) -> Result<(), PhaseFatal> {
-    let mut s = Service { routines, isr };
+    let mut s = Service {
+        routines: events.routines,
+        isr,
+    };
     swap_inputs(img, layout);
-    sources::start_interval(img, layout, ta, tb);
+    sources::start_interval(img, layout, events.sources, ta, tb);
     let r = (|| {
         sources::poll_timers(img, layout, ta);
         s.service(img, layout, ta)?;
-        while let Some((tau, rank, before)) = sources::next_due(img, layout, tb) {
+        while let Some((tau, rank, before)) = sources::next_due(img, layout, events.sources, tb) {
             HAPPENINGS[rank].apply_before(img, layout, tau, before);
             s.service(img, layout, tau)?;
         }
@@ -89,13 +102,16 @@ pub fn interval_phase(
 pub fn instant_phase(
     img: &mut [u8],
     layout: &Layout,
-    routines: &[Option<PouId>],
+    events: Events<'_>,
     isr: &mut dyn Isr,
     tk: u64,
 ) -> Result<(), PhaseFatal> {
-    let mut s = Service { routines, isr };
+    let mut s = Service {
+        routines: events.routines,
+        isr,
+    };
     set_now(img, layout, tk);
-    sources::instant(img, layout, tk);
+    sources::instant(img, layout, events.sources, tk);
     s.service(img, layout, tk)?;
     set_now(img, layout, tk);
     Ok(())

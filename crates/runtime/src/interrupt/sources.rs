@@ -25,13 +25,68 @@ use crate::hsc::{self, Counter};
 use crate::mem;
 use crate::pulse::Generator;
 use crate::timer::TofPhase;
-use stljit_core::interrupt::{self, EventSource};
+use stljit_core::interrupt::{EventSource, INPUT_EDGE_EVENTS, TIMED_EVENTS, TIMER_REACHED_EVENTS};
 use stljit_core::ir::TimerKind;
 use stljit_core::layout::{IntState, Layout, TimerState};
 use stljit_core::{Area, TimerId};
 
+/// What kind of hardware a [`Happening`] is: a program can only set some of them going (the
+/// [`Sources`] of its scan plan), and the others stay idle without being asked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SourceKind {
+    /// A serial port: characters arrive from the harness whatever the program does.
+    Port,
+    /// A pulse output: runs only after a `PLS`.
+    Pulse,
+    /// A high-speed counter: counts only once an `HDEF` has defined it.
+    Counter,
+    /// A timed interrupt: raises only while attached, which takes an `ATCH` to a routine.
+    Timed,
+    /// The network jobs: only after a `NETR`/`NETW`.
+    Network,
+}
+
+/// The [`HAPPENINGS`] that may act in a program's scans: every port, and the pulse outputs,
+/// counters, timed interrupts and network jobs only where the program can set them going.
+/// The others stay idle for the whole run, so the interval phase neither plans nor polls
+/// them. Computed once per program (its scan plan).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sources {
+    /// Bit `rank` for `HAPPENINGS[rank]`.
+    ranks: u16,
+    /// The counters are among them (they also plan their steps and watch reset inputs).
+    counters: bool,
+}
+
+impl Sources {
+    /// The sources of a program that has an `HDEF` (`counters`), a `PLS` (`pulses`),
+    /// interrupt routines (`timed`) and starts communication (`network`).
+    pub fn new(counters: bool, pulses: bool, timed: bool, network: bool) -> Sources {
+        let may_act = |kind| match kind {
+            SourceKind::Port => true,
+            SourceKind::Pulse => pulses,
+            SourceKind::Counter => counters,
+            SourceKind::Timed => timed,
+            SourceKind::Network => network,
+        };
+        let ranks = HAPPENINGS
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| may_act(s.kind()))
+            .fold(0, |set, (rank, _)| set | 1 << rank);
+        Sources { ranks, counters }
+    }
+
+    /// The ranks of the sources that may act, ascending.
+    fn ranks(self) -> impl Iterator<Item = usize> {
+        (0..HAPPENINGS.len()).filter(move |&r| self.ranks & 1 << r != 0)
+    }
+}
+
 /// Hardware that acts inside a scan interval (module doc).
 pub trait Happening: Sync {
+    /// What kind of hardware it is.
+    fn kind(&self) -> SourceKind;
     /// The time in µs of the source's next happening, `None` while it is idle.
     fn next(&self, img: &[u8], layout: &Layout) -> Option<u64>;
     /// Applies the happening due at `tau` (== what `next` returned).
@@ -55,15 +110,7 @@ struct TimedInterrupt {
 impl TimedInterrupt {
     /// The event this channel raises (10, 11), from the event table.
     fn event(&self) -> Option<u8> {
-        interrupt::EVENTS
-            .iter()
-            .find(|e| {
-                e.source
-                    == EventSource::Timed {
-                        channel: self.channel,
-                    }
-            })
-            .map(|e| e.number)
+        TIMED_EVENTS.get(usize::from(self.channel)).copied()
     }
 
     fn next_at(&self, layout: &Layout) -> u32 {
@@ -80,6 +127,10 @@ impl TimedInterrupt {
 }
 
 impl Happening for TimedInterrupt {
+    fn kind(&self) -> SourceKind {
+        SourceKind::Timed
+    }
+
     fn next(&self, img: &[u8], layout: &Layout) -> Option<u64> {
         let event = self.event()?;
         let live = attached(img, layout, event) != 0 && self.interval(img, layout) != 0;
@@ -94,6 +145,9 @@ impl Happening for TimedInterrupt {
         mem::set_u64_ne(img, self.next_at(layout), tau.saturating_add(step));
     }
 }
+
+// `Sources` holds one bit per happening source.
+const _: () = assert!(HAPPENINGS.len() <= 16);
 
 /// The happening sources in `source_rank` order (§3.6.3): the serial ports 0 and 1
 /// (`crate::comm`, each receive before transmit), the pulse outputs PTO0–PTO2
@@ -119,11 +173,16 @@ pub static HAPPENINGS: &[&dyn Happening] = &[
 /// The pending happening with the smallest `(τ, rank)` due at or before `until`: its time, its
 /// index in [`HAPPENINGS`], and the time before which no other source's happening is due
 /// (`until + 1` when none is), for [`Happening::apply_before`].
-pub(crate) fn next_due(img: &[u8], layout: &Layout, until: u64) -> Option<(u64, usize, u64)> {
+pub(crate) fn next_due(
+    img: &[u8],
+    layout: &Layout,
+    sources: Sources,
+    until: u64,
+) -> Option<(u64, usize, u64)> {
     let mut first: Option<(u64, usize)> = None;
     let mut second = until.saturating_add(1);
-    for (rank, s) in HAPPENINGS.iter().enumerate() {
-        let Some(t) = s.next(img, layout).filter(|&t| t <= until) else {
+    for rank in sources.ranks() {
+        let Some(t) = HAPPENINGS[rank].next(img, layout).filter(|&t| t <= until) else {
             continue;
         };
         // Ranks ascend, so at equal times the one found first keeps its place.
@@ -141,17 +200,21 @@ pub(crate) fn next_due(img: &[u8], layout: &Layout, until: u64) -> Option<(u64, 
 
 /// The start of the interval `(ta, tb]` (µs): the sources whose happenings depend on the
 /// harness's activity in it (the high-speed counters' steps, the received characters) plan
-/// them.
-pub(crate) fn start_interval(img: &mut [u8], layout: &Layout, ta: u64, tb: u64) {
-    hsc::start_interval(img, layout, ta, tb);
+/// them (the counters only where the program defines one: see [`Sources`]).
+pub(crate) fn start_interval(img: &mut [u8], layout: &Layout, sources: Sources, ta: u64, tb: u64) {
+    if sources.counters {
+        hsc::start_interval(img, layout, ta, tb);
+    }
     comm::start_rx(img, layout, ta);
 }
 
 /// The instant sources at `T_k` (§3.6.2 step 5): input edges, the high-speed counters' reset
 /// inputs, then T32/T96; `PREV_IN` takes the new inputs after the first two compared them.
-pub(crate) fn instant(img: &mut [u8], layout: &Layout, tau: u64) {
+pub(crate) fn instant(img: &mut [u8], layout: &Layout, sources: Sources, tau: u64) {
     input_edges(img, layout, tau);
-    hsc::instant(img, layout, layout.int_state(IntState::PREV_IN), tau);
+    if sources.counters {
+        hsc::instant(img, layout, layout.int_state(IntState::PREV_IN), tau);
+    }
     let n = layout.area_size(Area::I) as usize;
     let (from, to) = (
         layout.phys_in as usize,
@@ -167,8 +230,20 @@ pub(crate) fn instant(img: &mut [u8], layout: &Layout, tau: u64) {
 /// physical inputs and those of the last scan instant (`PREV_IN`) in its direction.
 fn input_edges(img: &mut [u8], layout: &Layout, tau: u64) {
     let prev = layout.int_state(IntState::PREV_IN);
+    let (p, now, n) = (
+        prev as usize,
+        layout.phys_in as usize,
+        layout.area_size(Area::I) as usize,
+    );
+    // Inputs that did not change since the last instant have no edges (the usual case).
+    if img
+        .get(p..p + n)
+        .is_some_and(|old| img.get(now..now + n) == Some(old))
+    {
+        return;
+    }
     let ints = layout.profile.profile().interrupts;
-    for info in ints.infos() {
+    for info in ints.infos_in(INPUT_EDGE_EVENTS) {
         if let EventSource::InputEdge { byte, bit, rising } = info.source {
             let old = mem::get_bit(img, prev + byte, bit);
             let new = mem::get_bit(img, layout.phys_in + byte, bit);
@@ -205,10 +280,12 @@ fn reached(img: &[u8], layout: &Layout, n: TimerId) -> bool {
 pub(crate) fn poll_timers(img: &mut [u8], layout: &Layout, tau: u64) {
     let ints = layout.profile.profile().interrupts;
     let mut prev = super::get(img, layout, IntState::TIMER_PREV);
-    let timers = ints.infos().filter_map(|info| match info.source {
-        EventSource::TimerReached { timer } => Some((info.number, timer)),
-        _ => None,
-    });
+    let timers = ints
+        .infos_in(TIMER_REACHED_EVENTS)
+        .filter_map(|info| match info.source {
+            EventSource::TimerReached { timer } => Some((info.number, timer)),
+            _ => None,
+        });
     for (i, (event, timer)) in timers.enumerate().take(8) {
         let now = reached(img, layout, TimerId(timer));
         let mask = 1u8 << i;
