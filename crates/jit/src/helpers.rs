@@ -85,8 +85,8 @@ helpers! {
     TaskStart => "stljit_rt_task_start", ffi::stljit_rt_task_start, ImageLayout, [] -> I32;
     /// `stljit_rt_interrupt(kind, event, routine)`: ATCH, DTCH, ENI, DISI, CEVNT.
     Interrupt => "stljit_rt_interrupt", ffi::stljit_rt_interrupt, ImageLayout, [I32, I32, I32] -> I32;
-    /// `stljit_rt_value(op, sub, out, in1) -> u64` packed outcome (`ffi::ValueOp`).
-    Value => "stljit_rt_value", ffi::stljit_rt_value, Nothing, [I32, I32, I32, I32] -> I64;
+    /// `stljit_rt_value(op, out, in1) -> u64` packed outcome (`op`: the `ffi::ValueOp`'s code).
+    Value => "stljit_rt_value", ffi::stljit_rt_value, Nothing, [I32, I32, I32] -> I64;
     /// `stljit_rt_omron_<kind>_fast(value, flag, state, now, ctl, sv)`: pointers; one shim
     /// per Omron timer kind.
     OmronTimFast => "stljit_rt_omron_tim_fast", ffi::stljit_rt_omron_tim_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;

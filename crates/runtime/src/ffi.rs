@@ -29,7 +29,7 @@
 //! | `stljit_rt_fill(img, l, value, dst, dst_end, count)` | [`crate::block::fill`] | status |
 //! | `stljit_rt_shift_register(img, l, data, area, byte, bit, frame, len: i32)` | [`crate::block::shift_register`] | status |
 //! | `stljit_rt_pointer_end(img, l, ptr)` | end of a pointer's [`crate::block::Span`] | image offset (0 = bad) |
-//! | `stljit_rt_value(op, sub, out, in1)` | [`ValueOp::outcome`] | u64: packed [`crate::flags::Outcome`] |
+//! | `stljit_rt_value(op, out, in1)` | [`ValueOp::outcome`] | u64: packed [`crate::flags::Outcome`] |
 //! | `stljit_rt_ext(img, l, op: *const ExtBox, frame, pf)` | [`crate::ext::execute`] | u64: ENO, or the error code |
 //! | `stljit_rt_str_compare(img, l, c: *const StrCompare, frame)` | [`crate::ext::str_compare`] | u64: the contact, or the fatal code |
 //! | `stljit_rt_omron_box(img, l, code, a, b, dst)` | [`crate::omron_image::run_box`] | status |
@@ -48,9 +48,9 @@
 //! | `stljit_rt_omron_cntr_fast(value, flag, state, ctl, sv)` | [`crate::omron_image::counter_step`] | packed flag writes |
 //! | `stljit_rt_omron_cntrx_fast(value, flag, state, ctl, sv)` | [`crate::omron_image::counter_step`] | packed flag writes |
 //!
-//! Enum arguments (`area`, and inside [`ValueOp`]'s encoding `op`, `func`, `conv`) are
-//! [`FfiCode`]s: the position in the enum's declaration order (`ArithOp`: Add 0, Sub 1, Mul 2,
-//! Div 3; `Area`: its position in `Area::ALL`).
+//! Enum arguments (`area`, the value shim's `op`) are [`FfiCode`]s: the position in the enum's
+//! list (`Area`: its position in `Area::ALL`; [`ValueOp`]: in one constant table of every
+//! value computation).
 //!
 //! Two kinds of shim break the first convention on purpose. The `_fast` shims (`ffi/omron.rs`,
 //! for the Omron timers and counters; one per kind) take pointers to the few bytes one
@@ -79,7 +79,7 @@ pub use value::*;
 use crate::rules::{FirstScanEdges, Gate, GatePolicy, Rules};
 use crate::{counter, pointer, scan, timer};
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use stljit_core::ir::{ArithOp, Conversion, CounterKind, RealFn, TimerKind};
+use stljit_core::ir::{CounterKind, TimerKind};
 use stljit_core::layout::Layout;
 use stljit_core::{Area, ErrorCode, ScanStatus, Width};
 
@@ -227,16 +227,6 @@ pub trait FfiCode: Copy + PartialEq + 'static {
         Self::ALL.get(code as usize).copied()
     }
 }
-
-// The lists live with the enums in core, where the program generator uses them too.
-macro_rules! ffi_code_from_core {
-    ($($ty:ty),+) => {$(
-        impl FfiCode for $ty {
-            const ALL: &'static [Self] = <$ty>::ALL;
-        }
-    )+};
-}
-ffi_code_from_core!(ArithOp, RealFn, Conversion);
 
 impl FfiCode for Area {
     const ALL: &'static [Self] = &Area::ALL;

@@ -1,11 +1,10 @@
 //! The value shim: one pure `extern "C"` entry to every box computation with an intricate flag
 //! rule ([`arith`], [`bitops`], [`convert`]). Part of [`crate::ffi`].
 //!
-//! Compiled code reads the operands itself, calls [`stljit_rt_value`] with a [`ValueOp`]
-//! encoded as two integers, and applies the packed [`Outcome`] (value and SMB1 masks) with its
-//! own stores, so the call touches no memory and the byte cache survives it. [`ValueOp`] is the
-//! one place that knows the encoding: [`ValueOp::encode`] for the JIT, [`ValueOp::decode`] for
-//! the shim, and [`ValueOp::outcome`] for the dispatch, an exhaustive match.
+//! Compiled code reads the operands itself, calls [`stljit_rt_value`] with a [`ValueOp`]'s code
+//! (its position in one constant table of every operation, [`FfiCode`]), and applies the
+//! packed [`Outcome`] (value and SMB1 masks) with its own stores, so the call touches no memory
+//! and the byte cache survives it. [`ValueOp::outcome`] is the dispatch, an exhaustive match.
 //!
 //! [`ValueBox`] says which boxes are one value computation and with which operands (read from
 //! core's [`BoxOp::operand_uses`]), so both engines dispatch those boxes through it.
@@ -16,7 +15,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use stljit_core::Width;
 use stljit_core::ir::{Access, ArithOp, BoxOp, Conversion, OperandUse, RealFn};
 
-use super::{FfiCode, width_of};
+use super::FfiCode;
 
 /// A box computation the value shim runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,73 +55,69 @@ pub enum ValueOp {
     Convert(Conversion),
 }
 
-// Selector codes (the `op` argument).
-const INT_ARITH: u32 = 1;
-const MUL_WIDE: u32 = 2;
-const DIV_WIDE: u32 = 3;
-const STEP: u32 = 4;
-const REAL_ARITH: u32 = 5;
-const REAL_FUNC: u32 = 6;
-const SHIFT_L: u32 = 9;
-const SHIFT_R: u32 = 10;
-const ROT_L: u32 = 11;
-const ROT_R: u32 = 12;
-const CONVERT: u32 = 13;
+/// Every [`ValueOp`], in the order of their codes (the position here is the `op` argument of
+/// [`stljit_rt_value`], [`FfiCode`]): the shim finds its operation by one indexed load.
+const VALUE_OPS: [ValueOp; VALUE_OP_COUNT] = every_value_op();
 
-/// `sub`: bits 0–7 the width's byte count, bits 8– a sub-operation code.
-fn sub(width: Width, code: u32) -> u32 {
-    width.bytes() | code << 8
+const VALUE_OP_COUNT: usize = 2
+    + Width::ALL.len() * (ArithOp::ALL.len() + 6)
+    + ArithOp::ALL.len()
+    + RealFn::ALL.len()
+    + Conversion::ALL.len();
+
+const fn every_value_op() -> [ValueOp; VALUE_OP_COUNT] {
+    let mut ops = [ValueOp::MulWide; VALUE_OP_COUNT];
+    let mut n = 0;
+    ops[n] = ValueOp::MulWide;
+    ops[n + 1] = ValueOp::DivWide;
+    n += 2;
+    let mut w = 0;
+    while w < Width::ALL.len() {
+        let width = Width::ALL[w];
+        let mut a = 0;
+        while a < ArithOp::ALL.len() {
+            ops[n] = ValueOp::IntArith(ArithOp::ALL[a], width);
+            n += 1;
+            a += 1;
+        }
+        let mut d = 0;
+        while d < 2 {
+            let left = d == 1;
+            ops[n] = ValueOp::Step { width, up: left };
+            ops[n + 1] = ValueOp::Shift { left, width };
+            ops[n + 2] = ValueOp::Rotate { left, width };
+            n += 3;
+            d += 1;
+        }
+        w += 1;
+    }
+    let mut a = 0;
+    while a < ArithOp::ALL.len() {
+        ops[n] = ValueOp::RealArith(ArithOp::ALL[a]);
+        n += 1;
+        a += 1;
+    }
+    let mut f = 0;
+    while f < RealFn::ALL.len() {
+        ops[n] = ValueOp::RealFunc(RealFn::ALL[f]);
+        n += 1;
+        f += 1;
+    }
+    let mut c = 0;
+    while c < Conversion::ALL.len() {
+        ops[n] = ValueOp::Convert(Conversion::ALL[c]);
+        n += 1;
+        c += 1;
+    }
+    assert!(n == VALUE_OP_COUNT);
+    ops
+}
+
+impl FfiCode for ValueOp {
+    const ALL: &'static [Self] = &VALUE_OPS;
 }
 
 impl ValueOp {
-    /// The `(op, sub)` arguments of [`stljit_rt_value`].
-    pub fn encode(self) -> (u32, u32) {
-        match self {
-            ValueOp::IntArith(op, w) => (INT_ARITH, sub(w, op.ffi_code())),
-            ValueOp::MulWide => (MUL_WIDE, sub(Width::DWord, 0)),
-            ValueOp::DivWide => (DIV_WIDE, sub(Width::DWord, 0)),
-            ValueOp::Step { width, up } => (STEP, sub(width, u32::from(up))),
-            ValueOp::RealArith(op) => (REAL_ARITH, sub(Width::DWord, op.ffi_code())),
-            ValueOp::RealFunc(f) => (REAL_FUNC, sub(Width::DWord, f.ffi_code())),
-            ValueOp::Shift { left, width } => (if left { SHIFT_L } else { SHIFT_R }, sub(width, 0)),
-            ValueOp::Rotate { left, width } => (if left { ROT_L } else { ROT_R }, sub(width, 0)),
-            ValueOp::Convert(c) => (CONVERT, sub(c.widths().1, c.ffi_code())),
-        }
-    }
-
-    /// The operation [`ValueOp::encode`] encoded as `(op, sub)`; `None` for any other pair.
-    pub fn decode(op: u32, sub_code: u32) -> Option<ValueOp> {
-        let width = width_of(sub_code & 0xFF)?;
-        let code = sub_code >> 8;
-        let v = match op {
-            INT_ARITH => ValueOp::IntArith(ArithOp::from_ffi(code)?, width),
-            MUL_WIDE => ValueOp::MulWide,
-            DIV_WIDE => ValueOp::DivWide,
-            STEP => ValueOp::Step {
-                width,
-                up: match code {
-                    0 => false,
-                    1 => true,
-                    _ => return None,
-                },
-            },
-            REAL_ARITH => ValueOp::RealArith(ArithOp::from_ffi(code)?),
-            REAL_FUNC => ValueOp::RealFunc(RealFn::from_ffi(code)?),
-            SHIFT_L | SHIFT_R => ValueOp::Shift {
-                left: op == SHIFT_L,
-                width,
-            },
-            ROT_L | ROT_R => ValueOp::Rotate {
-                left: op == ROT_L,
-                width,
-            },
-            CONVERT => ValueOp::Convert(Conversion::from_ffi(code)?),
-            _ => return None,
-        };
-        // Exactly the encoding of `v`: no other pair is accepted.
-        (v.encode() == (op, sub_code)).then_some(v)
-    }
-
     /// Runs the computation on the operands' raw bits (`out`: OUT's old value, 0 where OUT is
     /// not an input; `in1`: IN1, or the count byte of a shift/rotate).
     pub fn outcome(self, out: u32, in1: u32) -> Outcome {
@@ -226,12 +221,12 @@ pub fn pack_outcome(o: Outcome) -> u64 {
         | u64::from(o.flags.clear) << OUTCOME_CLEAR_SHIFT
 }
 
-/// The value shim: runs the [`ValueOp`] encoded as `(op, sub)` on the operands and packs its
-/// outcome ([`pack_outcome`]). Touches no memory. An `(op, sub)` pair that is no encoding, or
-/// a panic (a runtime bug), reads as "no value, no flags", i.e. ENO = 0; the panic never
-/// unwinds across the boundary.
-pub extern "C" fn stljit_rt_value(op: u32, sub: u32, out: u32, in1: u32) -> u64 {
-    let Some(v) = ValueOp::decode(op, sub) else {
+/// The value shim: runs the [`ValueOp`] with code `op` ([`FfiCode`]) on the operands and packs
+/// its outcome ([`pack_outcome`]). Touches no memory. A code that is no operation, or a panic
+/// (a runtime bug), reads as "no value, no flags", i.e. ENO = 0; the panic never unwinds
+/// across the boundary.
+pub extern "C" fn stljit_rt_value(op: u32, out: u32, in1: u32) -> u64 {
+    let Some(v) = ValueOp::from_ffi(op) else {
         return 0;
     };
     catch_unwind(AssertUnwindSafe(|| pack_outcome(v.outcome(out, in1)))).unwrap_or(0)
@@ -324,21 +319,17 @@ mod tests {
     }
 
     #[test]
-    fn decode_inverts_encode_and_rejects_the_rest() {
+    fn every_operation_has_one_code_and_nothing_else_decodes() {
         let ops = every_op();
+        assert_eq!(ValueOp::ALL.len(), ops.len());
         for &v in &ops {
-            let (op, sub) = v.encode();
-            assert_eq!(ValueOp::decode(op, sub), Some(v), "{v:?}");
+            let code = v.ffi_code();
+            assert_eq!(ValueOp::from_ffi(code), Some(v), "{v:?}");
+            assert_eq!(ValueOp::ALL.iter().filter(|&&x| x == v).count(), 1, "{v:?}");
         }
-        let mut accepted = 0;
-        for op in 0..16 {
-            for sub in 0..0x1000 {
-                accepted += usize::from(ValueOp::decode(op, sub).is_some());
-            }
-        }
-        assert_eq!(accepted, ops.len(), "only encodings decode");
+        assert_eq!(ValueOp::from_ffi(ops.len() as u32), None);
         assert_eq!(
-            stljit_rt_value(7, 4, 1, 1),
+            stljit_rt_value(ops.len() as u32, 1, 1),
             0,
             "an unknown selector is ENO = 0"
         );
@@ -357,11 +348,11 @@ mod tests {
             0xFFFF_FFFF,
         ];
         for v in every_op() {
-            let (op, sub) = v.encode();
+            let op = v.ffi_code();
             for &x in &samples {
                 for &y in &samples {
                     assert_eq!(
-                        stljit_rt_value(op, sub, x, y),
+                        stljit_rt_value(op, x, y),
                         pack_outcome(v.outcome(x, y)),
                         "{v:?} {x:#x} {y:#x}"
                     );
@@ -369,8 +360,8 @@ mod tests {
             }
         }
         // +I 32767 + 1: overflow, no value, SM1.1 set, SM1.0/SM1.2 cleared.
-        let (op, sub) = ValueOp::IntArith(ArithOp::Add, Width::Word).encode();
-        let r = stljit_rt_value(op, sub, 32767, 1);
+        let op = ValueOp::IntArith(ArithOp::Add, Width::Word).ffi_code();
+        let r = stljit_rt_value(op, 32767, 1);
         assert_eq!(r >> OUTCOME_HAS_VALUE_SHIFT & 1, 0);
         assert_eq!((r >> OUTCOME_SET_SHIFT) as u8, crate::flags::OVERFLOW);
     }
