@@ -30,32 +30,37 @@ fn separator(fmt: u8) -> (u8, usize) {
     )
 }
 
-/// `digits` (the magnitude's decimal digits, no leading zeros or "0") with `frac` of them after
-/// `sep`, left-padded with '0' to `frac + 1` digits, and a '-' when `negative`.
-fn place_point(digits: &[u8], frac: usize, sep: u8, negative: bool) -> Vec<u8> {
-    let mut d = vec![b'0'; (frac + 1).saturating_sub(digits.len())];
-    d.extend_from_slice(digits);
-    let mut out = Vec::with_capacity(d.len() + 2);
-    if negative {
-        out.push(b'-');
+/// `magnitude` in decimal with `frac` digits after `sep` (zero-padded to at least `frac + 1`
+/// digits) and a '-' when `negative`, right-justified in `size` bytes, or
+/// [`NumText::Spaces`] when that text is wider. Written from the right into the one buffer it
+/// returns: these conversions run every scan in some programs.
+fn fixed_point_text(magnitude: u128, frac: usize, sep: u8, negative: bool, size: usize) -> NumText {
+    let mut out = vec![b' '; size];
+    let mut free = size;
+    let mut put = |b: u8| {
+        free = free.checked_sub(1)?;
+        out[free] = b;
+        Some(())
+    };
+    let fits = (|| {
+        let (mut m, mut n) = (magnitude, 0);
+        while n <= frac || m != 0 {
+            if n == frac && frac > 0 {
+                put(sep)?;
+            }
+            put(b'0' + (m % 10) as u8)?;
+            m /= 10;
+            n += 1;
+        }
+        if negative {
+            put(b'-')?;
+        }
+        Some(())
+    })();
+    match fits {
+        Some(()) => NumText::Text(out),
+        None => NumText::Spaces(size),
     }
-    let split = d.len() - frac;
-    out.extend_from_slice(&d[..split]);
-    if frac > 0 {
-        out.push(sep);
-        out.extend_from_slice(&d[split..]);
-    }
-    out
-}
-
-/// `text` right-justified in `size` bytes, or [`NumText::Spaces`] when it does not fit.
-fn justify(text: Vec<u8>, size: usize) -> NumText {
-    if text.len() > size {
-        return NumText::Spaces(size);
-    }
-    let mut out = vec![b' '; size - text.len()];
-    out.extend(text);
-    NumText::Text(out)
 }
 
 /// ITA/DTA/ITS/DTS (§5.3 `int_text`): `v` with `nnn` digits after the separator, right-justified
@@ -69,8 +74,7 @@ pub fn int_text(v: i32, fmt: u8, size: usize) -> NumText {
     if frac > 5 {
         return NumText::Spaces(size);
     }
-    let digits = v.unsigned_abs().to_string().into_bytes();
-    justify(place_point(&digits, frac, sep, v < 0), size)
+    fixed_point_text(u128::from(v.unsigned_abs()), frac, sep, v < 0, size)
 }
 
 /// The magnitude of the f32 `x` (finite, below 1e16) times 10^`frac`, rounded half away from
@@ -118,9 +122,8 @@ pub fn real_text(bits: u32, fmt: u8) -> NumText {
         return NumText::Spaces(size);
     }
     let q = scaled_magnitude(x, frac);
-    let digits = q.to_string().into_bytes();
     let negative = x.is_sign_negative() && q != 0;
-    justify(place_point(&digits, frac, sep, negative), size)
+    fixed_point_text(q, frac, sep, negative, size)
 }
 
 /// ATH (§5.2): the hex digit of an ASCII character (`0`–`9`, upper-case `A`–`F` only).
