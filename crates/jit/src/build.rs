@@ -4,7 +4,7 @@
 //! the two entry points; [`crate::engine`] finalizes it and calls into it.
 
 use crate::analysis::{self, ChunkPlan};
-use crate::helpers::{Helper, HelperIds};
+use crate::helpers::HelperIds;
 use crate::lower::cache::StoreLog;
 use crate::lower::state::{BlockState, FnState};
 use crate::lower::value::Stack;
@@ -37,9 +37,7 @@ fn cg(e: impl std::fmt::Display) -> JitError {
 pub(crate) fn new_module(opts: &JitOptions) -> Result<JITModule, JitError> {
     let isa = host_isa(opts, "none")?;
     let mut jb = JITBuilder::with_isa(isa, default_libcall_names());
-    for h in Helper::ALL {
-        jb.symbol(h.name(), h.address());
-    }
+    crate::helpers::register_symbols(&mut jb);
     Ok(JITModule::new(jb))
 }
 
@@ -291,6 +289,7 @@ fn lower_fn(
         st,
         leaders: HashMap::new(),
         fnrefs: HashMap::new(),
+        value_refs: HashMap::new(),
         pou_refs: HashMap::new(),
         stores: StoreLog::new(
             env.layout.size,

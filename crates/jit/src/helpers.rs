@@ -1,10 +1,10 @@
 //! The runtime functions compiled code calls, and their Cranelift signatures.
 //!
 //! Every helper is a runtime `extern "C"` shim (`stljit_rt_*`, see `stljit_runtime::ffi`):
-//! the shims over the image, the per-kind Omron timer and counter fast shims, and the pure
-//! value shim
-//! that runs the runtime's box computations (`arith`, `bitops`, `convert`), so that every
-//! intricate flag rule is the runtime's code, not a re-derivation. [`helpers!`] builds the
+//! the shims over the image and the per-kind Omron timer and counter fast shims. Beside them,
+//! the pure value shims, one per `ffi::ValueOp` (`ffi::VALUE_SHIMS`), run the runtime's box
+//! computations (`arith`, `bitops`, `convert`), so that every intricate flag rule is the
+//! runtime's code, not a re-derivation. [`helpers!`] builds the
 //! registry from one table: the enum, [`Helper::ALL`], and per helper its symbol, its host
 //! address and its signature.
 
@@ -85,8 +85,6 @@ helpers! {
     TaskStart => "stljit_rt_task_start", ffi::stljit_rt_task_start, ImageLayout, [] -> I32;
     /// `stljit_rt_interrupt(kind, event, routine)`: ATCH, DTCH, ENI, DISI, CEVNT.
     Interrupt => "stljit_rt_interrupt", ffi::stljit_rt_interrupt, ImageLayout, [I32, I32, I32] -> I32;
-    /// `stljit_rt_value(op, out, in1) -> u64` packed outcome (`op`: the `ffi::ValueOp`'s code).
-    Value => "stljit_rt_value", ffi::stljit_rt_value, Nothing, [I32, I32, I32] -> I64;
     /// `stljit_rt_omron_<kind>_fast(value, flag, state, now, ctl, sv)`: pointers; one shim
     /// per Omron timer kind.
     OmronTimFast => "stljit_rt_omron_tim_fast", ffi::stljit_rt_omron_tim_fast, Nothing, [I64, I64, I64, I64, I32, I32] -> I32;
@@ -168,10 +166,31 @@ impl Helper {
     }
 }
 
+/// The signature of a value shim (`ffi::ValueShim`: `(out, in1) -> packed outcome`).
+fn value_shim_signature(cc: CallConv) -> Signature {
+    let mut s = Signature::new(cc);
+    s.params.extend([AbiParam::new(I32), AbiParam::new(I32)]);
+    s.returns.push(AbiParam::new(I64));
+    s
+}
+
+/// Registers every runtime function compiled code may call with the JIT's symbol table: the
+/// helpers, and the value shim of each `ffi::ValueOp`.
+pub(crate) fn register_symbols(jb: &mut cranelift_jit::JITBuilder) {
+    for h in Helper::ALL {
+        jb.symbol(h.name(), h.address());
+    }
+    for (code, shim) in ffi::VALUE_SHIMS.iter().enumerate() {
+        jb.symbol(ffi::value_shim_symbol(code as u32), *shim as *const u8);
+    }
+}
+
 /// Every helper declared in one module.
 pub(crate) struct HelperIds {
     /// Indexed by `Helper as usize`.
     ids: Vec<FuncId>,
+    /// The value shims, indexed by the operation's code.
+    values: Vec<FuncId>,
 }
 
 impl HelperIds {
@@ -187,12 +206,25 @@ impl HelperIds {
                     .map_err(Box::new)
             })
             .collect::<Result<_, _>>()?;
-        Ok(HelperIds { ids })
+        let sig = value_shim_signature(cc);
+        let values = (0..ffi::VALUE_OP_COUNT as u32)
+            .map(|code| {
+                m.declare_function(&ffi::value_shim_symbol(code), Linkage::Import, &sig)
+                    .map_err(Box::new)
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(HelperIds { ids, values })
     }
 
     /// The id of a helper.
     pub(crate) fn id(&self, h: Helper) -> FuncId {
         self.ids[h as usize]
+    }
+
+    /// The id of the value shim of `op`.
+    pub(crate) fn value(&self, op: ffi::ValueOp) -> FuncId {
+        use ffi::FfiCode;
+        self.values[op.ffi_code() as usize]
     }
 }
 

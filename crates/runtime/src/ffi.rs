@@ -29,7 +29,7 @@
 //! | `stljit_rt_fill(img, l, value, dst, dst_end, count)` | [`crate::block::fill`] | status |
 //! | `stljit_rt_shift_register(img, l, data, area, byte, bit, frame, len: i32)` | [`crate::block::shift_register`] | status |
 //! | `stljit_rt_pointer_end(img, l, ptr)` | end of a pointer's [`crate::block::Span`] | image offset (0 = bad) |
-//! | `stljit_rt_value(op, out, in1)` | [`ValueOp::outcome`] | u64: packed [`crate::flags::Outcome`] |
+//! | `stljit_rt_value_<op>(out, in1)`, one per [`ValueOp`] ([`VALUE_SHIMS`]) | [`ValueOp::outcome`] | u64: packed [`crate::flags::Outcome`] |
 //! | `stljit_rt_ext(img, l, op: *const ExtBox, frame, pf)` | [`crate::ext::execute`] | u64: ENO, or the error code |
 //! | `stljit_rt_str_compare(img, l, c: *const StrCompare, frame)` | [`crate::ext::str_compare`] | u64: the contact, or the fatal code |
 //! | `stljit_rt_omron_box(img, l, code, a, b, dst)` | [`crate::omron_image::run_box`] | status |
@@ -48,9 +48,9 @@
 //! | `stljit_rt_omron_cntr_fast(value, flag, state, ctl, sv)` | [`crate::omron_image::counter_step`] | packed flag writes |
 //! | `stljit_rt_omron_cntrx_fast(value, flag, state, ctl, sv)` | [`crate::omron_image::counter_step`] | packed flag writes |
 //!
-//! Enum arguments (`area`, the value shim's `op`) are [`FfiCode`]s: the position in the enum's
-//! list (`Area`: its position in `Area::ALL`; [`ValueOp`]: in one constant table of every
-//! value computation).
+//! Enum arguments (`area`) are [`FfiCode`]s: the position in the enum's list (`Area`: its
+//! position in `Area::ALL`). A [`ValueOp`]'s code, its position in one constant table of every
+//! value computation, names its shim instead.
 //!
 //! Two kinds of shim break the first convention on purpose. The `_fast` shims (`ffi/omron.rs`,
 //! for the Omron timers and counters; one per kind) take pointers to the few bytes one

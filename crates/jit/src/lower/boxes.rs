@@ -13,7 +13,6 @@ use super::mem::{OnFail, Place};
 use super::mf;
 use super::state::BoxState;
 use super::value::B;
-use crate::helpers::Helper;
 use cranelift_codegen::ir::{
     InstBuilder, Value,
     condcodes::IntCC,
@@ -22,7 +21,7 @@ use cranelift_codegen::ir::{
 use stljit_core::ir::{ArithOp, BoxOp, Loc, LogicOp, Operand};
 use stljit_core::{Area, Width};
 use stljit_runtime::ffi::{
-    FfiCode, OUTCOME_CLEAR_SHIFT, OUTCOME_HAS_VALUE_SHIFT, OUTCOME_SET_SHIFT, ValueBox,
+    OUTCOME_CLEAR_SHIFT, OUTCOME_HAS_VALUE_SHIFT, OUTCOME_SET_SHIFT, ValueBox,
 };
 use stljit_runtime::flags;
 
@@ -415,8 +414,7 @@ impl Lower<'_, '_> {
             } else {
                 s.iconst(I32, 0)
             };
-            let opc = s.iconst(I32, i64::from(vop.ffi_code()));
-            let r = s.call_pure(Helper::Value, &[opc, out, in1]);
+            let r = s.call_value(vop, out, in1);
             let setm = s.b.ins().ushr_imm_s(r, i64::from(OUTCOME_SET_SHIFT));
             let setm = s.b.ins().ireduce(I32, setm);
             let setm = s.b.ins().band_imm_s(setm, 0xFF);

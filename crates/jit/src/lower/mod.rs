@@ -43,6 +43,7 @@ use state::{BlockState, BoxState, FnState};
 use stljit_core::ir::{Op, Program};
 use stljit_core::layout::{Layout, Sched};
 use stljit_core::{Area, ErrorCode, FatalCode, ScanStatus};
+use stljit_runtime::ffi::ValueOp;
 use stljit_runtime::rules::Rules;
 use value::B;
 
@@ -287,6 +288,22 @@ impl<'e, 'f> Lower<'e, 'f> {
     }
 
     /// Calls a runtime shim that never touches the image.
+    /// Calls the value shim of `op` (pure: no image, no memory) on `out` and `in1`; returns
+    /// the packed outcome.
+    pub(crate) fn call_value(&mut self, op: ValueOp, out: Value, in1: Value) -> Value {
+        let fref = match self.func.value_refs.get(&op) {
+            Some(f) => *f,
+            None => {
+                let id = self.env.helpers.value(op);
+                let f = self.module.declare_func_in_func(id, self.b.func);
+                self.func.value_refs.insert(op, f);
+                f
+            }
+        };
+        let call = self.b.ins().call(fref, &[out, in1]);
+        self.b.inst_results(call)[0]
+    }
+
     pub(crate) fn call_pure(&mut self, h: Helper, args: &[Value]) -> Value {
         let fref = match self.func.fnrefs.get(&h) {
             Some(f) => *f,

@@ -1,10 +1,11 @@
 //! The value shim: one pure `extern "C"` entry to every box computation with an intricate flag
 //! rule ([`arith`], [`bitops`], [`convert`]). Part of [`crate::ffi`].
 //!
-//! Compiled code reads the operands itself, calls [`stljit_rt_value`] with a [`ValueOp`]'s code
-//! (its position in one constant table of every operation, [`FfiCode`]), and applies the
-//! packed [`Outcome`] (value and SMB1 masks) with its own stores, so the call touches no memory
-//! and the byte cache survives it. [`ValueOp::outcome`] is the dispatch, an exhaustive match.
+//! Compiled code reads the operands itself, calls the shim of the box's [`ValueOp`]
+//! ([`VALUE_SHIMS`], by the operation's position in one constant table of every operation,
+//! [`FfiCode`]), and applies the packed [`Outcome`] (value and SMB1 masks) with its own stores,
+//! so the call touches no memory and the byte cache survives it. [`ValueOp::outcome`] is the
+//! dispatch, an exhaustive match, which each shim resolves at compile time.
 //!
 //! [`ValueBox`] says which boxes are one value computation and with which operands (read from
 //! core's [`BoxOp::operand_uses`]), so both engines dispatch those boxes through it.
@@ -18,7 +19,7 @@ use stljit_core::ir::{Access, ArithOp, BoxOp, Conversion, OperandUse, RealFn};
 use super::FfiCode;
 
 /// A box computation the value shim runs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ValueOp {
     /// [`arith::int_arith`].
     IntArith(ArithOp, Width),
@@ -55,11 +56,12 @@ pub enum ValueOp {
     Convert(Conversion),
 }
 
-/// Every [`ValueOp`], in the order of their codes (the position here is the `op` argument of
-/// [`stljit_rt_value`], [`FfiCode`]): the shim finds its operation by one indexed load.
+/// Every [`ValueOp`], in the order of their codes (the position here, [`FfiCode`]; the value
+/// shim of code `n` is `VALUE_SHIMS[n]`).
 const VALUE_OPS: [ValueOp; VALUE_OP_COUNT] = every_value_op();
 
-const VALUE_OP_COUNT: usize = 2
+/// How many value computations there are.
+pub const VALUE_OP_COUNT: usize = 2
     + Width::ALL.len() * (ArithOp::ALL.len() + 6)
     + ArithOp::ALL.len()
     + RealFn::ALL.len()
@@ -119,7 +121,9 @@ impl FfiCode for ValueOp {
 
 impl ValueOp {
     /// Runs the computation on the operands' raw bits (`out`: OUT's old value, 0 where OUT is
-    /// not an input; `in1`: IN1, or the count byte of a shift/rotate).
+    /// not an input; `in1`: IN1, or the count byte of a shift/rotate). Inlined into each value
+    /// shim, where `self` is a constant and the match folds away.
+    #[inline]
     pub fn outcome(self, out: u32, in1: u32) -> Outcome {
         match self {
             ValueOp::IntArith(op, w) => arith::int_arith(op, w, out, in1),
@@ -221,15 +225,38 @@ pub fn pack_outcome(o: Outcome) -> u64 {
         | u64::from(o.flags.clear) << OUTCOME_CLEAR_SHIFT
 }
 
-/// The value shim: runs the [`ValueOp`] with code `op` ([`FfiCode`]) on the operands and packs
-/// its outcome ([`pack_outcome`]). Touches no memory. A code that is no operation, or a panic
-/// (a runtime bug), reads as "no value, no flags", i.e. ENO = 0; the panic never unwinds
-/// across the boundary.
-pub extern "C" fn stljit_rt_value(op: u32, out: u32, in1: u32) -> u64 {
-    let Some(v) = ValueOp::from_ffi(op) else {
-        return 0;
+/// A value shim: `(out, in1)` → the packed outcome ([`pack_outcome`]) of one [`ValueOp`]
+/// (`out`: OUT's old value, 0 where OUT is not an input; `in1`: IN1, or the count byte of a
+/// shift/rotate). Touches no memory. A panic (a runtime bug) reads as "no value, no flags",
+/// i.e. ENO = 0; it never unwinds across the boundary.
+pub type ValueShim = extern "C" fn(out: u32, in1: u32) -> u64;
+
+/// The value shim of the operation with code `CODE` ([`FfiCode`]): the operation is a
+/// constant here, so its dispatch is resolved when the runtime is compiled and a call runs
+/// just the computation (compiled code knows each box's operation).
+extern "C" fn value_shim<const CODE: usize>(out: u32, in1: u32) -> u64 {
+    let op = VALUE_OPS[CODE];
+    catch_unwind(AssertUnwindSafe(|| pack_outcome(op.outcome(out, in1)))).unwrap_or(0)
+}
+
+macro_rules! value_shims {
+    ($($code:literal)+) => {
+        [$(value_shim::<$code> as ValueShim),+]
     };
-    catch_unwind(AssertUnwindSafe(|| pack_outcome(v.outcome(out, in1)))).unwrap_or(0)
+}
+
+/// The value shim of every operation, by code: `VALUE_SHIMS[op.ffi_code()]`. (Its type has
+/// [`VALUE_OP_COUNT`] entries, so the list of codes below cannot fall out of step with
+/// [`VALUE_OPS`].)
+pub static VALUE_SHIMS: [ValueShim; VALUE_OP_COUNT] = value_shims!(
+    0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32
+    33 34 35 36 37 38 39 40 41 42 43 44 45 46 47 48 49 50 51 52 53
+);
+
+/// The symbol compiled code imports the value shim of code `code` by:
+/// `stljit_rt_value_<code>`.
+pub fn value_shim_symbol(code: u32) -> String {
+    format!("stljit_rt_value_{code}")
 }
 
 #[cfg(test)]
@@ -328,11 +355,8 @@ mod tests {
             assert_eq!(ValueOp::ALL.iter().filter(|&&x| x == v).count(), 1, "{v:?}");
         }
         assert_eq!(ValueOp::from_ffi(ops.len() as u32), None);
-        assert_eq!(
-            stljit_rt_value(ops.len() as u32, 1, 1),
-            0,
-            "an unknown selector is ENO = 0"
-        );
+        assert_eq!(VALUE_SHIMS.len(), ops.len());
+        assert_eq!(value_shim_symbol(7), "stljit_rt_value_7");
     }
 
     #[test]
@@ -348,11 +372,11 @@ mod tests {
             0xFFFF_FFFF,
         ];
         for v in every_op() {
-            let op = v.ffi_code();
+            let shim = VALUE_SHIMS[v.ffi_code() as usize];
             for &x in &samples {
                 for &y in &samples {
                     assert_eq!(
-                        stljit_rt_value(op, x, y),
+                        shim(x, y),
                         pack_outcome(v.outcome(x, y)),
                         "{v:?} {x:#x} {y:#x}"
                     );
@@ -361,7 +385,7 @@ mod tests {
         }
         // +I 32767 + 1: overflow, no value, SM1.1 set, SM1.0/SM1.2 cleared.
         let op = ValueOp::IntArith(ArithOp::Add, Width::Word).ffi_code();
-        let r = stljit_rt_value(op, 32767, 1);
+        let r = VALUE_SHIMS[op as usize](32767, 1);
         assert_eq!(r >> OUTCOME_HAS_VALUE_SHIFT & 1, 0);
         assert_eq!((r >> OUTCOME_SET_SHIFT) as u8, crate::flags::OVERFLOW);
     }
