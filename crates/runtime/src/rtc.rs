@@ -285,10 +285,16 @@ pub fn read(
     };
     let r = buf.bytes(len, img.len())?;
     let now = now_us(img, layout);
-    let b = encode(seconds(img, layout, now));
-    let mut out = b.to_vec();
-    out.extend((8..len).map(|i| mem::get_u8(img, dst + i - 8)));
-    img[r].copy_from_slice(&out);
+    // The clock's 8 bytes, then the extended bytes TODWX stored (21 at most in all).
+    let mut bytes = [0u8; 32];
+    let out = bytes
+        .get_mut(..len as usize)
+        .ok_or(ErrorCode::OperandRange)?;
+    out[..8].copy_from_slice(&encode(seconds(img, layout, now)));
+    for (i, b) in (8..len).zip(&mut out[8..]) {
+        *b = mem::get_u8(img, dst + i - 8);
+    }
+    img[r].copy_from_slice(out);
     Ok(())
 }
 

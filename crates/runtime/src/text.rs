@@ -48,8 +48,19 @@ fn fixed_point_text(magnitude: u128, frac: usize, sep: u8, negative: bool, size:
             if n == frac && frac > 0 {
                 put(sep)?;
             }
-            put(b'0' + (m % 10) as u8)?;
-            m /= 10;
+            // A u64 division where the value fits: a u128 one is a library call.
+            let digit = match u64::try_from(m) {
+                Ok(small) => {
+                    m = u128::from(small / 10);
+                    small % 10
+                }
+                Err(_) => {
+                    let d = (m % 10) as u64;
+                    m /= 10;
+                    d
+                }
+            };
+            put(b'0' + digit as u8)?;
             n += 1;
         }
         if negative {

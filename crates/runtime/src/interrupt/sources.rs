@@ -13,10 +13,11 @@
 //!
 //! **Adding a source.** A high-speed counter, a pulse output or a serial port is a
 //! [`Happening`]: put its state in the image (a new `record_fields!` record in
-//! `stljit_core::layout`), implement `next` (from that state) and `apply` (step it, then
-//! `super::queue::raise` the events it causes, at `τ`), and insert it into [`HAPPENINGS`] at its
-//! `source_rank` (§3.6.3: ports, pulse outputs, HSC0–HSC5, the timed interrupts, then the
-//! network jobs). A source whose level changes at the scan instant (HSC reset/start inputs)
+//! `stljit_core::layout`), implement `kind` (a [`SourceKind`]; a new kind says in
+//! [`Sources::new`] which instruction of a program sets it going), `next` (from that state)
+//! and `apply` (step it, then `super::queue::raise` the events it causes, at `τ`), and insert it
+//! into [`HAPPENINGS`] at its `source_rank` (§3.6.3: ports, pulse outputs, HSC0–HSC5, the timed
+//! interrupts, then the network jobs). A source whose level changes at the scan instant (HSC reset/start inputs)
 //! adds its check to [`instant`] between the edges and the timers.
 
 use super::{attached, queue};
@@ -42,7 +43,7 @@ pub enum SourceKind {
     Counter,
     /// A timed interrupt: raises only while attached, which takes an `ATCH` to a routine.
     Timed,
-    /// The network jobs: only after a `NETR`/`NETW`.
+    /// The network jobs: only after a `NETR`, `NETW`, `GET` or `PUT`.
     Network,
 }
 
