@@ -80,7 +80,14 @@ impl Sources {
 
     /// The ranks of the sources that may act, ascending.
     fn ranks(self) -> impl Iterator<Item = usize> {
-        (0..HAPPENINGS.len()).filter(move |&r| self.ranks & 1 << r != 0)
+        let mut rest = self.ranks;
+        std::iter::from_fn(move || {
+            let rank = rest.trailing_zeros() as usize;
+            (rest != 0).then(|| {
+                rest &= rest - 1;
+                rank
+            })
+        })
     }
 }
 
