@@ -32,7 +32,12 @@ fn bench_engine(c: &mut Criterion, name: &str, label: &str, p: &Program, e: &mut
 }
 
 fn scan(c: &mut Criterion) {
-    for name in ["bitlogic_1k.stl", "bitlogic_10k.stl", "mixed_10k.stl"] {
+    for name in [
+        "bitlogic_1k.stl",
+        "bitlogic_10k.stl",
+        "mixed_10k.stl",
+        "timed_interrupt.stl",
+    ] {
         let p = program(name);
         let mut interp = Interpreter::new(&p).expect("interpreter accepts the corpus");
         bench_engine(c, name, "interp", &p, &mut interp);
