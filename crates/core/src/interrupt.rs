@@ -461,21 +461,21 @@ mod tests {
         assert_eq!(S7_200_INTERRUPTS.slots(), 32);
         assert!(!SMART_INTERRUPTS.has(14) && SMART_INTERRUPTS.has(38));
         assert_eq!(TIMED_EVENTS, [10, 11]);
+        // Each set holds exactly the profile's events of its source, ascending.
         for p in [&A5_INTERRUPTS, &S7_200_INTERRUPTS, &SMART_INTERRUPTS] {
-            let edges: Vec<u8> = p.infos_in(INPUT_EDGE_EVENTS).map(|e| e.number).collect();
-            let by_table: Vec<u8> = p
-                .infos()
-                .filter(|e| matches!(e.source, EventSource::InputEdge { .. }))
-                .map(|e| e.number)
-                .collect();
-            assert_eq!(edges, by_table);
-            let timers: Vec<u8> = p.infos_in(TIMER_REACHED_EVENTS).map(|e| e.number).collect();
-            let by_table: Vec<u8> = p
-                .infos()
-                .filter(|e| matches!(e.source, EventSource::TimerReached { .. }))
-                .map(|e| e.number)
-                .collect();
-            assert_eq!(timers, by_table);
+            for (set, edges) in [(INPUT_EDGE_EVENTS, true), (TIMER_REACHED_EVENTS, false)] {
+                let walked: Vec<u8> = p.infos_in(set).map(|e| e.number).collect();
+                let by_table: Vec<u8> = p
+                    .infos()
+                    .filter(|e| match e.source {
+                        EventSource::InputEdge { .. } => edges,
+                        EventSource::TimerReached { .. } => !edges,
+                        _ => false,
+                    })
+                    .map(|e| e.number)
+                    .collect();
+                assert_eq!(walked, by_table);
+            }
         }
         assert_eq!(
             S7_200_INTERRUPTS

@@ -289,7 +289,6 @@ fn lower_fn(
         st,
         leaders: HashMap::new(),
         fnrefs: HashMap::new(),
-        value_refs: HashMap::new(),
         pou_refs: HashMap::new(),
         stores: StoreLog::new(
             env.layout.size,

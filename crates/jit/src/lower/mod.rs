@@ -33,7 +33,7 @@ use crate::analysis::{ChunkPlan, PouInfo};
 use crate::helpers::{Helper, HelperIds};
 use cache::Addr;
 use cranelift_codegen::ir::{
-    Block, InstBuilder, MemFlagsData, SourceLoc, Type, Value,
+    Block, FuncRef, InstBuilder, MemFlagsData, SourceLoc, Type, Value,
     types::{I16, I32, I64},
 };
 use cranelift_frontend::FunctionBuilder;
@@ -287,33 +287,27 @@ impl<'e, 'f> Lower<'e, 'f> {
         r
     }
 
-    /// Calls a runtime shim that never touches the image.
+    /// The function `id` of the module as seen from this function (declared at its first use).
+    fn func_ref(&mut self, id: FuncId) -> FuncRef {
+        if let Some(f) = self.func.fnrefs.get(&id) {
+            return *f;
+        }
+        let f = self.module.declare_func_in_func(id, self.b.func);
+        self.func.fnrefs.insert(id, f);
+        f
+    }
+
     /// Calls the value shim of `op` (pure: no image, no memory) on `out` and `in1`; returns
     /// the packed outcome.
     pub(crate) fn call_value(&mut self, op: ValueOp, out: Value, in1: Value) -> Value {
-        let fref = match self.func.value_refs.get(&op) {
-            Some(f) => *f,
-            None => {
-                let id = self.env.helpers.value(op);
-                let f = self.module.declare_func_in_func(id, self.b.func);
-                self.func.value_refs.insert(op, f);
-                f
-            }
-        };
+        let fref = self.func_ref(self.env.helpers.value(op));
         let call = self.b.ins().call(fref, &[out, in1]);
         self.b.inst_results(call)[0]
     }
 
+    /// Calls a runtime shim that never touches the image.
     pub(crate) fn call_pure(&mut self, h: Helper, args: &[Value]) -> Value {
-        let fref = match self.func.fnrefs.get(&h) {
-            Some(f) => *f,
-            None => {
-                let id = self.env.helpers.id(h);
-                let f = self.module.declare_func_in_func(id, self.b.func);
-                self.func.fnrefs.insert(h, f);
-                f
-            }
-        };
+        let fref = self.func_ref(self.env.helpers.id(h));
         let mut all = Vec::with_capacity(args.len() + 2);
         if h.takes_image() {
             all.push(self.func.image);

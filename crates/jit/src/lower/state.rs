@@ -8,12 +8,11 @@
 
 use super::cache::{Addr, Cache, StoreLog};
 use super::value::{B, Stack};
-use crate::helpers::Helper;
 use cranelift_codegen::ir::{Block, FuncRef, Value};
 use cranelift_frontend::{FunctionBuilder, Variable};
+use cranelift_module::FuncId;
 use std::collections::HashMap;
 use stljit_core::{PouId, Width};
-use stljit_runtime::ffi::ValueOp;
 
 /// What holds for the whole function being built: which POU (or chunk) it is, its
 /// parameters and the values derived from them, its blocks and declared callees, and what
@@ -36,9 +35,7 @@ pub(crate) struct FnState {
     /// The block of every leader op lowered in this function.
     pub(crate) leaders: HashMap<usize, Block>,
     /// Runtime shims declared in this function so far.
-    pub(crate) fnrefs: HashMap<Helper, FuncRef>,
-    /// Value shims declared in this function so far.
-    pub(crate) value_refs: HashMap<ValueOp, FuncRef>,
+    pub(crate) fnrefs: HashMap<FuncId, FuncRef>,
     /// Called POUs declared in this function so far.
     pub(crate) pou_refs: HashMap<PouId, FuncRef>,
     /// Recent stores, for [`Lower::test_byte`](super::Lower::test_byte). A block entered by a
