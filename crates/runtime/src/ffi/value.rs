@@ -67,6 +67,9 @@ pub const VALUE_OP_COUNT: usize = 2
     + RealFn::ALL.len()
     + Conversion::ALL.len();
 
+/// [`VALUE_OPS`]: the wide multiplication and division; per width the integer operations,
+/// then DEC/INC, shift and rotate (right/down before left/up); the real operations; the real
+/// functions; the conversions.
 const fn every_value_op() -> [ValueOp; VALUE_OP_COUNT] {
     let mut ops = [ValueOp::MulWide; VALUE_OP_COUNT];
     let mut n = 0;
@@ -84,8 +87,9 @@ const fn every_value_op() -> [ValueOp; VALUE_OP_COUNT] {
         }
         let mut d = 0;
         while d < 2 {
-            let left = d == 1;
-            ops[n] = ValueOp::Step { width, up: left };
+            // DEC, SR, RR first, then INC, SL, RL.
+            let (up, left) = (d == 1, d == 1);
+            ops[n] = ValueOp::Step { width, up };
             ops[n + 1] = ValueOp::Shift { left, width };
             ops[n + 2] = ValueOp::Rotate { left, width };
             n += 3;
