@@ -155,22 +155,25 @@ impl Helper {
 
     /// The full signature.
     pub(crate) fn signature(self, cc: CallConv) -> Signature {
-        let row = self.row();
-        let mut s = Signature::new(cc);
-        if row.lead == Lead::ImageLayout {
-            s.params.extend([AbiParam::new(I64), AbiParam::new(I64)]);
-        }
-        s.params.extend(row.args.iter().map(|t| AbiParam::new(*t)));
-        s.returns.push(AbiParam::new(row.ret));
-        s
+        self.row().signature(cc)
     }
 }
 
-/// The signature of a value shim (`ffi::ValueShim`: `(out, in1) -> packed outcome`).
-fn value_shim_signature(cc: CallConv) -> Signature {
+impl Row {
+    /// The full signature: the lead's arguments, then the row's own.
+    fn signature(&self, cc: CallConv) -> Signature {
+        signature(cc, self.lead, self.args, self.ret)
+    }
+}
+
+/// A signature: `lead`'s arguments, then `args`, returning `ret`.
+fn signature(cc: CallConv, lead: Lead, args: &[Type], ret: Type) -> Signature {
     let mut s = Signature::new(cc);
-    s.params.extend([AbiParam::new(I32), AbiParam::new(I32)]);
-    s.returns.push(AbiParam::new(I64));
+    if lead == Lead::ImageLayout {
+        s.params.extend([AbiParam::new(I64), AbiParam::new(I64)]);
+    }
+    s.params.extend(args.iter().map(|t| AbiParam::new(*t)));
+    s.returns.push(AbiParam::new(ret));
     s
 }
 
@@ -206,7 +209,8 @@ impl HelperIds {
                     .map_err(Box::new)
             })
             .collect::<Result<_, _>>()?;
-        let sig = value_shim_signature(cc);
+        // Every value shim is `ffi::ValueShim`: `(out, in1) -> packed outcome`.
+        let sig = signature(cc, Lead::Nothing, &[I32, I32], I64);
         let values = (0..ffi::VALUE_OP_COUNT as u32)
             .map(|code| {
                 m.declare_function(&ffi::value_shim_symbol(code), Linkage::Import, &sig)

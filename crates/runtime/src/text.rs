@@ -36,42 +36,50 @@ fn separator(fmt: u8) -> (u8, usize) {
 /// returns: these conversions run every scan in some programs.
 fn fixed_point_text(magnitude: u128, frac: usize, sep: u8, negative: bool, size: usize) -> NumText {
     let mut out = vec![b' '; size];
-    let mut free = size;
+    match write_from_right(&mut out, magnitude, frac, sep, negative) {
+        Some(()) => NumText::Text(out),
+        None => NumText::Spaces(size),
+    }
+}
+
+/// Writes [`fixed_point_text`]'s text at the end of `out`; `None` when it does not fit.
+fn write_from_right(
+    out: &mut [u8],
+    magnitude: u128,
+    frac: usize,
+    sep: u8,
+    neg: bool,
+) -> Option<()> {
+    let mut free = out.len();
     let mut put = |b: u8| {
         free = free.checked_sub(1)?;
         out[free] = b;
         Some(())
     };
-    let fits = (|| {
-        let (mut m, mut n) = (magnitude, 0);
-        while n <= frac || m != 0 {
-            if n == frac && frac > 0 {
-                put(sep)?;
+    let (mut m, mut n) = (magnitude, 0);
+    while n <= frac || m != 0 {
+        if n == frac && frac > 0 {
+            put(sep)?;
+        }
+        // A u64 division where the value fits: a u128 one is a library call.
+        let digit = match u64::try_from(m) {
+            Ok(small) => {
+                m = u128::from(small / 10);
+                small % 10
             }
-            // A u64 division where the value fits: a u128 one is a library call.
-            let digit = match u64::try_from(m) {
-                Ok(small) => {
-                    m = u128::from(small / 10);
-                    small % 10
-                }
-                Err(_) => {
-                    let d = (m % 10) as u64;
-                    m /= 10;
-                    d
-                }
-            };
-            put(b'0' + digit as u8)?;
-            n += 1;
-        }
-        if negative {
-            put(b'-')?;
-        }
-        Some(())
-    })();
-    match fits {
-        Some(()) => NumText::Text(out),
-        None => NumText::Spaces(size),
+            Err(_) => {
+                let d = (m % 10) as u64;
+                m /= 10;
+                d
+            }
+        };
+        put(b'0' + digit as u8)?;
+        n += 1;
     }
+    if neg {
+        put(b'-')?;
+    }
+    Some(())
 }
 
 /// ITA/DTA/ITS/DTS (§5.3 `int_text`): `v` with `nnn` digits after the separator, right-justified

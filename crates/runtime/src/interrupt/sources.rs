@@ -26,7 +26,9 @@ use crate::hsc::{self, Counter};
 use crate::mem;
 use crate::pulse::Generator;
 use crate::timer::TofPhase;
-use stljit_core::interrupt::{EventSource, INPUT_EDGE_EVENTS, TIMED_EVENTS, TIMER_REACHED_EVENTS};
+use stljit_core::interrupt::{
+    EventSource, INPUT_EDGE_EVENTS, TIMED_EVENTS, TIMER_REACHED_EVENTS, set_bits,
+};
 use stljit_core::ir::TimerKind;
 use stljit_core::layout::{IntState, Layout, TimerState};
 use stljit_core::{Area, TimerId};
@@ -80,14 +82,7 @@ impl Sources {
 
     /// The ranks of the sources that may act, ascending.
     fn ranks(self) -> impl Iterator<Item = usize> {
-        let mut rest = self.ranks;
-        std::iter::from_fn(move || {
-            let rank = rest.trailing_zeros() as usize;
-            (rest != 0).then(|| {
-                rest &= rest - 1;
-                rank
-            })
-        })
+        set_bits(u64::from(self.ranks)).map(usize::from)
     }
 }
 
