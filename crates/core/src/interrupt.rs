@@ -368,6 +368,12 @@ impl InterruptProfile {
         EventSet(self.set.0 & of.0).numbers().filter_map(event)
     }
 
+    /// Whether the CPU has any of the events in `of`.
+    #[inline]
+    pub fn has_any(&self, of: EventSet) -> bool {
+        self.set.0 & of.0 != 0
+    }
+
     /// Whether the CPU has event `n`.
     pub fn has(&self, n: u8) -> bool {
         self.events.contains(&n)

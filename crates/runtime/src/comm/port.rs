@@ -212,7 +212,14 @@ impl Happening for Port {
         if layout.block_size(Block::Ports) == 0 {
             return None;
         }
-        self.pending(img, layout).into_iter().flatten().min()
+        let [char_end, timer, tx] = self.pending(img, layout);
+        // `min` over the three `Option`s, written out: the iterator form cost a third of a
+        // scan's polls of an idle port.
+        let earlier = |a: Option<u64>, b: Option<u64>| match (a, b) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+        earlier(earlier(char_end, timer), tx)
     }
 
     fn apply(&self, img: &mut [u8], layout: &Layout, tau: u64) {

@@ -91,39 +91,33 @@ fn remove(img: &mut [u8], l: &Layout, g: EventGroup, i: u32) {
     set_len(img, l, g, n - 1);
 }
 
-/// The selection key of an entry of group `g` (§3.3): `(group, τ, pri, seq)`.
-type Key = (usize, u64, u8, u32);
-
-/// The queued entry with the smallest [`Key`], removed from its queue.
+/// The queued entry with the smallest selection key `(group, τ, pri, seq)` (§3.3), removed
+/// from its queue. The group comes first in the key, so the entry is in the first group (by
+/// index) with entries, and only that queue is searched.
 pub(crate) fn pop_next(img: &mut [u8], l: &Layout) -> Option<Entry> {
-    let lens = EventGroup::ALL.map(|g| len(img, l, g));
-    // Every service run ends on an empty queue, most of them start on one.
-    if lens == [0; 3] {
-        return None;
-    }
-    let mut best: Option<(Key, EventGroup, u32, Entry)> = None;
-    for (g, n) in EventGroup::ALL.into_iter().zip(lens) {
-        if n == 0 {
-            continue;
-        }
-        let (first, _) = profile_queue(l.profile, g);
-        for i in 0..n {
-            let e = read(img, l, first + i);
-            let pri = interrupt::event(e.event).map_or(u8::MAX, |info| info.pri);
-            let key = (g.index(), e.tau, pri, e.seq);
-            if best.as_ref().is_none_or(|b| key < b.0) {
-                best = Some((key, g, i, e));
-            }
+    let (g, n) = EventGroup::ALL
+        .into_iter()
+        .map(|g| (g, len(img, l, g)))
+        .find(|&(_, n)| n > 0)?;
+    let (first, _) = profile_queue(l.profile, g);
+    let key = |e: &Entry| {
+        let pri = interrupt::event(e.event).map_or(u8::MAX, |info| info.pri);
+        (e.tau, pri, e.seq)
+    };
+    let mut best = (0, read(img, l, first));
+    for i in 1..n {
+        let e = read(img, l, first + i);
+        if key(&e) < key(&best.1) {
+            best = (i, e);
         }
     }
-    let (_, g, i, e) = best?;
-    remove(img, l, g, i);
-    Some(e)
+    remove(img, l, g, best.0);
+    Some(best.1)
 }
 
-/// Whether every queue is empty.
+/// Whether every queue is empty: the three lengths are one field of three bytes.
 pub(crate) fn is_empty(img: &[u8], l: &Layout) -> bool {
-    EventGroup::ALL.iter().all(|&g| len(img, l, g) == 0)
+    mem::get_array::<3>(img, l.int_state(IntState::QUEUE_LEN)) == [0; 3]
 }
 
 /// Drops every queued entry of `event` (DTCH, CEVNT).
@@ -153,8 +147,8 @@ pub(crate) fn clear(img: &mut [u8], l: &Layout) {
 
 /// Clears the overflow bits SM4.0–SM4.2 (after a service run that emptied every queue).
 pub(crate) fn clear_overflow(img: &mut [u8], l: &Layout) {
+    // Bit = the group's index, and the groups are indexed from 0.
+    const OVERFLOW_BITS: u8 = (1 << EventGroup::ALL.len()) - 1;
     let smb4 = l.base(Area::SM) + SMB4;
-    for g in EventGroup::ALL {
-        mem::set_bit(img, smb4, g.index() as u8, false);
-    }
+    mem::set_u8(img, smb4, mem::get_u8(img, smb4) & !OVERFLOW_BITS);
 }

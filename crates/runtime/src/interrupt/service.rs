@@ -44,10 +44,26 @@ pub struct Events<'a> {
     pub sources: Sources,
 }
 
-/// The routines of a program by interrupt number, and the engine that runs them.
+/// The routines of a program by interrupt number, the engine that runs them, and which
+/// physical inputs the image holds for them.
 struct Service<'a> {
     routines: &'a [Option<PouId>],
     isr: &'a mut dyn Isr,
+    inputs: Inputs,
+}
+
+/// Which physical inputs the image holds while a phase runs. Routines of the interval phase
+/// see those of the previous scan instant (`PREV_IN`), the harness having already written this
+/// scan's; the exchange costs two copies of the inputs, so it waits for the first routine, and
+/// most intervals run none.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Inputs {
+    /// The instant phase: this scan's inputs, which its routines see.
+    Instant,
+    /// The interval phase before its first routine: still this scan's inputs.
+    Deferred,
+    /// The interval phase: the previous instant's inputs, exchanged back at its end.
+    Previous,
 }
 
 /// Exchanges the physical inputs with those of the last scan instant (`PREV_IN`).
@@ -68,7 +84,8 @@ fn swap_inputs(img: &mut [u8], layout: &Layout) {
 /// left queued are serviced at `ta` (after the T32/T96 poll of what the previous scan's main
 /// program did), then every happening due in the interval is applied in time order, each
 /// followed by a service run at its time. Routines see the physical inputs of the previous
-/// scan instant, as the harness already wrote this scan's.
+/// scan instant, as the harness already wrote this scan's; so do the high-speed counters'
+/// inputs, the only source that reads them.
 pub fn interval_phase(
     img: &mut [u8],
     layout: &Layout,
@@ -80,8 +97,11 @@ pub fn interval_phase(
     let mut s = Service {
         routines: events.routines,
         isr,
+        inputs: Inputs::Deferred,
     };
-    swap_inputs(img, layout);
+    if events.sources.counters() {
+        s.previous_inputs(img, layout);
+    }
     sources::start_interval(img, layout, events.sources, ta, tb);
     let r = (|| {
         sources::poll_timers(img, layout, ta);
@@ -92,7 +112,9 @@ pub fn interval_phase(
         }
         Ok(())
     })();
-    swap_inputs(img, layout);
+    if s.inputs == Inputs::Previous {
+        swap_inputs(img, layout);
+    }
     r
 }
 
@@ -109,6 +131,7 @@ pub fn instant_phase(
     let mut s = Service {
         routines: events.routines,
         isr,
+        inputs: Inputs::Instant,
     };
     set_now(img, layout, tk);
     sources::instant(img, layout, events.sources, tk);
@@ -117,25 +140,52 @@ pub fn instant_phase(
     Ok(())
 }
 
+/// Whether service runs are blocked: interrupts disabled, a routine running or a STOP pending.
+fn blocked(img: &[u8], layout: &Layout) -> bool {
+    super::get(img, layout, IntState::ENABLED) == 0
+        || super::get(img, layout, IntState::IN_ISR) != 0
+        || mem::sched_u8(img, layout, Sched::STOP_REQ) != 0
+}
+
 impl Service<'_> {
+    /// In the interval phase, puts the previous instant's inputs in place if they are not yet.
+    fn previous_inputs(&mut self, img: &mut [u8], layout: &Layout) {
+        if self.inputs == Inputs::Deferred {
+            swap_inputs(img, layout);
+            self.inputs = Inputs::Previous;
+        }
+    }
+
     /// A service run at `tau` (§3.6.3 `service`): nothing while interrupts are disabled, a
     /// routine runs or a STOP is pending; else the queued entry with the smallest key runs its
-    /// routine, until the queues are empty; then SM4.0–SM4.2 are cleared.
+    /// routine, until the queues are empty; then SM4.0–SM4.2 are cleared. Most runs find the
+    /// queues empty: that case is checked inline.
+    #[inline]
     fn service(&mut self, img: &mut [u8], layout: &Layout, tau: u64) -> Result<(), PhaseFatal> {
-        let blocked = |img: &[u8]| {
-            super::get(img, layout, IntState::ENABLED) == 0
-                || super::get(img, layout, IntState::IN_ISR) != 0
-                || mem::sched_u8(img, layout, Sched::STOP_REQ) != 0
-        };
-        if blocked(img) {
+        if blocked(img, layout) {
             return Ok(());
         }
+        if queue::is_empty(img, layout) {
+            queue::clear_overflow(img, layout);
+            return Ok(());
+        }
+        self.service_queued(img, layout, tau)
+    }
+
+    /// [`Service::service`] with entries queued and nothing blocking.
+    #[inline(never)]
+    fn service_queued(
+        &mut self,
+        img: &mut [u8],
+        layout: &Layout,
+        tau: u64,
+    ) -> Result<(), PhaseFatal> {
         while let Some(e) = queue::pop_next(img, layout) {
             let routine = attached(img, layout, e.event);
             if let Some(n) = routine.checked_sub(1) {
                 self.run_isr(img, layout, usize::from(n), tau)?;
             }
-            if blocked(img) {
+            if blocked(img, layout) {
                 return Ok(());
             }
         }
@@ -156,6 +206,7 @@ impl Service<'_> {
         let Some(pou) = self.routines.get(number).copied().flatten() else {
             return Ok(());
         };
+        self.previous_inputs(img, layout);
         // AC0–AC3: 16 bytes on every S7 profile.
         let ac = layout.base(Area::AC);
         let saved_ac: [u8; 16] = mem::get_array(img, ac);

@@ -80,6 +80,11 @@ impl Sources {
         Sources { ranks, counters }
     }
 
+    /// Whether the high-speed counters are among them.
+    pub(crate) fn counters(self) -> bool {
+        self.counters
+    }
+
     /// The ranks of the sources that may act, ascending.
     fn ranks(self) -> impl Iterator<Item = usize> {
         set_bits(u64::from(self.ranks)).map(usize::from)
@@ -214,37 +219,45 @@ pub(crate) fn start_interval(img: &mut [u8], layout: &Layout, sources: Sources, 
 /// The instant sources at `T_k` (§3.6.2 step 5): input edges, the high-speed counters' reset
 /// inputs, then T32/T96; `PREV_IN` takes the new inputs after the first two compared them.
 pub(crate) fn instant(img: &mut [u8], layout: &Layout, sources: Sources, tau: u64) {
-    input_edges(img, layout, tau);
+    // Inputs that did not change since the last instant have no edges and need no copy (the
+    // usual case).
+    let changed = inputs_changed(img, layout);
+    if changed {
+        input_edges(img, layout, tau);
+    }
     if sources.counters {
         hsc::instant(img, layout, layout.int_state(IntState::PREV_IN), tau);
     }
-    let n = layout.area_size(Area::I) as usize;
-    let (from, to) = (
-        layout.phys_in as usize,
-        layout.int_state(IntState::PREV_IN) as usize,
-    );
-    if from + n <= img.len() && to + n <= img.len() {
-        img.copy_within(from..from + n, to);
+    if changed {
+        let n = layout.area_size(Area::I) as usize;
+        let (from, to) = (
+            layout.phys_in as usize,
+            layout.int_state(IntState::PREV_IN) as usize,
+        );
+        if from + n <= img.len() && to + n <= img.len() {
+            img.copy_within(from..from + n, to);
+        }
     }
     poll_timers(img, layout, tau);
+}
+
+/// Whether the physical inputs differ from those of the last scan instant (`PREV_IN`).
+fn inputs_changed(img: &[u8], layout: &Layout) -> bool {
+    let (now, prev) = (layout.phys_in, layout.int_state(IntState::PREV_IN));
+    let n = layout.area_size(Area::I) as usize;
+    // The 16 input bytes of every S7 profile: two compares, not a call to `memcmp`.
+    const S7_INPUTS: usize = 16;
+    if n == S7_INPUTS {
+        return mem::get_array::<S7_INPUTS>(img, now) != mem::get_array::<S7_INPUTS>(img, prev);
+    }
+    let (now, prev) = (now as usize, prev as usize);
+    img.get(now..now + n) != img.get(prev..prev + n)
 }
 
 /// Input edges (§3.5.2): each edge event of the profile whose input bit differs between the
 /// physical inputs and those of the last scan instant (`PREV_IN`) in its direction.
 fn input_edges(img: &mut [u8], layout: &Layout, tau: u64) {
     let prev = layout.int_state(IntState::PREV_IN);
-    let (p, now, n) = (
-        prev as usize,
-        layout.phys_in as usize,
-        layout.area_size(Area::I) as usize,
-    );
-    // Inputs that did not change since the last instant have no edges (the usual case).
-    if img
-        .get(p..p + n)
-        .is_some_and(|old| img.get(now..now + n) == Some(old))
-    {
-        return;
-    }
     let ints = layout.profile.profile().interrupts;
     for info in ints.infos_in(INPUT_EDGE_EVENTS) {
         if let EventSource::InputEdge { byte, bit, rising } = info.source {
@@ -280,7 +293,23 @@ fn reached(img: &[u8], layout: &Layout, n: TimerId) -> bool {
 /// routines did, at the time they did it), and after the clock refresh (E2, at `T_k`: the
 /// refresh, and what E1's routines did) [design: a routine's own execution is seen at the next
 /// poll, so a routine cannot re-raise its event at its own instant].
+#[inline]
 pub(crate) fn poll_timers(img: &mut [u8], layout: &Layout, tau: u64) {
+    // A CPU without these events (the A5) has no bit to keep; checked inline, since the poll
+    // runs twice a scan.
+    if layout
+        .profile
+        .profile()
+        .interrupts
+        .has_any(TIMER_REACHED_EVENTS)
+    {
+        poll_timer_events(img, layout, tau);
+    }
+}
+
+/// [`poll_timers`] on a CPU with T32/T96 events.
+#[inline(never)]
+fn poll_timer_events(img: &mut [u8], layout: &Layout, tau: u64) {
     let ints = layout.profile.profile().interrupts;
     let mut prev = super::get(img, layout, IntState::TIMER_PREV);
     let timers = ints
