@@ -16,6 +16,7 @@
 //! | Shim | Rust counterpart | Returns |
 //! |---|---|---|
 //! | `stljit_rt_scan_begin(img, l, plan, routines, t_ms: u64)` | [`scan::begin`] | [`scan::Begin`] as u32: 1 run the program, 0 in STOP, 2 fatal in an interrupt routine |
+//! | `stljit_rt_scan_events(img, l, plan, routines, instant: u32)` | [`scan::interval_events`] (0), [`scan::instant_events`] (1) | [`scan::Begin`] as u32: 1 go on, 2 fatal in an interrupt routine |
 //! | `stljit_rt_scan_end(img, l, status: u32)` | [`scan::end`] | final `ScanStatus` as u32 |
 //! | `stljit_rt_task_start(img, l)` | [`scan::task_start`] | status |
 //! | `stljit_rt_interrupt(img, l, kind, event, routine)` | [`crate::interrupt::execute`] | status |
@@ -77,10 +78,10 @@ pub use ops::*;
 pub use value::*;
 
 use crate::rules::{FirstScanEdges, Gate, GatePolicy, Rules};
-use crate::{counter, pointer, scan, timer};
+use crate::{counter, mem, pointer, scan, timer};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use stljit_core::ir::{CounterKind, TimerKind};
-use stljit_core::layout::Layout;
+use stljit_core::layout::{Layout, Sched};
 use stljit_core::{Area, ErrorCode, ScanStatus, Width};
 
 /// Status: success.
@@ -269,6 +270,53 @@ pub unsafe extern "C" fn stljit_rt_scan_begin(
             scan::begin(b, l, plan, t_ms, isr) as u32
         })
         .unwrap_or(scan::Begin::Stopped as u32)
+    }
+}
+
+/// One of [`scan::begin`]'s event phases, for an engine whose inline prologue does the rest
+/// of it (the JIT): `instant` 0 runs [`scan::interval_events`] for the interval from `T_PREV`
+/// to `T_NOW`, which that prologue has just written, anything else [`scan::instant_events`]
+/// at `T_NOW`. Returns [`scan::Begin::Run`] as u32, or [`scan::Begin::Fatal`] when a routine
+/// ended in a fatal error (recorded in the image), when `image`, `layout` or `plan` is null or
+/// when the runtime panicked (then nothing is recorded; neither happens to the JIT's calls).
+///
+/// # Safety
+/// As [`stljit_rt_scan_begin`].
+pub unsafe extern "C" fn stljit_rt_scan_events(
+    image: *mut u8,
+    layout: *const Layout,
+    plan: *const scan::ScanPlan,
+    routines: *const NativeRoutines,
+    instant: u32,
+) -> u32 {
+    let fatal = scan::Begin::Fatal as u32;
+    // SAFETY: the caller's contract: `plan` is null or live, and only read.
+    let Some(plan) = (unsafe { plan.as_ref() }) else {
+        return fatal;
+    };
+    // SAFETY: the caller's contract: `routines` is null or live, and only read.
+    let mut native = unsafe { routines.as_ref() };
+    let mut none = crate::interrupt::NoIsr;
+    let isr: &mut dyn crate::interrupt::Isr = match &mut native {
+        Some(r) => r,
+        None => &mut none,
+    };
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        with_image(image, layout, |b, l| {
+            let t_now = mem::get_u64_ne(b, l.sched(Sched::T_NOW));
+            let done = if instant == 0 {
+                let t_prev = mem::get_u64_ne(b, l.sched(Sched::T_PREV));
+                scan::interval_events(b, l, plan, isr, t_prev, t_now)
+            } else {
+                scan::instant_events(b, l, plan, isr, t_now)
+            };
+            match done {
+                Ok(()) => scan::Begin::Run as u32,
+                Err(_) => fatal,
+            }
+        })
+        .unwrap_or(fatal)
     }
 }
 

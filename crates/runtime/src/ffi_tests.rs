@@ -65,7 +65,43 @@ fn null_pointers_are_rejected() {
             stljit_rt_pointer_end(std::ptr::null_mut(), std::ptr::null(), 0x0600_0000),
             0
         );
+        let fatal = scan::Begin::Fatal as u32;
+        for phase in [0, 1] {
+            assert_eq!(
+                stljit_rt_scan_events(std::ptr::null_mut(), &l, &plan, std::ptr::null(), phase),
+                fatal
+            );
+            assert_eq!(
+                stljit_rt_scan_events(
+                    std::ptr::null_mut(),
+                    &l,
+                    std::ptr::null(),
+                    std::ptr::null(),
+                    phase
+                ),
+                fatal
+            );
+        }
     }
+}
+
+#[test]
+fn event_phases_of_a_program_without_events_go_on() {
+    let mut im = img();
+    let plan = scan::ScanPlan::every_timer(im.layout());
+    let before = im.bytes().to_vec();
+    let (b, l) = im.split_mut();
+    let (p, lp) = (b.as_mut_ptr(), l as *const Layout);
+    // SAFETY: p/lp come from a live image borrowed for the whole block.
+    unsafe {
+        for phase in [0, 1] {
+            assert_eq!(
+                stljit_rt_scan_events(p, lp, &plan, std::ptr::null(), phase),
+                scan::Begin::Run as u32
+            );
+        }
+    }
+    assert_eq!(im.bytes(), &before[..], "no phase, no byte written");
 }
 
 #[test]

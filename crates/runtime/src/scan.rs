@@ -160,6 +160,12 @@ impl ScanPlan {
         }
     }
 
+    /// Whether the program has a PLS, whose active generators [`end`] lets drive their
+    /// outputs (an engine's inline epilogue has no such step).
+    pub fn has_pulse_outputs(&self) -> bool {
+        self.pulse
+    }
+
     /// The timers step 4 refreshes from the clock.
     pub fn clock_timers(&self) -> &[u16] {
         &self.clock_timers
@@ -297,12 +303,7 @@ pub fn begin(
         crate::pulse::run_entry(img, layout);
     }
     // E1 (s7-200-more §3.6.2 step 2): the interval since the previous scan; none in scan 0.
-    let events = plan.events();
-    if plan.has_events()
-        && !first
-        && interrupt::interval_phase(img, layout, events, isr, micros(t_prev), micros(t_ms))
-            .is_err()
-    {
+    if !first && interval_events(img, layout, plan, isr, t_prev, t_ms).is_err() {
         return Begin::Fatal;
     }
 
@@ -334,15 +335,47 @@ pub fn begin(
         }
     }
     // E2 (§3.6.2 step 5): the events of the scan instant.
-    if plan.ports {
-        crate::comm::instant(img, layout);
-    }
-    if plan.has_events()
-        && interrupt::instant_phase(img, layout, events, isr, micros(t_ms)).is_err()
-    {
+    if instant_events(img, layout, plan, isr, t_ms).is_err() {
         return Begin::Fatal;
     }
     Begin::Run
+}
+
+/// [`begin`]'s phase E1 in a scan after the first (s7-200-more §3.6.2 step 2), after the
+/// time step and the resets, before the inputs are read: the events of the interval since the
+/// previous scan at `t_prev_ms`, for a program with events ([`ScanPlan::has_events`]). Public
+/// for an engine that does the rest of [`begin`] itself (the JIT's inline scan path).
+pub fn interval_events(
+    img: &mut [u8],
+    layout: &Layout,
+    plan: &ScanPlan,
+    isr: &mut dyn Isr,
+    t_prev_ms: u64,
+    t_ms: u64,
+) -> Result<(), interrupt::PhaseFatal> {
+    if !plan.has_events() {
+        return Ok(());
+    }
+    let (ta, tb) = (micros(t_prev_ms), micros(t_ms));
+    interrupt::interval_phase(img, layout, plan.events(), isr, ta, tb)
+}
+
+/// [`begin`]'s events at the scan instant `t_ms` (s7-200-more §3.6.2 step 5), after the clock
+/// refresh: the serial ports' instant (§10), then phase E2. Public like [`interval_events`].
+pub fn instant_events(
+    img: &mut [u8],
+    layout: &Layout,
+    plan: &ScanPlan,
+    isr: &mut dyn Isr,
+    t_ms: u64,
+) -> Result<(), interrupt::PhaseFatal> {
+    if plan.ports {
+        crate::comm::instant(img, layout);
+    }
+    if !plan.has_events() {
+        return Ok(());
+    }
+    interrupt::instant_phase(img, layout, plan.events(), isr, micros(t_ms))
 }
 
 /// A virtual time in ms as the µs of the event machinery (s7-200-more §0.3).
