@@ -36,11 +36,28 @@ use stljit_core::omron::{self, SystemBit};
 use stljit_core::{Area, Family, ScanStatus};
 use stljit_runtime::scan::{self, Begin, ScanPlan};
 
-/// Whether scans of `plan`'s program may take the inline path at all (the interrupt
-/// machinery could act in a program with interrupt routines, high-speed counters, pulse
-/// outputs or communication; Omron timers are never clock-refreshed).
-fn inline_path(plan: &ScanPlan) -> bool {
-    plan.clock_timers().is_empty() && !plan.has_events()
+/// Whether scans of `plan`'s program may take the inline path at all (no clock-refreshed
+/// timer; Omron timers never are), and how: without event phases, or calling the runtime for
+/// the event phases of a program with interrupt routines, high-speed counters, pulse outputs
+/// or communication ([`FastPath::WithEvents`]).
+fn inline_path(plan: &ScanPlan) -> Option<FastPath> {
+    match (plan.clock_timers().is_empty(), plan.has_events()) {
+        (false, _) => None,
+        (true, false) => Some(FastPath::Plain),
+        (true, true) => Some(FastPath::WithEvents),
+    }
+}
+
+/// The inline scan path of a program (see [`inline_path`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum FastPath {
+    /// The prologue and epilogue, nothing else.
+    Plain,
+    /// The prologue around calls of `scan::interval_events` (after the time step and the
+    /// resets) and `scan::instant_events` (after the system bits), as `scan::begin` orders
+    /// them; the epilogue unless the program has pulse outputs, whose generators `scan::end`
+    /// lets drive their outputs.
+    WithEvents,
 }
 
 /// The loop, with the signature `build::run_signature`:
@@ -67,6 +84,12 @@ pub(crate) fn build_run(
     let (image, t0, dt, n, done) = (p[0], p[1], p[2], p[3], p[4]);
     let begin = module.declare_func_in_func(env.helpers.id(Helper::ScanBegin), b.func);
     let end = module.declare_func_in_func(env.helpers.id(Helper::ScanEnd), b.func);
+    let inline = inline_path(plan);
+    let inline_end_ok = match inline {
+        Some(FastPath::Plain) => true,
+        Some(FastPath::WithEvents) => !plan.has_pulse_outputs(),
+        None => false,
+    };
     let mainf = module.declare_func_in_func(main, b.func);
     let layout = b.ins().iconst(I64, env.baked.layout);
     let scan_plan = b.ins().iconst(I64, env.baked.scan_plan);
@@ -123,7 +146,7 @@ pub(crate) fn build_run(
 
     b.switch_to_block(body);
     let i1 = b.ins().iadd_imm_s(i, 1);
-    if inline_path(plan) {
+    if inline.is_some() {
         // The common path needs RUN mode and a scan after the first.
         // Two byte loads, not one word: the word would span bytes of several recent stores,
         // which the CPU cannot forward to a load (a stall costing more than the scan).
@@ -152,17 +175,40 @@ pub(crate) fn build_run(
     b.ins().brif(runs, run, &[], slow_end, &[fatal.into()]);
 
     b.switch_to_block(fast_begin);
-    inline_begin(&mut b, &img, plan.family(), &q, &d);
-    b.ins().jump(run, &[]);
+    inline_time_step(&mut b, &img, &q, &d);
+    if inline == Some(FastPath::WithEvents) {
+        // E1, the inputs and system bits, E2 (a fatal error in a routine ends the scan as
+        // aborted, as `scan::begin`'s `Begin::Fatal` does).
+        let events = module.declare_func_in_func(env.helpers.id(Helper::ScanEvents), b.func);
+        let inputs = b.create_block();
+        for (phase, then) in [(0, inputs), (1, run)] {
+            let phase = b.ins().iconst(I32, phase);
+            let c = b
+                .ins()
+                .call(events, &[image, layout, scan_plan, routines, phase]);
+            let r = b.inst_results(c)[0];
+            let go = b.ins().icmp_imm_s(IntCC::Equal, r, Begin::Run as i64);
+            let fatal = b.ins().iconst(I32, ScanStatus::Fatal as i64);
+            b.ins().brif(go, then, &[], slow_end, &[fatal.into()]);
+            if then == inputs {
+                b.switch_to_block(inputs);
+                inline_inputs(&mut b, &img, plan.family(), &q);
+            }
+        }
+    } else {
+        inline_inputs(&mut b, &img, plan.family(), &q);
+        b.ins().jump(run, &[]);
+    }
 
     b.switch_to_block(run);
     let zero32 = b.ins().iconst(I32, 0);
     let c = b.ins().call(mainf, &[image, zero32]);
     let s = b.inst_results(c)[0];
-    if inline_path(plan) {
+    if inline_end_ok {
         // Ok and no STOP request: the epilogue is the output copy and the scan counters. Both
-        // prologues reset the request, and only a `STOP` op sets it again (the scheduler
-        // fields are not addressable), so without one the status decides alone.
+        // prologues reset the request, and only a `STOP` op (of any POU, interrupt routines
+        // included) sets it again (the scheduler fields are not addressable), so without one
+        // the status decides alone.
         let slow = if env.prog.has_stop() {
             let stop = img.load(&mut b, I8, Sched::STOP_REQ);
             let stop = b.ins().uextend(I32, stop);
@@ -361,16 +407,10 @@ fn deltas(b: &mut FunctionBuilder<'_>, now: &[Value], before: &[Value]) -> Vec<V
         .collect()
 }
 
-/// `scan::begin` for a scan in RUN after the first, no clock-refreshed timer: the time step
-/// (`q`: the scan's time and quotients, `d`: its deltas, see [`build_run`]), the step-5
-/// resets, the input copy and the family's system bits.
-fn inline_begin(
-    b: &mut FunctionBuilder<'_>,
-    img: &Img<'_>,
-    family: Family,
-    q: &[Value],
-    d: &[Value],
-) {
+/// `scan::begin` for a scan in RUN after the first, no clock-refreshed timer, up to its event
+/// phase E1: the time step (`q`: the scan's time and quotients, `d`: its deltas, see
+/// [`build_run`]) and the step-5 resets.
+fn inline_time_step(b: &mut FunctionBuilder<'_>, img: &Img<'_>, q: &[Value], d: &[Value]) {
     let l = img.layout;
     let t = q[0];
     for (&(field, _), &d) in scan::DELTAS.iter().zip(d) {
@@ -388,6 +428,12 @@ fn inline_begin(
     }
     resets.put(l.sched(Sched::FIRST_SCAN), &[0]);
     resets.store(b, img);
+}
+
+/// `scan::begin` after E1 and up to E2 (the clock refresh is empty on this path): the input
+/// copy and the family's system bits (`q`: the scan's time and quotients).
+fn inline_inputs(b: &mut FunctionBuilder<'_>, img: &Img<'_>, family: Family, q: &[Value]) {
+    let l = img.layout;
     img.copy(b, l.phys_in, l.base(Area::I), l.area_size(Area::I));
     match family {
         Family::S7 => inline_smb0(b, img, q),
