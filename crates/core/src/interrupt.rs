@@ -30,6 +30,7 @@ impl EventGroup {
     ];
 
     /// The group's index (its position in [`EventGroup::ALL`] and its SMB4 overflow bit).
+    #[inline]
     pub fn index(self) -> usize {
         self as usize
     }
@@ -395,6 +396,7 @@ impl InterruptProfile {
     }
 
     /// The first slot of `group`'s queue and its depth.
+    #[inline]
     pub fn queue(&self, group: EventGroup) -> (u32, u32) {
         let g = group.index();
         let first = self.queue_depth[..g].iter().map(|&d| u32::from(d)).sum();

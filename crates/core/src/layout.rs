@@ -440,6 +440,7 @@ impl Layout {
     }
 
     /// Image offset of the first byte of a private block.
+    #[inline]
     pub fn block_start(&self, block: Block) -> u32 {
         match block {
             Block::Edges => self.edges,
@@ -459,6 +460,7 @@ impl Layout {
     }
 
     /// Size of a private block in bytes (without its alignment padding).
+    #[inline]
     pub fn block_size(&self, block: Block) -> u32 {
         self.block_size[block as usize]
     }

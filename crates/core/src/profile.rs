@@ -57,6 +57,7 @@ impl ProfileId {
     }
 
     /// The profile's data.
+    #[inline]
     pub fn profile(self) -> &'static CpuProfile {
         match self {
             ProfileId::A5 => &A5,
