@@ -1,17 +1,19 @@
 //! The native many-scans loop (`run_scans`): `for i in 0..n { begin; main; end }` at times
 //! `t0 + i · dt`, stopping at the first scan whose status is not Ok.
 //!
-//! A scan that stays on the common path runs its prologue and epilogue inline: a program of
-//! either dialect whose plan has no clock-refreshed timer and no event source, outside the
-//! first scan, not in STOP, whose main program returns Ok without a STOP request. Every other
-//! scan calls the runtime's `scan::begin`/`scan::end` shims, which remain the definition; in
-//! particular every scan of a program with interrupt routines, whose event phases run inside
-//! `scan::begin` (it calls back into the compiled routines through `NativeRoutines`). The
-//! inline path reads every fact it applies from `runtime::scan` (`DELTAS`, `RESETS`, the
-//! `SMB0_*` bits), from `core::omron` (the system bits, their pulse periods, the condition
-//! flags, `P_First_Cycle`) and the image layout, so it restates no fact; the differential tests
-//! and every fuzz campaign compare its bytes with the interpreter's, which always calls
-//! `scan::begin`/`end`.
+//! A scan that stays on the common path runs its prologue and epilogue inline: any program of
+//! either dialect, outside the first scan, not in STOP, whose main program returns Ok without
+//! a STOP request. The parts of `scan::begin` that are more than a few stores stay in the
+//! runtime and are called where `begin` runs them ([`FastPath`]): the event phase E1 of a
+//! program with event sources (`scan::interval_events`), and the clock-driven timer refresh
+//! with the events of the instant (`scan::instant_steps`), which call back into the compiled
+//! interrupt routines through `NativeRoutines`; a program with pulse outputs ends its scans
+//! in `scan::end`. Every other scan calls the runtime's `scan::begin`/`scan::end` shims, which
+//! remain the definition. The inline path reads every fact it applies from `runtime::scan`
+//! (`DELTAS`, `RESETS`, the `SMB0_*` bits), from `core::omron` (the system bits, their pulse
+//! periods, the condition flags, `P_First_Cycle`) and the image layout, so it restates no
+//! fact; the differential tests and every fuzz campaign compare its bytes with the
+//! interpreter's, which always calls `scan::begin`/`end`.
 //!
 //! Why inline: an empty program's scan is otherwise two shim calls, each with its pointer
 //! checks and `catch_unwind`, around a few dozen stores; inline, the whole scan of a small
@@ -36,28 +38,30 @@ use stljit_core::omron::{self, SystemBit};
 use stljit_core::{Area, Family, ScanStatus};
 use stljit_runtime::scan::{self, Begin, ScanPlan};
 
-/// Whether scans of `plan`'s program may take the inline path at all (no clock-refreshed
-/// timer; Omron timers never are), and how: without event phases, or calling the runtime for
-/// the event phases of a program with interrupt routines, high-speed counters, pulse outputs
-/// or communication ([`FastPath::WithEvents`]).
-fn inline_path(plan: &ScanPlan) -> Option<FastPath> {
-    match (plan.clock_timers().is_empty(), plan.has_events()) {
-        (false, _) => None,
-        (true, false) => Some(FastPath::Plain),
-        (true, true) => Some(FastPath::WithEvents),
-    }
+/// What the inline path of a scan (in RUN, after the first) leaves to the runtime: the parts
+/// of `scan::begin` it does not restate, each called where `begin` runs it, and `scan::end`
+/// where the inline epilogue would miss a step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct FastPath {
+    /// `scan::interval_events` (E1), after the time step and the resets: the program has
+    /// interrupt routines, high-speed counters, pulse outputs or communication.
+    interval: bool,
+    /// `scan::instant_steps` (the clock-driven refresh, then the events of the instant), after
+    /// the system bits: the program has clock-refreshed timers or events.
+    instant: bool,
+    /// The epilogue is inline: the program has no pulse outputs, whose generators `scan::end`
+    /// lets drive their outputs.
+    inline_end: bool,
 }
 
-/// The inline scan path of a program (see [`inline_path`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum FastPath {
-    /// The prologue and epilogue, nothing else.
-    Plain,
-    /// The prologue around calls of `scan::interval_events` (after the time step and the
-    /// resets) and `scan::instant_events` (after the system bits), as `scan::begin` orders
-    /// them; the epilogue unless the program has pulse outputs, whose generators `scan::end`
-    /// lets drive their outputs.
-    WithEvents,
+impl FastPath {
+    fn of(plan: &ScanPlan) -> FastPath {
+        FastPath {
+            interval: plan.has_events(),
+            instant: plan.has_events() || !plan.clock_timers().is_empty(),
+            inline_end: !plan.has_pulse_outputs(),
+        }
+    }
 }
 
 /// The loop, with the signature `build::run_signature`:
@@ -84,12 +88,7 @@ pub(crate) fn build_run(
     let (image, t0, dt, n, done) = (p[0], p[1], p[2], p[3], p[4]);
     let begin = module.declare_func_in_func(env.helpers.id(Helper::ScanBegin), b.func);
     let end = module.declare_func_in_func(env.helpers.id(Helper::ScanEnd), b.func);
-    let inline = inline_path(plan);
-    let inline_end_ok = match inline {
-        Some(FastPath::Plain) => true,
-        Some(FastPath::WithEvents) => !plan.has_pulse_outputs(),
-        None => false,
-    };
+    let fast = FastPath::of(plan);
     let mainf = module.declare_func_in_func(main, b.func);
     let layout = b.ins().iconst(I64, env.baked.layout);
     let scan_plan = b.ins().iconst(I64, env.baked.scan_plan);
@@ -146,17 +145,13 @@ pub(crate) fn build_run(
 
     b.switch_to_block(body);
     let i1 = b.ins().iadd_imm_s(i, 1);
-    if inline.is_some() {
-        // The common path needs RUN mode and a scan after the first.
-        // Two byte loads, not one word: the word would span bytes of several recent stores,
-        // which the CPU cannot forward to a load (a stall costing more than the scan).
-        let mode = img.load(&mut b, I8, Sched::MODE);
-        let first = img.load(&mut b, I8, Sched::FIRST_SCAN);
-        let slow = b.ins().bor(mode, first);
-        b.ins().brif(slow, slow_begin, &[], fast_begin, &[]);
-    } else {
-        b.ins().jump(slow_begin, &[]);
-    }
+    // The common path needs RUN mode and a scan after the first.
+    // Two byte loads, not one word: the word would span bytes of several recent stores,
+    // which the CPU cannot forward to a load (a stall costing more than the scan).
+    let mode = img.load(&mut b, I8, Sched::MODE);
+    let first = img.load(&mut b, I8, Sched::FIRST_SCAN);
+    let slow = b.ins().bor(mode, first);
+    b.ins().brif(slow, slow_begin, &[], fast_begin, &[]);
 
     b.switch_to_block(slow_begin);
     let c = b
@@ -176,35 +171,38 @@ pub(crate) fn build_run(
 
     b.switch_to_block(fast_begin);
     inline_time_step(&mut b, &img, &q, &d);
-    if inline == Some(FastPath::WithEvents) {
-        // E1, the inputs and system bits, E2 (a fatal error in a routine ends the scan as
-        // aborted, as `scan::begin`'s `Begin::Fatal` does).
-        let events = module.declare_func_in_func(env.helpers.id(Helper::ScanEvents), b.func);
+    // The runtime's parts of the prologue (a fatal error in a routine ends the scan as aborted,
+    // as `scan::begin`'s `Begin::Fatal` does).
+    let steps = (fast.interval || fast.instant)
+        .then(|| module.declare_func_in_func(env.helpers.id(Helper::ScanSteps), b.func));
+    let call_steps = |b: &mut FunctionBuilder<'_>, steps: FuncRef, phase: i64, then| {
+        let phase = b.ins().iconst(I32, phase);
+        let c = b
+            .ins()
+            .call(steps, &[image, layout, scan_plan, routines, phase]);
+        let r = b.inst_results(c)[0];
+        let go = b.ins().icmp_imm_s(IntCC::Equal, r, Begin::Run as i64);
+        let fatal = b.ins().iconst(I32, ScanStatus::Fatal as i64);
+        b.ins().brif(go, then, &[], slow_end, &[fatal.into()]);
+    };
+    if let Some(steps) = steps.filter(|_| fast.interval) {
         let inputs = b.create_block();
-        for (phase, then) in [(0, inputs), (1, run)] {
-            let phase = b.ins().iconst(I32, phase);
-            let c = b
-                .ins()
-                .call(events, &[image, layout, scan_plan, routines, phase]);
-            let r = b.inst_results(c)[0];
-            let go = b.ins().icmp_imm_s(IntCC::Equal, r, Begin::Run as i64);
-            let fatal = b.ins().iconst(I32, ScanStatus::Fatal as i64);
-            b.ins().brif(go, then, &[], slow_end, &[fatal.into()]);
-            if then == inputs {
-                b.switch_to_block(inputs);
-                inline_inputs(&mut b, &img, plan.family(), &q);
-            }
+        call_steps(&mut b, steps, 0, inputs);
+        b.switch_to_block(inputs);
+    }
+    inline_inputs(&mut b, &img, plan.family(), &q);
+    match steps.filter(|_| fast.instant) {
+        Some(steps) => call_steps(&mut b, steps, 1, run),
+        None => {
+            b.ins().jump(run, &[]);
         }
-    } else {
-        inline_inputs(&mut b, &img, plan.family(), &q);
-        b.ins().jump(run, &[]);
     }
 
     b.switch_to_block(run);
     let zero32 = b.ins().iconst(I32, 0);
     let c = b.ins().call(mainf, &[image, zero32]);
     let s = b.inst_results(c)[0];
-    if inline_end_ok {
+    if fast.inline_end {
         // Ok and no STOP request: the epilogue is the output copy and the scan counters. Both
         // prologues reset the request, and only a `STOP` op (of any POU, interrupt routines
         // included) sets it again (the scheduler fields are not addressable), so without one

@@ -16,7 +16,7 @@
 //! | Shim | Rust counterpart | Returns |
 //! |---|---|---|
 //! | `stljit_rt_scan_begin(img, l, plan, routines, t_ms: u64)` | [`scan::begin`] | [`scan::Begin`] as u32: 1 run the program, 0 in STOP, 2 fatal in an interrupt routine |
-//! | `stljit_rt_scan_events(img, l, plan, routines, instant: u32)` | [`scan::interval_events`] (0), [`scan::instant_events`] (1) | [`scan::Begin`] as u32: 1 go on, 2 fatal in an interrupt routine |
+//! | `stljit_rt_scan_steps(img, l, plan, routines, instant: u32)` | [`scan::interval_events`] (0), [`scan::instant_steps`] (1) | [`scan::Begin`] as u32: 1 go on, 2 fatal in an interrupt routine |
 //! | `stljit_rt_scan_end(img, l, status: u32)` | [`scan::end`] | final `ScanStatus` as u32 |
 //! | `stljit_rt_task_start(img, l)` | [`scan::task_start`] | status |
 //! | `stljit_rt_interrupt(img, l, kind, event, routine)` | [`crate::interrupt::execute`] | status |
@@ -273,16 +273,16 @@ pub unsafe extern "C" fn stljit_rt_scan_begin(
     }
 }
 
-/// One of [`scan::begin`]'s event phases, for an engine whose inline prologue does the rest
-/// of it (the JIT): `instant` 0 runs [`scan::interval_events`] for the interval from `T_PREV`
-/// to `T_NOW`, which that prologue has just written, anything else [`scan::instant_events`]
-/// at `T_NOW`. Returns [`scan::Begin::Run`] as u32, or [`scan::Begin::Fatal`] when a routine
+/// One of [`scan::begin`]'s parts that an engine's inline prologue leaves to the runtime (the
+/// JIT's): `instant` 0 runs [`scan::interval_events`] for the interval from `T_PREV` to
+/// `T_NOW`, which that prologue has just written, anything else [`scan::instant_steps`] (the
+/// clock-driven timer refresh and the events of the instant) at `T_NOW`. Returns [`scan::Begin::Run`] as u32, or [`scan::Begin::Fatal`] when a routine
 /// ended in a fatal error (recorded in the image), when `image`, `layout` or `plan` is null or
 /// when the runtime panicked (then nothing is recorded; neither happens to the JIT's calls).
 ///
 /// # Safety
 /// As [`stljit_rt_scan_begin`].
-pub unsafe extern "C" fn stljit_rt_scan_events(
+pub unsafe extern "C" fn stljit_rt_scan_steps(
     image: *mut u8,
     layout: *const Layout,
     plan: *const scan::ScanPlan,
@@ -309,7 +309,7 @@ pub unsafe extern "C" fn stljit_rt_scan_events(
                 let t_prev = mem::get_u64_ne(b, l.sched(Sched::T_PREV));
                 scan::interval_events(b, l, plan, isr, t_prev, t_now)
             } else {
-                scan::instant_events(b, l, plan, isr, t_now)
+                scan::instant_steps(b, l, plan, isr, t_now)
             };
             match done {
                 Ok(()) => scan::Begin::Run as u32,

@@ -68,11 +68,11 @@ fn null_pointers_are_rejected() {
         let fatal = scan::Begin::Fatal as u32;
         for phase in [0, 1] {
             assert_eq!(
-                stljit_rt_scan_events(std::ptr::null_mut(), &l, &plan, std::ptr::null(), phase),
+                stljit_rt_scan_steps(std::ptr::null_mut(), &l, &plan, std::ptr::null(), phase),
                 fatal
             );
             assert_eq!(
-                stljit_rt_scan_events(
+                stljit_rt_scan_steps(
                     std::ptr::null_mut(),
                     &l,
                     std::ptr::null(),
@@ -96,7 +96,7 @@ fn event_phases_of_a_program_without_events_go_on() {
     unsafe {
         for phase in [0, 1] {
             assert_eq!(
-                stljit_rt_scan_events(p, lp, &plan, std::ptr::null(), phase),
+                stljit_rt_scan_steps(p, lp, &plan, std::ptr::null(), phase),
                 scan::Begin::Run as u32
             );
         }

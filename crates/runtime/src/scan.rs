@@ -328,14 +328,8 @@ pub fn begin(
         }
     }
 
-    // Step 4: clock-driven refresh of the 1-ms and 10-ms timers in use.
-    for &n in plan.clock_timers.iter() {
-        if mem::get_u8(img, layout.timer_state(n) + TimerState::KIND) != 0 {
-            timer::refresh(img, layout, n);
-        }
-    }
-    // E2 (§3.6.2 step 5): the events of the scan instant.
-    if instant_events(img, layout, plan, isr, t_ms).is_err() {
+    // Step 4 and E2 (§3.6.2 step 5).
+    if instant_steps(img, layout, plan, isr, t_ms).is_err() {
         return Begin::Fatal;
     }
     Begin::Run
@@ -345,6 +339,7 @@ pub fn begin(
 /// time step and the resets, before the inputs are read: the events of the interval since the
 /// previous scan at `t_prev_ms`, for a program with events ([`ScanPlan::has_events`]). Public
 /// for an engine that does the rest of [`begin`] itself (the JIT's inline scan path).
+#[inline]
 pub fn interval_events(
     img: &mut [u8],
     layout: &Layout,
@@ -360,15 +355,23 @@ pub fn interval_events(
     interrupt::interval_phase(img, layout, plan.events(), isr, ta, tb)
 }
 
-/// [`begin`]'s events at the scan instant `t_ms` (s7-200-more §3.6.2 step 5), after the clock
-/// refresh: the serial ports' instant (§10), then phase E2. Public like [`interval_events`].
-pub fn instant_events(
+/// [`begin`] after the system bits, for the scan instant `t_ms`: step 4, the clock-driven
+/// refresh of the 1-ms and 10-ms timers the program declares, then the events of the instant
+/// (s7-200-more §3.6.2 step 5): the serial ports' instant (§10) and phase E2. Public like
+/// [`interval_events`].
+#[inline]
+pub fn instant_steps(
     img: &mut [u8],
     layout: &Layout,
     plan: &ScanPlan,
     isr: &mut dyn Isr,
     t_ms: u64,
 ) -> Result<(), interrupt::PhaseFatal> {
+    for &n in plan.clock_timers.iter() {
+        if mem::get_u8(img, layout.timer_state(n) + TimerState::KIND) != 0 {
+            timer::refresh(img, layout, n);
+        }
+    }
     if plan.ports {
         crate::comm::instant(img, layout);
     }
