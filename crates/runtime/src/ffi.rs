@@ -238,6 +238,30 @@ fn kind_of<K: Copy>(all: &[K], code_of: fn(K) -> u8, code: u32) -> Option<K> {
     all.iter().copied().find(|&k| u32::from(code_of(k)) == code)
 }
 
+/// Runs `f` on the image with the program's plan and the engine of its interrupt routines:
+/// the compiled routines at `routines`, none when it is null. `None` when `image`, `layout` or
+/// `plan` is null or the runtime panicked.
+///
+/// # Safety
+/// As [`stljit_rt_scan_begin`].
+unsafe fn with_plan<R>(
+    image: *mut u8,
+    layout: *const Layout,
+    plan: *const scan::ScanPlan,
+    routines: *const NativeRoutines,
+    f: impl FnOnce(&mut [u8], &Layout, &scan::ScanPlan, &mut dyn crate::interrupt::Isr) -> R,
+) -> Option<R> {
+    // SAFETY: the caller's contract: `plan` and `routines` are null or live, and only read.
+    let (plan, mut native) = unsafe { (plan.as_ref()?, routines.as_ref()) };
+    let mut none = crate::interrupt::NoIsr;
+    let isr: &mut dyn crate::interrupt::Isr = match &mut native {
+        Some(r) => r,
+        None => &mut none,
+    };
+    // SAFETY: forwarded caller contract.
+    unsafe { with_image(image, layout, |b, l| f(b, l, plan, isr)) }.ok()
+}
+
 /// [`scan::begin`] with the program's [`scan::ScanPlan`] and its compiled interrupt routines:
 /// the [`scan::Begin`] as u32 (0 STOP, 1 run the program, 2 fatal error in an event phase); 0
 /// when `image`, `layout` or `plan` is null or the runtime panicked.
@@ -253,32 +277,22 @@ pub unsafe extern "C" fn stljit_rt_scan_begin(
     routines: *const NativeRoutines,
     t_ms: u64,
 ) -> u32 {
-    // SAFETY: the caller's contract: `plan` is null or live, and only read.
-    let Some(plan) = (unsafe { plan.as_ref() }) else {
-        return scan::Begin::Stopped as u32;
-    };
-    // SAFETY: the caller's contract: `routines` is null or live, and only read.
-    let mut native = unsafe { routines.as_ref() };
-    let mut none = crate::interrupt::NoIsr;
-    let isr: &mut dyn crate::interrupt::Isr = match &mut native {
-        Some(r) => r,
-        None => &mut none,
-    };
     // SAFETY: forwarded caller contract.
     unsafe {
-        with_image(image, layout, |b, l| {
+        with_plan(image, layout, plan, routines, |b, l, plan, isr| {
             scan::begin(b, l, plan, t_ms, isr) as u32
         })
-        .unwrap_or(scan::Begin::Stopped as u32)
     }
+    .unwrap_or(scan::Begin::Stopped as u32)
 }
 
 /// One of [`scan::begin`]'s parts that an engine's inline prologue leaves to the runtime (the
 /// JIT's): `instant` 0 runs [`scan::interval_events`] for the interval from `T_PREV` to
 /// `T_NOW`, which that prologue has just written, anything else [`scan::instant_steps`] (the
-/// clock-driven timer refresh and the events of the instant) at `T_NOW`. Returns [`scan::Begin::Run`] as u32, or [`scan::Begin::Fatal`] when a routine
-/// ended in a fatal error (recorded in the image), when `image`, `layout` or `plan` is null or
-/// when the runtime panicked (then nothing is recorded; neither happens to the JIT's calls).
+/// clock-driven timer refresh and the events of the instant) at `T_NOW`. Returns
+/// [`scan::Begin::Run`] as u32, or [`scan::Begin::Fatal`] when a routine ended in a fatal error
+/// (recorded in the image), when `image`, `layout` or `plan` is null or when the runtime
+/// panicked (then nothing is recorded; neither happens to the JIT's calls).
 ///
 /// # Safety
 /// As [`stljit_rt_scan_begin`].
@@ -289,34 +303,21 @@ pub unsafe extern "C" fn stljit_rt_scan_steps(
     routines: *const NativeRoutines,
     instant: u32,
 ) -> u32 {
-    let fatal = scan::Begin::Fatal as u32;
-    // SAFETY: the caller's contract: `plan` is null or live, and only read.
-    let Some(plan) = (unsafe { plan.as_ref() }) else {
-        return fatal;
-    };
-    // SAFETY: the caller's contract: `routines` is null or live, and only read.
-    let mut native = unsafe { routines.as_ref() };
-    let mut none = crate::interrupt::NoIsr;
-    let isr: &mut dyn crate::interrupt::Isr = match &mut native {
-        Some(r) => r,
-        None => &mut none,
-    };
     // SAFETY: forwarded caller contract.
-    unsafe {
-        with_image(image, layout, |b, l| {
+    let done = unsafe {
+        with_plan(image, layout, plan, routines, |b, l, plan, isr| {
             let t_now = mem::get_u64_ne(b, l.sched(Sched::T_NOW));
-            let done = if instant == 0 {
+            if instant == 0 {
                 let t_prev = mem::get_u64_ne(b, l.sched(Sched::T_PREV));
                 scan::interval_events(b, l, plan, isr, t_prev, t_now)
             } else {
                 scan::instant_steps(b, l, plan, isr, t_now)
-            };
-            match done {
-                Ok(()) => scan::Begin::Run as u32,
-                Err(_) => fatal,
             }
         })
-        .unwrap_or(fatal)
+    };
+    match done {
+        Some(Ok(())) => scan::Begin::Run as u32,
+        _ => scan::Begin::Fatal as u32,
     }
 }
 
