@@ -405,9 +405,9 @@ fn deltas(b: &mut FunctionBuilder<'_>, now: &[Value], before: &[Value]) -> Vec<V
         .collect()
 }
 
-/// `scan::begin` for a scan in RUN after the first, no clock-refreshed timer, up to its event
-/// phase E1: the time step (`q`: the scan's time and quotients, `d`: its deltas, see
-/// [`build_run`]) and the step-5 resets.
+/// `scan::begin` for a scan in RUN after the first, up to its event phase E1: the time step
+/// (`q`: the scan's time and quotients, `d`: its deltas, see [`build_run`]) and the step-5
+/// resets.
 fn inline_time_step(b: &mut FunctionBuilder<'_>, img: &Img<'_>, q: &[Value], d: &[Value]) {
     let l = img.layout;
     let t = q[0];
@@ -428,8 +428,8 @@ fn inline_time_step(b: &mut FunctionBuilder<'_>, img: &Img<'_>, q: &[Value], d: 
     resets.store(b, img);
 }
 
-/// `scan::begin` after E1 and up to E2 (the clock refresh is empty on this path): the input
-/// copy and the family's system bits (`q`: the scan's time and quotients).
+/// `scan::begin` after E1 and before the clock refresh: the input copy and the family's
+/// system bits (`q`: the scan's time and quotients).
 fn inline_inputs(b: &mut FunctionBuilder<'_>, img: &Img<'_>, family: Family, q: &[Value]) {
     let l = img.layout;
     img.copy(b, l.phys_in, l.base(Area::I), l.area_size(Area::I));

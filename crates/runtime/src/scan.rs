@@ -1,11 +1,14 @@
 //! The scan cycle around the program body (spec §2.1): [`begin`] does steps 1–4 and the per-scan
-//! resets of step 5, [`end`] does steps 6–8. Both engines call exactly these two functions, so
-//! time, SMB0, the clock-driven timer refresh and the output copy exist once.
+//! resets of step 5, [`end`] does steps 6–8. Both engines call these functions, so time, SMB0,
+//! the clock-driven timer refresh and the output copy exist once; the JIT's inline scan path
+//! writes the stores of [`begin`] and [`end`] from the facts exported here and calls
+//! [`interval_events`] and [`instant_steps`], the parts of `begin` that are more.
 //!
 //! A program with interrupt routines, high-speed counters, pulse outputs or communication runs
 //! the event phases of s7-200-more §3.6.2 inside [`begin`] ([`crate::interrupt`]): E1 after the
-//! time step and the resets (before the inputs are read), E2 after the clock refresh. The engine passes an [`Isr`] that runs a routine's
-//! body; a fatal error in a routine aborts the scan ([`Begin::Fatal`]).
+//! time step and the resets (before the inputs are read), E2 after the clock refresh. The
+//! engine passes an [`Isr`] that runs a routine's body; a fatal error in a routine aborts the
+//! scan ([`Begin::Fatal`]).
 //!
 //! Rules fixed here (spec leaves them open):
 //! * **STOP.** A scan on an image already in STOP (`Sched::MODE = 1`) runs nothing: [`begin`]
@@ -145,8 +148,8 @@ impl ScanPlan {
     }
 
     /// Whether [`begin`] runs the event phases: the program has interrupt routines,
-    /// high-speed counters, pulse outputs or communication. An engine's inline scan path
-    /// (which has no phases) must not be taken then.
+    /// high-speed counters, pulse outputs or communication. An engine's inline scan path must
+    /// then call [`interval_events`] and [`instant_steps`] where `begin` does.
     pub fn has_events(&self) -> bool {
         self.has_interrupts() || self.hsc || self.pulse || self.ports
     }
