@@ -245,11 +245,6 @@ pub(crate) fn instant(img: &mut [u8], layout: &Layout, sources: Sources, tau: u6
 fn inputs_changed(img: &[u8], layout: &Layout) -> bool {
     let (now, prev) = (layout.phys_in, layout.int_state(IntState::PREV_IN));
     let n = layout.area_size(Area::I) as usize;
-    // The 16 input bytes of every S7 profile: two compares, not a call to `memcmp`.
-    const S7_INPUTS: usize = 16;
-    if n == S7_INPUTS {
-        return mem::get_array::<S7_INPUTS>(img, now) != mem::get_array::<S7_INPUTS>(img, prev);
-    }
     let (now, prev) = (now as usize, prev as usize);
     img.get(now..now + n) != img.get(prev..prev + n)
 }
