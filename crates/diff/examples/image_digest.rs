@@ -14,18 +14,19 @@ use stljit_diff::oracle::{RunOptions, apply_stimulus, start_image};
 use stljit_interp::Interpreter;
 use stljit_runtime::Engine;
 
-fn main() {
-    let args: Vec<u64> = std::env::args()
-        .skip(1)
-        .map(|a| a.parse().expect("usage: image_digest FIRST_SEED COUNT"))
-        .collect();
-    let (first, count) = match args[..] {
-        [f, c] => (f, c),
-        _ => (0, 1000),
+fn main() -> std::process::ExitCode {
+    let args: Result<Vec<u64>, _> = std::env::args().skip(1).map(|a| a.parse()).collect();
+    let (first, count) = match args.as_deref() {
+        Ok([f, c]) => (*f, *c),
+        Ok([]) => (0, 1000),
+        _ => {
+            eprintln!("usage: image_digest [FIRST_SEED COUNT] (default: 0 1000)");
+            return std::process::ExitCode::from(2);
+        }
     };
     let cfg = GenConfig::default();
     let opts = RunOptions::default();
-    for seed in first..first + count {
+    for seed in first..first.saturating_add(count) {
         let case = case_from_seed(seed, &cfg);
         let Ok(mut engine) = Interpreter::new(&case.program) else {
             println!("{seed} rejected");
@@ -41,4 +42,5 @@ fn main() {
         }
         println!("{seed} {:016x}", h.finish());
     }
+    std::process::ExitCode::SUCCESS
 }
