@@ -35,7 +35,7 @@ use crate::mem;
 use crate::timer;
 use stljit_core::interrupt::MAX_ROUTINE;
 use stljit_core::ir::Program;
-use stljit_core::layout::{Layout, SCHED_SIZE, Sched, TimerState};
+use stljit_core::layout::{Layout, SCHED_SIZE, Sched};
 use stljit_core::omron::{self, SystemBit};
 use stljit_core::profile::Resolution;
 use stljit_core::{Area, ErrorCode, Family, FatalCode, PouId, ScanStatus};
@@ -358,10 +358,8 @@ pub fn interval_events(
     interrupt::interval_phase(img, layout, plan.events(), isr, ta, tb)
 }
 
-/// [`begin`] after the system bits, for the scan instant `t_ms`: step 4, the clock-driven
-/// refresh of the 1-ms and 10-ms timers the program declares, then the events of the instant
-/// (s7-200-more §3.6.2 step 5): the serial ports' instant (§10) and phase E2. Public like
-/// [`interval_events`].
+/// [`begin`] after the system bits, for the scan instant `t_ms`: step 4
+/// ([`refresh_clock_timers`]), then [`instant_events`].
 #[inline]
 pub fn instant_steps(
     img: &mut [u8],
@@ -370,11 +368,29 @@ pub fn instant_steps(
     isr: &mut dyn Isr,
     t_ms: u64,
 ) -> Result<(), interrupt::PhaseFatal> {
+    refresh_clock_timers(img, layout, plan);
+    instant_events(img, layout, plan, isr, t_ms)
+}
+
+/// Step 4 of [`begin`]: the clock-driven refresh of the 1-ms and 10-ms timers the program
+/// declares ([`timer::refresh`], whose rule the JIT's inline scan path emits itself).
+#[inline]
+pub fn refresh_clock_timers(img: &mut [u8], layout: &Layout, plan: &ScanPlan) {
     for &n in plan.clock_timers.iter() {
-        if mem::get_u8(img, layout.timer_state(n) + TimerState::KIND) != 0 {
-            timer::refresh(img, layout, n);
-        }
+        timer::refresh(img, layout, n);
     }
+}
+
+/// The events of the scan instant `t_ms` (s7-200-more §3.6.2 step 5), after step 4: the
+/// serial ports' instant (§10) and phase E2. Public like [`interval_events`].
+#[inline]
+pub fn instant_events(
+    img: &mut [u8],
+    layout: &Layout,
+    plan: &ScanPlan,
+    isr: &mut dyn Isr,
+    t_ms: u64,
+) -> Result<(), interrupt::PhaseFatal> {
     if plan.ports {
         crate::comm::instant(img, layout);
     }

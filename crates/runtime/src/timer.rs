@@ -37,13 +37,6 @@ pub enum TofPhase {
     Done = 3,
 }
 
-/// `min(cv + d, 32767)` (spec §5 `sat`, [`RuleOps::sat_add`]). A negative CV written by a
-/// program counts up from there. Computed in `i64`, so it cannot overflow.
-#[inline]
-fn sat_add(cv: i16, d: u32) -> i16 {
-    Native.sat_add(i64::from(cv), i64::from(d)) as i16
-}
-
 /// Bytes of a timer's private state block.
 pub const STATE_BYTES: usize = TIMER_STATE_SIZE as usize;
 
@@ -129,6 +122,18 @@ impl Timer {
         mem::set_array(img, s, state);
     }
 
+    /// The fields as [`RuleOps`] values on plain integers.
+    fn fields(&self) -> TimerFields<i64> {
+        TimerFields {
+            cv: i64::from(self.cv),
+            bit: i64::from(self.bit),
+            run: i64::from(self.run),
+            tof: i64::from(self.tof),
+            pt_cache: i64::from(self.pt_cache),
+            res: i64::from(self.res),
+        }
+    }
+
     /// Executes `TON`/`TONR`/`TOF` on this timer (spec §5.2) under `gate`: [`timer_rule`] on
     /// plain integers. `d100` is the scan's 100-ms delta, credited only by a 100-ms timer.
     #[inline]
@@ -139,14 +144,7 @@ impl Timer {
             Gate::Closed(policy) => (false, policy),
         };
         let t = self;
-        let fields = TimerFields {
-            cv: i64::from(t.cv),
-            bit: i64::from(t.bit),
-            run: i64::from(t.run),
-            tof: i64::from(t.tof),
-            pt_cache: i64::from(t.pt_cache),
-            res: i64::from(t.res),
-        };
+        let fields = t.fields();
         let inputs = TimerInputs {
             input: i64::from(input),
             gate: i64::from(open),
@@ -381,34 +379,86 @@ pub fn execute(
 }
 
 /// Clock refresh of a 1-ms or 10-ms timer at scan start (spec §5.2 `refresh`), using the kind
-/// and resolution stored at cold start. 100-ms and unused timers are left alone.
+/// and resolution stored at cold start: [`refresh_applies`], then [`refresh_rule`] on plain
+/// integers. 100-ms and unused timers are left alone.
 pub fn refresh(img: &mut [u8], layout: &Layout, n: u16) {
     if check(layout, n).is_err() {
         return;
     }
-    // Every scan visits every timer in use, and most are 100-ms ones: decide on the resolution
-    // byte alone before decoding the whole timer.
-    let d = match mem::get_u8(img, layout.timer_state(n) + TimerState::RES) {
-        1 => mem::sched_u32(img, layout, Sched::D1),
-        10 => mem::sched_u32(img, layout, Sched::D10),
-        _ => return,
-    };
-    let mut t = Timer::load(img, layout, n);
-    let kind = mem::get_u8(img, layout.timer_state(n) + TimerState::KIND);
-    if kind == TimerKind::Off.code() {
-        if t.tof == TofPhase::Timing as u8 {
-            t.cv = sat_add(t.cv, d);
-            if t.cv >= t.pt_cache {
-                t.cv = t.pt_cache;
-                t.bit = false;
-                t.tof = TofPhase::Done as u8;
-            }
-        }
-    } else if (kind == TimerKind::On.code() || kind == TimerKind::Retentive.code()) && t.run {
-        t.cv = sat_add(t.cv, d);
-        t.bit = t.cv >= t.pt_cache;
+    // Every scan visits every timer in use: decide on the kind and resolution bytes alone
+    // before decoding the whole timer.
+    let (_, _, s) = Timer::offsets(layout, n);
+    let kind = i64::from(mem::get_u8(img, s + TimerState::KIND));
+    let res = i64::from(mem::get_u8(img, s + TimerState::RES));
+    if refresh_applies(&mut Native, kind, res) == 0 {
+        return;
     }
+    let d1 = i64::from(mem::sched_u32(img, layout, Sched::D1));
+    let d10 = i64::from(mem::sched_u32(img, layout, Sched::D10));
+    let mut t = Timer::load(img, layout, n);
+    let next = refresh_rule(&mut Native, kind, t.fields(), d1, d10);
+    // The rule keeps every field in its type's range (CV saturates or takes the PT cache,
+    // flags are 0/1, the phase a byte).
+    t.cv = next.cv as i16;
+    t.bit = next.bit != 0;
+    t.tof = next.tof as u8;
     t.store(img, layout, n);
+}
+
+/// Whether the clock refresh touches a timer whose kind byte ([`TimerState::KIND`]) is `kind`
+/// and resolution byte `res`: one the program uses (kind not 0) at 1 or 10 ms. Written over
+/// [`RuleOps`] for both engines, like [`refresh_rule`].
+pub fn refresh_applies<O: RuleOps>(o: &mut O, kind: O::V, res: O::V) -> O::V {
+    let used = o.ne0(kind);
+    let one = o.k(1);
+    let ten = o.k(10);
+    let is_1 = o.eq(res, one);
+    let is_10 = o.eq(res, ten);
+    let clocked = o.or(is_1, is_10);
+    o.and(used, clocked)
+}
+
+/// The clock refresh of one timer that [`refresh_applies`] to (spec §5.2 `refresh`), on its
+/// decoded fields ([`TimerFields::from_raw`]) with the scan's 1-ms and 10-ms deltas: a
+/// running TON or TONR counts and its bit is `CV >= PT cache`; a timing TOF counts and, on
+/// reaching its PT cache, stops there with the bit off (Done). Anything else keeps its
+/// fields. The one text both engines run ([`crate::rule_ops`]): the runtime through
+/// [`refresh`], the JIT inline in its scan prologue.
+pub fn refresh_rule<O: RuleOps>(
+    o: &mut O,
+    kind: O::V,
+    t: TimerFields<O::V>,
+    d1: O::V,
+    d10: O::V,
+) -> TimerFields<O::V> {
+    let one = o.k(1);
+    let is_1 = o.eq(t.res, one);
+    let d = o.select(is_1, d1, d10);
+    let [on, retentive, off] =
+        [TimerKind::On, TimerKind::Retentive, TimerKind::Off].map(|k| o.k(i64::from(k.code())));
+    let [timing, done] = [TofPhase::Timing, TofPhase::Done].map(|p| o.k(p as i64));
+    let is_on = o.eq(kind, on);
+    let is_retentive = o.eq(kind, retentive);
+    let on_kind = o.or(is_on, is_retentive);
+    let on_running = o.and(on_kind, t.run);
+    let is_off = o.eq(kind, off);
+    let was_timing = o.eq(t.tof, timing);
+    let off_timing = o.and(is_off, was_timing);
+    let counts = o.or(on_running, off_timing);
+    let counted = o.sat_add(t.cv, d);
+    let cv = o.select(counts, counted, t.cv);
+    let reached = o.ge(cv, t.pt_cache);
+    let finished = o.and(off_timing, reached);
+    let zero = o.k(0);
+    let bit = o.select(on_running, reached, t.bit);
+    TimerFields {
+        cv: o.select(finished, t.pt_cache, cv),
+        bit: o.select(finished, zero, bit),
+        run: t.run,
+        tof: o.select(finished, done, t.tof),
+        pt_cache: t.pt_cache,
+        res: t.res,
+    }
 }
 
 /// `R Tn, N`: full reset of `count` timers from `first`: CV 0, bit 0, timing stopped, TOF idle
