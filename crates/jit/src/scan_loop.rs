@@ -5,12 +5,14 @@
 //! either dialect, outside the first scan, not in STOP, whose main program returns Ok without
 //! a STOP request. The parts of `scan::begin` that are more than a few stores stay in the
 //! runtime and are called where `begin` runs them ([`FastPath`]): the event phase E1 of a
-//! program with event sources (`scan::interval_events`), and the clock-driven timer refresh
-//! with the events of the instant (`scan::instant_steps`), which call back into the compiled
-//! interrupt routines through `NativeRoutines`; a program with pulse outputs ends its scans
-//! in `scan::end`. Every other scan calls the runtime's `scan::begin`/`scan::end` shims, which
-//! remain the definition. The inline path reads every fact it applies from `runtime::scan`
-//! (`DELTAS`, `RESETS`, the `SMB0_*` bits), from `core::omron` (the system bits, their pulse
+//! program with event sources (`scan::interval_events`), and the events of the instant
+//! (`scan::instant_events`), which call back into the compiled interrupt routines through
+//! `NativeRoutines`; a program with pulse outputs ends its scans in `scan::end`. The
+//! clock-driven refresh of 1-ms and 10-ms timers between them is emitted inline from the
+//! runtime's rule text ([`clock`]). Every other scan calls the runtime's
+//! `scan::begin`/`scan::end` shims, which remain the definition. The inline path reads every
+//! fact it applies from `runtime::scan` (`DELTAS`, `RESETS`, the `SMB0_*` bits), from
+//! `runtime::timer` (the refresh rule), from `core::omron` (the system bits, their pulse
 //! periods, the condition flags, `P_First_Cycle`) and the image layout, so it restates no
 //! fact; the differential tests and every fuzz campaign compare its bytes with the
 //! interpreter's, which always calls `scan::begin`/`end`.
@@ -38,6 +40,9 @@ use stljit_core::omron::{self, SystemBit};
 use stljit_core::{Area, Family, ScanStatus};
 use stljit_runtime::scan::{self, Begin, ScanPlan};
 
+#[path = "scan_clock.rs"]
+mod clock;
+
 /// What the inline path of a scan (in RUN, after the first) leaves to the runtime: the parts
 /// of `scan::begin` it does not restate, each called where `begin` runs it, and `scan::end`
 /// where the inline epilogue would miss a step.
@@ -46,8 +51,9 @@ struct FastPath {
     /// `scan::interval_events` (E1), after the time step and the resets: the program has
     /// interrupt routines, high-speed counters, pulse outputs or communication.
     interval: bool,
-    /// `scan::instant_steps` (the clock-driven refresh, then the events of the instant), after
-    /// the system bits: the program has clock-refreshed timers or events.
+    /// `scan::instant_events` (the events of the instant), after the system bits and the
+    /// clock-driven timer refresh, which is inline ([`clock::inline_refresh`]): the program
+    /// has events.
     instant: bool,
     /// The epilogue is inline: the program has no pulse outputs, whose generators `scan::end`
     /// lets drive their outputs.
@@ -58,7 +64,7 @@ impl FastPath {
     fn of(plan: &ScanPlan) -> FastPath {
         FastPath {
             interval: plan.has_events(),
-            instant: plan.has_events() || !plan.clock_timers().is_empty(),
+            instant: plan.has_events(),
             inline_end: !plan.has_pulse_outputs(),
         }
     }
@@ -191,6 +197,7 @@ pub(crate) fn build_run(
         b.switch_to_block(inputs);
     }
     inline_inputs(&mut b, &img, plan.family(), &q);
+    clock::inline_refresh(&mut b, &img, plan.clock_timers(), env.prog);
     match steps.filter(|_| fast.instant) {
         Some(steps) => call_steps(&mut b, steps, 1, run),
         None => {

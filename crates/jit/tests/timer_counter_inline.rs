@@ -114,3 +114,60 @@ fn odd_timer_and_counter_bytes_run_alike_on_both_engines() {
         }
     }
 }
+
+/// The clock refresh of 1-ms and 10-ms timers at scan start: the JIT's inline scan path emits
+/// `timer::refresh_rule` with the declared kind and resolution as constants where the timer's
+/// kind and resolution bytes are the declaration's, and on the bytes otherwise (`scan_clock`).
+/// Every pair of kind and resolution bytes, written after the first scans, must run alike on
+/// both engines: unused (kind 0), a kind no timer has (7), a resolution the refresh skips (100,
+/// 0) and the other clocked one (a 10-ms timer's bytes saying 1 ms).
+#[test]
+fn clock_timers_with_any_kind_and_resolution_bytes_run_alike_on_both_engines() {
+    use stljit_core::layout::TimerState;
+    // S7-200: T32 1-ms TON, T33 10-ms TON, T96 1-ms TOF, T1 10-ms TONR.
+    const CLOCKED: &str = "\
+LD I0.0
+TON T32, 30
+LD I0.0
+TON T33, 5
+LDN I0.0
+TOF T96, 50
+LD I0.1
+TONR T1, 8
+";
+    let c = stljit_front_s7::compile_str("clock.stl", CLOCKED, ProfileId::S7_200);
+    let program = c.program.expect("compiles");
+    for opt in [OptLevel::None, OptLevel::Speed] {
+        let mut interp = Interpreter::new(&program).expect("interpreter accepts the program");
+        let mut jit = JitProgram::compile(&program, &JitOptions::at(opt)).expect("compiles");
+        for kind in [0u8, 1, 2, 3, 7] {
+            for res in [1u8, 10, 100, 0] {
+                let (mut a, mut b) = (Image::cold_start(&program), Image::cold_start(&program));
+                for scan in 0..16u64 {
+                    if scan == 3 {
+                        for img in [&mut a, &mut b] {
+                            let (buf, l) = img.split_mut();
+                            for n in [32, 33, 96, 1] {
+                                let state = l.timer_state(n) as usize;
+                                buf[state + TimerState::KIND as usize] = kind;
+                                buf[state + TimerState::RES as usize] = res;
+                            }
+                        }
+                    }
+                    // I0.0 on for 6 scans, off for 6 (the TOF times), I0.1 in runs of 3.
+                    let inputs = [u8::from(scan % 12 < 6) | u8::from(scan % 6 < 3) << 1];
+                    a.set_inputs(&inputs);
+                    b.set_inputs(&inputs);
+                    let t = 7 * scan;
+                    let (sa, sb) = (interp.scan(&mut a, t), jit.scan(&mut b, t));
+                    assert_eq!(sa, sb, "{opt:?} kind {kind} res {res} scan {scan}: status");
+                    let diff = a.bytes().iter().zip(b.bytes()).position(|(x, y)| x != y);
+                    assert_eq!(
+                        diff, None,
+                        "{opt:?} kind {kind} res {res} scan {scan}: first differing image byte"
+                    );
+                }
+            }
+        }
+    }
+}

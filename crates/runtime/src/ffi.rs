@@ -16,7 +16,7 @@
 //! | Shim | Rust counterpart | Returns |
 //! |---|---|---|
 //! | `stljit_rt_scan_begin(img, l, plan, routines, t_ms: u64)` | [`scan::begin`] | [`scan::Begin`] as u32: 1 run the program, 0 in STOP, 2 fatal in an interrupt routine |
-//! | `stljit_rt_scan_steps(img, l, plan, routines, instant: u32)` | [`scan::interval_events`] (0), [`scan::instant_steps`] (1) | [`scan::Begin`] as u32: 1 go on, 2 fatal in an interrupt routine |
+//! | `stljit_rt_scan_steps(img, l, plan, routines, instant: u32)` | [`scan::interval_events`] (0), [`scan::instant_events`] (1) | [`scan::Begin`] as u32: 1 go on, 2 fatal in an interrupt routine |
 //! | `stljit_rt_scan_end(img, l, status: u32)` | [`scan::end`] | final `ScanStatus` as u32 |
 //! | `stljit_rt_task_start(img, l)` | [`scan::task_start`] | status |
 //! | `stljit_rt_interrupt(img, l, kind, event, routine)` | [`crate::interrupt::execute`] | status |
@@ -288,8 +288,9 @@ pub unsafe extern "C" fn stljit_rt_scan_begin(
 
 /// One of [`scan::begin`]'s parts that an engine's inline prologue leaves to the runtime (the
 /// JIT's): `instant` 0 runs [`scan::interval_events`] for the interval from `T_PREV` to
-/// `T_NOW`, which that prologue has just written, anything else [`scan::instant_steps`] (the
-/// clock-driven timer refresh and the events of the instant) at `T_NOW`. Returns
+/// `T_NOW`, which that prologue has just written, anything else [`scan::instant_events`] (the
+/// events of the instant) at `T_NOW`, after the clock-driven timer refresh that the prologue
+/// emits inline ([`crate::timer::refresh_rule`]). Returns
 /// [`scan::Begin::Run`] as u32, or [`scan::Begin::Fatal`] when a routine ended in a fatal error
 /// (recorded in the image), when `image`, `layout` or `plan` is null or when the runtime
 /// panicked (then nothing is recorded; neither happens to the JIT's calls).
@@ -311,7 +312,7 @@ pub unsafe extern "C" fn stljit_rt_scan_steps(
                 let t_prev = mem::get_u64_ne(b, l.sched(Sched::T_PREV));
                 scan::interval_events(b, l, plan, isr, t_prev, t_now)
             } else {
-                scan::instant_steps(b, l, plan, isr, t_now)
+                scan::instant_events(b, l, plan, isr, t_now)
             }
         })
     };
