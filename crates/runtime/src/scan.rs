@@ -1,8 +1,9 @@
 //! The scan cycle around the program body (spec §2.1): [`begin`] does steps 1–4 and the per-scan
 //! resets of step 5, [`end`] does steps 6–8. Both engines call these functions, so time, SMB0,
 //! the clock-driven timer refresh and the output copy exist once; the JIT's inline scan path
-//! writes the stores of [`begin`] and [`end`] from the facts exported here and calls
-//! [`interval_events`] and [`instant_steps`], the parts of `begin` that are more.
+//! writes the stores of [`begin`] and [`end`] from the facts exported here, emits the clock
+//! refresh from its rule ([`timer::refresh_rule`]) and calls [`interval_events`] and
+//! [`instant_events`], the parts of `begin` that are more.
 //!
 //! A program with interrupt routines, high-speed counters, pulse outputs or communication runs
 //! the event phases of s7-200-more §3.6.2 inside [`begin`] ([`crate::interrupt`]): E1 after the
@@ -149,7 +150,7 @@ impl ScanPlan {
 
     /// Whether [`begin`] runs the event phases: the program has interrupt routines,
     /// high-speed counters, pulse outputs or communication. An engine's inline scan path must
-    /// then call [`interval_events`] and [`instant_steps`] where `begin` does.
+    /// then call [`interval_events`] and [`instant_events`] where `begin` does.
     pub fn has_events(&self) -> bool {
         self.has_interrupts() || self.hsc || self.pulse || self.ports
     }
@@ -331,8 +332,9 @@ pub fn begin(
         }
     }
 
-    // Step 4 and E2 (§3.6.2 step 5).
-    if instant_steps(img, layout, plan, isr, t_ms).is_err() {
+    // Step 4, then E2 (§3.6.2 step 5).
+    refresh_clock_timers(img, layout, plan);
+    if instant_events(img, layout, plan, isr, t_ms).is_err() {
         return Begin::Fatal;
     }
     Begin::Run
@@ -356,20 +358,6 @@ pub fn interval_events(
     }
     let (ta, tb) = (micros(t_prev_ms), micros(t_ms));
     interrupt::interval_phase(img, layout, plan.events(), isr, ta, tb)
-}
-
-/// [`begin`] after the system bits, for the scan instant `t_ms`: step 4
-/// ([`refresh_clock_timers`]), then [`instant_events`].
-#[inline]
-pub fn instant_steps(
-    img: &mut [u8],
-    layout: &Layout,
-    plan: &ScanPlan,
-    isr: &mut dyn Isr,
-    t_ms: u64,
-) -> Result<(), interrupt::PhaseFatal> {
-    refresh_clock_timers(img, layout, plan);
-    instant_events(img, layout, plan, isr, t_ms)
 }
 
 /// Step 4 of [`begin`]: the clock-driven refresh of the 1-ms and 10-ms timers the program
