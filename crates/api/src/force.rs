@@ -22,7 +22,8 @@
 
 use crate::handle::Handle;
 use stljit_core::{Area, ScanStatus};
-use stljit_runtime::{Engine, Image};
+use stljit_runtime::engine::scan_by_scan;
+use stljit_runtime::{ChangeWatch, Engine, Image};
 
 /// One forced address.
 #[derive(Clone, Debug)]
@@ -135,12 +136,21 @@ impl Engine for Forced<'_> {
         if self.forces.list.is_empty() {
             return self.engine.run_scans(image, t0, dt, n);
         }
-        for i in 0..n {
-            let status = self.scan(image, t0.wrapping_add(i.wrapping_mul(dt)));
-            if status != ScanStatus::Ok {
-                return (i + 1, status);
-            }
+        scan_by_scan(self, image, t0, dt, n, None)
+    }
+
+    /// As [`Forced::run_scans`], ending early where `watch` sees a change.
+    fn run_scans_watching(
+        &mut self,
+        image: &mut Image,
+        t0: u64,
+        dt: u64,
+        n: u64,
+        watch: &mut ChangeWatch,
+    ) -> (u64, ScanStatus) {
+        if self.forces.list.is_empty() {
+            return self.engine.run_scans_watching(image, t0, dt, n, watch);
         }
-        (n, ScanStatus::Ok)
+        scan_by_scan(self, image, t0, dt, n, Some(watch))
     }
 }

@@ -19,6 +19,7 @@
 //! | `stljit_rt_scan_steps(img, l, plan, routines, instant: u32)` | [`scan::interval_events`] (0), [`scan::instant_events`] (1) | [`scan::Begin`] as u32: 1 go on, 2 fatal in an interrupt routine |
 //! | `stljit_rt_scan_end(img, l, status: u32)` | [`scan::end`] | final `ScanStatus` as u32 |
 //! | `stljit_rt_task_start(img, l)` | [`scan::task_start`] | status |
+//! | `stljit_rt_watch_changed(img, l, watch)` | [`crate::engine::ChangeWatch::changed`] | 1 changed, 0 not |
 //! | `stljit_rt_interrupt(img, l, kind, event, routine)` | [`crate::interrupt::execute`] | status |
 //! | `stljit_rt_timer(img, l, n, kind, input, gate, preset: i32)` | [`timer::execute`] | status |
 //! | `stljit_rt_timer_reset(img, l, first, count)` | [`timer::reset_range`] | status |
@@ -320,6 +321,26 @@ pub unsafe extern "C" fn stljit_rt_scan_steps(
         Some(Ok(())) => scan::Begin::Run as u32,
         _ => scan::Begin::Fatal as u32,
     }
+}
+
+/// [`ChangeWatch::changed`](crate::engine::ChangeWatch::changed) on the image: 1 when a
+/// watched byte changed since the watch last looked (the JIT's native loop then ends its
+/// stretch), else 0; 0 too when `image`, `layout` or `watch` is null or the runtime panicked.
+///
+/// # Safety
+/// See the module conventions; `watch` is null or points to a live, exclusively borrowed
+/// [`ChangeWatch`](crate::engine::ChangeWatch).
+pub unsafe extern "C" fn stljit_rt_watch_changed(
+    image: *mut u8,
+    layout: *const Layout,
+    watch: *mut crate::engine::ChangeWatch,
+) -> u32 {
+    // SAFETY: the caller's contract: `watch` is null or live and not aliased during the call.
+    let Some(watch) = (unsafe { watch.as_mut() }) else {
+        return 0;
+    };
+    // SAFETY: forwarded caller contract.
+    unsafe { with_image(image, layout, |b, _| u32::from(watch.changed(b))) }.unwrap_or(0)
 }
 
 /// [`scan::task_start`]: the resets before an Omron cyclic task after the first.

@@ -165,3 +165,21 @@ fn block_shims() {
         Ok(1)
     );
 }
+
+#[test]
+fn the_watch_shim_reports_a_change_once_and_rejects_null_pointers() {
+    let mut im = img();
+    let mut w = crate::engine::ChangeWatch::new(&im, std::iter::once(3..5));
+    let (b, l) = im.split_mut();
+    b[4] = 9;
+    let (p, lp) = (b.as_mut_ptr(), l as *const Layout);
+    // SAFETY: p/lp come from a live image borrowed for the whole block; `w` is live and not
+    // otherwise borrowed during the calls.
+    unsafe {
+        assert_eq!(stljit_rt_watch_changed(p, lp, &mut w), 1);
+        assert_eq!(stljit_rt_watch_changed(p, lp, &mut w), 0);
+        assert_eq!(stljit_rt_watch_changed(p, lp, std::ptr::null_mut()), 0);
+        assert_eq!(stljit_rt_watch_changed(std::ptr::null_mut(), lp, &mut w), 0);
+        assert_eq!(stljit_rt_watch_changed(p, std::ptr::null(), &mut w), 0);
+    }
+}

@@ -52,6 +52,6 @@ pub mod timer;
 #[cfg(test)]
 mod testutil;
 
-pub use engine::Engine;
+pub use engine::{ChangeWatch, Engine};
 pub use image::{Image, ImageError};
 pub use stljit_core::layout::Layout;
