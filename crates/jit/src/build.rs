@@ -86,10 +86,11 @@ pub(crate) fn chunk_signature(cc: CallConv) -> Signature {
     s
 }
 
-/// The signature of the many-scans entry: `(image, t0, dt, n, done_out) -> status`.
+/// The signature of the many-scans entry: `(image, t0, dt, n, done_out, watch) -> status`
+/// (`watch` a `ChangeWatch` or null: `scan_loop`).
 pub(crate) fn run_signature(cc: CallConv) -> Signature {
     let mut s = Signature::new(cc);
-    for _ in 0..5 {
+    for _ in 0..6 {
         s.params.push(AbiParam::new(I64));
     }
     s.returns.push(AbiParam::new(I32));

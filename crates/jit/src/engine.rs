@@ -15,9 +15,9 @@ use stljit_core::layout::Layout;
 use stljit_runtime::ffi::{NativeRoutines, PouFn};
 use stljit_runtime::rules::Rules;
 use stljit_runtime::scan::ScanPlan;
-use stljit_runtime::{Engine, Image};
+use stljit_runtime::{ChangeWatch, Engine, Image};
 
-type RunFn = unsafe extern "C" fn(*mut u8, u64, u64, u64, *mut u64) -> i32;
+type RunFn = unsafe extern "C" fn(*mut u8, u64, u64, u64, *mut u64, *mut ChangeWatch) -> i32;
 
 /// A program compiled to native code. Implements [`Engine`]; all state lives in the [`Image`].
 pub struct JitProgram {
@@ -180,17 +180,20 @@ impl JitProgram {
         t0_ms: u64,
         scan_ms: u64,
         n: u64,
+        watch: Option<&mut ChangeWatch>,
     ) -> (u64, ScanStatus) {
         if !self.fits(image) {
             return (0, ScanStatus::Fatal);
         }
         let mut done = 0u64;
         let bytes = image.bytes_mut().as_mut_ptr();
+        let watch = watch.map_or(std::ptr::null_mut(), |w| w as *mut ChangeWatch);
         // SAFETY: `bytes` points to `layout.size` bytes exclusively borrowed for the call (checked
         // by `fits`), the code only addresses the image within its layout (direct offsets are
-        // range-checked at compile time, pointers through `pointer::resolve`), and `done` is a
-        // live u64.
-        let st = unsafe { (self.run)(bytes, t0_ms, scan_ms, n, &mut done) };
+        // range-checked at compile time, pointers through `pointer::resolve`), `done` is a
+        // live u64, and `watch` is null or a live `ChangeWatch` borrowed for the call, which the
+        // code only passes to `stljit_rt_watch_changed`.
+        let st = unsafe { (self.run)(bytes, t0_ms, scan_ms, n, &mut done, watch) };
         (
             done,
             ScanStatus::try_from(st as u8).unwrap_or(ScanStatus::Fatal),
@@ -206,7 +209,7 @@ impl Engine for JitProgram {
     fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
         // One turn of the native loop: its inline prologue and epilogue are the cheapest way
         // through a scan (`scan_loop`), and the same bytes as `scan::run` around the body.
-        self.native_scans(image, t_ms, 0, 1).1
+        self.native_scans(image, t_ms, 0, 1, None).1
     }
 
     fn run_scans(
@@ -216,7 +219,18 @@ impl Engine for JitProgram {
         scan_ms: u64,
         n: u64,
     ) -> (u64, ScanStatus) {
-        self.native_scans(image, t0_ms, scan_ms, n)
+        self.native_scans(image, t0_ms, scan_ms, n, None)
+    }
+
+    fn run_scans_watching(
+        &mut self,
+        image: &mut Image,
+        t0_ms: u64,
+        scan_ms: u64,
+        n: u64,
+        watch: &mut ChangeWatch,
+    ) -> (u64, ScanStatus) {
+        self.native_scans(image, t0_ms, scan_ms, n, Some(watch))
     }
 }
 

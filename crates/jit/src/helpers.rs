@@ -81,9 +81,12 @@ helpers! {
     Pointer => "stljit_rt_pointer", ffi::stljit_rt_pointer, ImageLayout, [I32, I32, I32] -> I64;
     /// `stljit_rt_scan_begin(plan, routines, t_ms) -> scan::Begin`.
     ScanBegin => "stljit_rt_scan_begin", ffi::stljit_rt_scan_begin, ImageLayout, [I64, I64, I64] -> I32;
-    /// `stljit_rt_scan_steps(plan, routines, instant) -> scan::Begin`: E1, or the clock
-    /// refresh and the events of the instant.
+    /// `stljit_rt_scan_steps(plan, routines, instant) -> scan::Begin`: E1, or the events of
+    /// the instant.
     ScanSteps => "stljit_rt_scan_steps", ffi::stljit_rt_scan_steps, ImageLayout, [I64, I64, I32] -> I32;
+    /// `stljit_rt_watch_changed(watch) -> u32`: whether a watched byte changed (the native
+    /// loop's early end, `Engine::run_scans_watching`).
+    WatchChanged => "stljit_rt_watch_changed", ffi::stljit_rt_watch_changed, ImageLayout, [I64] -> I32;
     ScanEnd => "stljit_rt_scan_end", ffi::stljit_rt_scan_end, ImageLayout, [I32] -> I32;
     TaskStart => "stljit_rt_task_start", ffi::stljit_rt_task_start, ImageLayout, [] -> I32;
     /// `stljit_rt_interrupt(kind, event, routine)`: ATCH, DTCH, ENI, DISI, CEVNT.

@@ -71,7 +71,9 @@ impl FastPath {
 }
 
 /// The loop, with the signature `build::run_signature`:
-/// `(image, t0, dt, n, done_out) -> status`; writes the number of scans run to `done_out`.
+/// `(image, t0, dt, n, done_out, watch) -> status`; writes the number of scans run to
+/// `done_out`. A non-null `watch` (a `ChangeWatch`) also ends the loop after a scan that changed
+/// a byte it watches.
 ///
 /// With `main_body` (the main program's function, `main`'s CLIF, not yet compiled), the loop
 /// runs the main program inline instead of calling `main`: no call, no second prologue, and
@@ -91,7 +93,7 @@ pub(crate) fn build_run(
     b.append_block_params_for_function_params(entry);
     b.switch_to_block(entry);
     let p = b.block_params(entry).to_vec();
-    let (image, t0, dt, n, done) = (p[0], p[1], p[2], p[3], p[4]);
+    let (image, t0, dt, n, done, watch) = (p[0], p[1], p[2], p[3], p[4], p[5]);
     let begin = module.declare_func_in_func(env.helpers.id(Helper::ScanBegin), b.func);
     let end = module.declare_func_in_func(env.helpers.id(Helper::ScanEnd), b.func);
     let fast = FastPath::of(plan);
@@ -235,7 +237,18 @@ pub(crate) fn build_run(
     inline_end(&mut b, &img);
     b.ins().jump(next, &[]);
 
+    // With a `ChangeWatch` (`Engine::run_scans_watching`), a scan that changed a watched byte
+    // ends the stretch; without one (null), the test is one predictable branch per scan.
     b.switch_to_block(next);
+    let (check, count) = (b.create_block(), b.create_block());
+    b.ins().brif(watch, check, &[], count, &[]);
+    b.switch_to_block(check);
+    let changed = module.declare_func_in_func(env.helpers.id(Helper::WatchChanged), b.func);
+    let c = b.ins().call(changed, &[image, layout, watch]);
+    let changed = b.inst_results(c)[0];
+    b.ins()
+        .brif(changed, fin, &[i1.into(), ok.into()], count, &[]);
+    b.switch_to_block(count);
     let more = b.ins().icmp(IntCC::UnsignedLessThan, i1, n);
     b.ins()
         .brif(more, advance, &[], fin, &[i1.into(), ok.into()]);

@@ -250,11 +250,17 @@ fn run_scans_in_stretches_equals_scan_by_scan() {
         scans: 40,
         ..GenConfig::default()
     };
-    let mut stretches = 0u64;
+    let (mut stretches, mut watched) = (0u64, 0u64);
     for seed in 0..SEEDS / 2 {
-        stretches += stretches_agree(&case_from_seed(seed ^ 0x5EED, &cfg), seed, 200);
+        let (s, w) = stretches_agree(&case_from_seed(seed ^ 0x5EED, &cfg), seed, 200);
+        stretches += s;
+        watched += w;
     }
     assert!(stretches > SEEDS, "{stretches} stretches");
+    assert!(
+        watched > SEEDS / 4,
+        "only {watched} stretches ended at a watched change"
+    );
 }
 
 /// The same for Omron programs, whose scans take the inline path too: the system bits (`P_On`,
@@ -275,7 +281,7 @@ fn omron_run_scans_in_stretches_equals_scan_by_scan() {
         // A program the front end rejects is the generator's business (its own tests).
         if let Ok(g) = generate_in(Family::Omron, &mut c, &cfg) {
             // Scan times up to 2 s, so that 40 scans pass the 1-minute pulse's edges too.
-            stretches += stretches_agree(&g.case, seed, 2000);
+            stretches += stretches_agree(&g.case, seed, 2000).0;
             cases += 1;
         }
     }
@@ -285,13 +291,13 @@ fn omron_run_scans_in_stretches_equals_scan_by_scan() {
 
 /// Runs `case` in random stretches (scan times 1..=`max_dt` ms) on the JIT's native loop and
 /// scan by scan on the interpreter, comparing the images after every stretch; the number of
-/// stretches run.
-fn stretches_agree(case: &stljit_diff::generate::Case, seed: u64, max_dt: u64) -> u64 {
-    use stljit_core::ScanStatus;
+/// stretches run, and of those that a watched change ended early.
+fn stretches_agree(case: &stljit_diff::generate::Case, seed: u64, max_dt: u64) -> (u64, u64) {
+    use stljit_core::{Area, ScanStatus};
     use stljit_diff::oracle::{apply_stimulus, start_image};
-    use stljit_runtime::Engine;
+    use stljit_runtime::{ChangeWatch, Engine};
     let run = RunOptions::default();
-    let mut stretches = 0u64;
+    let (mut stretches, mut watched) = (0u64, 0u64);
     let mut interp =
         stljit_interp::Interpreter::new(&case.program).expect("interpreter accepts it");
     let opt = if seed.is_multiple_of(2) {
@@ -323,21 +329,42 @@ fn stretches_agree(case: &stljit_diff::generate::Case, seed: u64, max_dt: u64) -
         };
         apply_stimulus(&mut want, &case.stimulus.scans[k]);
         apply_stimulus(&mut got, &case.stimulus.scans[k]);
-        let mut status = ScanStatus::Ok;
-        let mut done = 0;
-        while done < len as u64 && status == ScanStatus::Ok {
-            status = interp.scan(&mut want, t0 + done * dt);
-            done += 1;
-        }
-        // A call for no scans runs none and changes no byte (the loop tests its count first).
-        let before = got.bytes().to_vec();
-        assert_eq!(jit.run_scans(&mut got, t0, dt, 0), (0, ScanStatus::Ok));
-        assert!(
-            got.bytes() == before.as_slice(),
-            "seed {seed}: 0 scans wrote"
-        );
-        let (jdone, jstatus) = jit.run_scans(&mut got, t0, dt, len as u64);
-        assert_eq!((jdone, jstatus), (done, status), "seed {seed}, scan {k}");
+        // Every other stretch also ends at the first scan that changes a byte of Q or of the
+        // first bytes of M and V (`Engine::run_scans_watching`: the interpreter scan by scan,
+        // the JIT in its native loop).
+        let (done, status) = if next() % 2 == 0 {
+            let l = want.layout().clone();
+            let ranges = [Area::Q, Area::M, Area::V].map(|a| {
+                let base = l.base(a) as usize;
+                base..base + (l.area_size(a) as usize).min(8)
+            });
+            let mut wwant = ChangeWatch::new(&want, ranges.clone());
+            let mut wgot = ChangeWatch::new(&got, ranges);
+            let want_run = interp.run_scans_watching(&mut want, t0, dt, len as u64, &mut wwant);
+            let got_run = jit.run_scans_watching(&mut got, t0, dt, len as u64, &mut wgot);
+            assert_eq!(got_run, want_run, "seed {seed}, scan {k}: watching");
+            assert_eq!(wgot, wwant, "seed {seed}, scan {k}: the watches' bytes");
+            watched += u64::from(want_run.0 < len as u64 && want_run.1 == ScanStatus::Ok);
+            want_run
+        } else {
+            let mut status = ScanStatus::Ok;
+            let mut done = 0;
+            while done < len as u64 && status == ScanStatus::Ok {
+                status = interp.scan(&mut want, t0 + done * dt);
+                done += 1;
+            }
+            // A call for no scans runs none and changes no byte (the loop tests its count
+            // first).
+            let before = got.bytes().to_vec();
+            assert_eq!(jit.run_scans(&mut got, t0, dt, 0), (0, ScanStatus::Ok));
+            assert!(
+                got.bytes() == before.as_slice(),
+                "seed {seed}: 0 scans wrote"
+            );
+            let (jdone, jstatus) = jit.run_scans(&mut got, t0, dt, len as u64);
+            assert_eq!((jdone, jstatus), (done, status), "seed {seed}, scan {k}");
+            (done, status)
+        };
         assert!(
             got.bytes() == want.bytes(),
             "seed {seed}: images differ after the stretch starting at scan {k}"
@@ -346,10 +373,10 @@ fn stretches_agree(case: &stljit_diff::generate::Case, seed: u64, max_dt: u64) -
         if status != ScanStatus::Ok {
             break;
         }
-        k += len;
-        t = t0 + (len as u64 - 1) * dt;
+        k += done as usize;
+        t = t0 + (done - 1) * dt;
     }
-    stretches
+    (stretches, watched)
 }
 
 /// The native loop's time step at the ends of its ranges, against the interpreter: a scan
