@@ -168,6 +168,15 @@ impl Observer for Both<'_, '_> {
         self.hook.as_ref().is_some_and(|h| h.needs_every_scan())
             || self.run.as_ref().is_some_and(|o| o.needs_every_scan())
     }
+
+    fn changes_of(
+        &self,
+        layout: &stljit_core::layout::Layout,
+    ) -> Option<Vec<std::ops::Range<usize>>> {
+        let hook = self.hook.as_deref().map(|h| h as &dyn Observer);
+        let run = self.run.as_deref().map(|o| o as &dyn Observer);
+        stljit_sim::driver::changes_of_all(hook.into_iter().chain(run), layout)
+    }
 }
 
 /// A compiled PLC program on an engine, with its image, virtual clock and forces.

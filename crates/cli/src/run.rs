@@ -249,6 +249,16 @@ impl Observer for Fanout<'_> {
     fn needs_every_scan(&self) -> bool {
         self.0.iter().any(|o| o.needs_every_scan())
     }
+
+    fn changes_of(
+        &self,
+        layout: &stljit_core::layout::Layout,
+    ) -> Option<Vec<std::ops::Range<usize>>> {
+        stljit_sim::driver::changes_of_all(
+            self.0.iter().map(|o| o.as_ref() as &dyn Observer),
+            layout,
+        )
+    }
 }
 
 impl Fanout<'_> {

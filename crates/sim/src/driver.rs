@@ -12,9 +12,11 @@ use crate::value::write_address;
 use std::borrow::BorrowMut;
 use std::fmt;
 use std::io;
+use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
+use stljit_core::layout::Layout;
 use stljit_core::{FatalCode, ScanStatus, comm};
-use stljit_runtime::engine::Engine;
+use stljit_runtime::engine::{ChangeWatch, Engine};
 use stljit_runtime::image::Image;
 
 /// The most scans one engine call runs when no observer needs every scan: a few milliseconds of
@@ -57,6 +59,32 @@ pub trait Observer {
     fn needs_every_scan(&self) -> bool {
         true
     }
+
+    /// For an observer that needs every scan only to see the image bytes some of them change
+    /// (a VCD trace writes nothing for a scan that changed no watched value): those bytes. The
+    /// driver then runs the scans between two stimulus rows in stretches that end at the first
+    /// scan changing one of them ([`Engine::run_scans_watching`]; the JIT's native loop
+    /// compares after each scan), and shows this observer each stretch's last scan and the
+    /// first scan of a run. `None` (the default): every scan, as [`Observer::needs_every_scan`]
+    /// says.
+    fn changes_of(&self, _layout: &Layout) -> Option<Vec<Range<usize>>> {
+        None
+    }
+}
+
+/// The bytes `observers` need to see changes of ([`Observer::changes_of`]): each one that needs
+/// every scan must name its bytes (`None` otherwise); the rest need none.
+pub fn changes_of_all<'o>(
+    observers: impl IntoIterator<Item = &'o (dyn Observer + 'o)>,
+    layout: &Layout,
+) -> Option<Vec<Range<usize>>> {
+    let mut all = Vec::new();
+    for o in observers {
+        if o.needs_every_scan() {
+            all.extend(o.changes_of(layout)?);
+        }
+    }
+    Some(all)
 }
 
 /// Observes nothing.
@@ -80,6 +108,10 @@ impl<A: Observer, B: Observer> Observer for (A, B) {
     fn needs_every_scan(&self) -> bool {
         self.0.needs_every_scan() || self.1.needs_every_scan()
     }
+
+    fn changes_of(&self, layout: &Layout) -> Option<Vec<Range<usize>>> {
+        changes_of_all([&self.0 as &dyn Observer, &self.1], layout)
+    }
 }
 
 impl<O: Observer + ?Sized> Observer for &mut O {
@@ -89,6 +121,10 @@ impl<O: Observer + ?Sized> Observer for &mut O {
 
     fn needs_every_scan(&self) -> bool {
         (**self).needs_every_scan()
+    }
+
+    fn changes_of(&self, layout: &Layout) -> Option<Vec<Range<usize>>> {
+        (**self).changes_of(layout)
     }
 }
 
@@ -315,6 +351,16 @@ impl<'a, I: BorrowMut<Image>> Simulation<'a, I> {
         let rows = stimulus.rows();
         let mut next_row = 0;
         let every_scan = observer.needs_every_scan();
+        // An observer that needs only the scans changing some bytes sees stretches ending at
+        // such a scan; the first scan of the run it sees on its own.
+        let mut watch = if every_scan {
+            let image = self.image.borrow();
+            observer
+                .changes_of(image.layout())
+                .map(|ranges| ChangeWatch::new(image, ranges))
+        } else {
+            None
+        };
         let mut done = 0;
         while done < total {
             if self.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
@@ -331,7 +377,7 @@ impl<'a, I: BorrowMut<Image>> Simulation<'a, I> {
             }
             // One scan, or every scan up to the next stimulus row in one engine call (bounded,
             // so that cancellation and progress stay responsive).
-            let stretch = if every_scan {
+            let stretch = if every_scan && (watch.is_none() || done == 0) {
                 1
             } else {
                 let next_due = rows
@@ -342,11 +388,13 @@ impl<'a, I: BorrowMut<Image>> Simulation<'a, I> {
                     .min(MAX_STRETCH)
             };
             let t0 = self.time_of(k);
-            let (ran, status) = if stretch == 1 {
-                (1, self.engine.scan(self.image.borrow_mut(), t0))
-            } else {
-                self.engine
-                    .run_scans(self.image.borrow_mut(), t0, self.scan_ms, stretch)
+            let image = self.image.borrow_mut();
+            let (ran, status) = match watch.as_mut() {
+                _ if stretch == 1 => (1, self.engine.scan(image, t0)),
+                Some(w) => self
+                    .engine
+                    .run_scans_watching(image, t0, self.scan_ms, stretch, w),
+                None => self.engine.run_scans(image, t0, self.scan_ms, stretch),
             };
             if ran == 0 {
                 report.outcome = Outcome::Fatal {
@@ -368,6 +416,11 @@ impl<'a, I: BorrowMut<Image>> Simulation<'a, I> {
                 status,
             };
             observer.observe(&event).map_err(SimError::Observer)?;
+            if let Some(w) = watch.as_mut() {
+                // The bytes as the observer saw them: a change after this (a stimulus row's
+                // write included) ends the next stretch at its first scan.
+                w.changed(self.image.borrow().bytes());
+            }
             if let Some(p) = self.progress.as_mut() {
                 p(Progress { done, total, t_ms });
             }

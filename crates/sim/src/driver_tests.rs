@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::stimulus::TimeBase;
-use crate::test_resolver::resolve;
+use crate::test_resolver::{resolve, watches};
 use stljit_core::layout::{PortState, Sched};
 use stljit_core::{Area, ProfileId};
 use stljit_runtime::mem;
@@ -298,4 +298,61 @@ fn a_counter_the_image_lacks_is_an_error() {
         e.to_string(),
         "stimulus line 2: `HSC4`: the CPU has no such high-speed counter"
     );
+}
+
+/// A VCD trace through the driver's change-watching stretches writes the same bytes as when it
+/// sees every scan, and is shown far fewer scans. The watches cover a byte the scans change
+/// (QB0 := IB0), one a stimulus row writes like an HMI (M0.1: the stretch after the row must
+/// end at its first scan, where the trace stamps the change), one that follows an analog input
+/// (VB2), and one that changes every scan (VW0 in the second trace: every stretch is a scan).
+#[test]
+fn a_vcd_trace_in_change_watching_stretches_writes_what_it_writes_scan_by_scan() {
+    use crate::trace_vcd::VcdTrace;
+    /// The trace, hiding its `changes_of`: it then sees every scan.
+    struct EveryScan<O>(O, u64);
+    impl<O: Observer> Observer for EveryScan<O> {
+        fn observe(&mut self, e: &ScanEvent<'_>) -> io::Result<()> {
+            self.1 += 1;
+            self.0.observe(e)
+        }
+    }
+    /// Counts the scans the trace is shown, passing its `changes_of` on.
+    struct Counted<O>(O, u64);
+    impl<O: Observer> Observer for Counted<O> {
+        fn observe(&mut self, e: &ScanEvent<'_>) -> io::Result<()> {
+            self.1 += 1;
+            self.0.observe(e)
+        }
+        fn changes_of(&self, layout: &Layout) -> Option<Vec<Range<usize>>> {
+            self.0.changes_of(layout)
+        }
+    }
+    let s = stim("scan,I0.0,M0.1,AIW0\n0,0,0,0\n5,1,,\n9,,1,\n12,0,,7\n20,,0,\n");
+    for specs in [&["Q0.0", "M0.1", "VB2"][..], &["Q0.0", "VW0"][..]] {
+        let trace = || VcdTrace::new(Vec::new(), watches(specs), "toy").unwrap();
+        let run = |observer: &mut dyn Observer| {
+            let mut toy = Toy;
+            let mut sim = Simulation::new(&mut toy, Image::blank(ProfileId::A5), 10).unwrap();
+            let r = sim.run(Until::Scans(30), &s, observer).unwrap();
+            assert_eq!((r.outcome, r.scans), (Outcome::Completed, 30));
+        };
+        let mut every = EveryScan(trace(), 0);
+        run(&mut every);
+        let mut watched = Counted(trace(), 0);
+        run(&mut watched);
+        let want = String::from_utf8(every.0.finish().unwrap()).unwrap();
+        let got = String::from_utf8(watched.0.finish().unwrap()).unwrap();
+        assert_eq!(got, want, "{specs:?}");
+        if specs.contains(&"M0.1") {
+            assert!(want.contains("#90\n1\""), "M0.1 written at scan 9: {want}");
+        }
+        assert_eq!(every.1, 30);
+        if specs.contains(&"VW0") {
+            assert_eq!(watched.1, 30, "VW0 changes in every scan");
+        } else {
+            // The first scan, the scans that changed a watched byte (5, 9, 12, 20) and the
+            // stretch ends before rows (4, 8, 11, 19) and at the end (29).
+            assert!(watched.1 < 12, "shown {} scans", watched.1);
+        }
+    }
 }

@@ -12,6 +12,8 @@
 use crate::driver::{Observer, ScanEvent};
 use crate::watch::{Format, WatchSpec};
 use std::io::{self, Write};
+use std::ops::Range;
+use stljit_core::layout::Layout;
 
 /// Streams a VCD to `W`.
 pub struct VcdTrace<W: Write> {
@@ -129,6 +131,12 @@ impl<W: Write> Observer for VcdTrace<W> {
             writeln!(self.out, "$end")?;
         }
         Ok(())
+    }
+
+    /// A scan writes only the values that changed, so the trace needs to see only the scans
+    /// that changed a watched byte (and the first).
+    fn changes_of(&self, layout: &Layout) -> Option<Vec<Range<usize>>> {
+        self.watches.iter().map(|w| w.bytes(layout)).collect()
     }
 }
 

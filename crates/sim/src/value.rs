@@ -164,6 +164,15 @@ pub fn read_address(image: &Image, address: &Address) -> Option<u32> {
     }
 }
 
+/// The image bytes [`read_address`] reads for `address`, or `None` when it does not fit.
+pub fn read_range(layout: &Layout, address: &Address) -> Option<std::ops::Range<usize>> {
+    let (at, len) = match *address {
+        Address::Bit(bit) => (bit_addr(layout, bit, 0)?, 1),
+        Address::Value { loc, width } => (loc_addr(layout, loc, width, 0)?, width.bytes()),
+    };
+    Some(at as usize..(at + len) as usize)
+}
+
 /// Writes `raw` to an address the way the harness does before a scan: inputs (`I`) go to the
 /// physical input copy, which the scan start copies into the I image; everything else is written
 /// into the image directly, like an HMI write. Returns `false` (and writes nothing) when the

@@ -201,6 +201,11 @@ impl WatchSpec {
         read_address(image, &self.address)
     }
 
+    /// The image bytes [`WatchSpec::read`] reads, or `None` when the address does not fit.
+    pub fn bytes(&self, layout: &Layout) -> Option<std::ops::Range<usize>> {
+        crate::value::read_range(layout, &self.address)
+    }
+
     /// Formats a raw value of this watch.
     pub fn format(&self, raw: u32) -> String {
         let bits = self.bits();
