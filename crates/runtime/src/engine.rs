@@ -140,55 +140,37 @@ impl ChangeWatch {
     }
 }
 
-impl<E: Engine + ?Sized> Engine for Box<E> {
-    fn name(&self) -> &'static str {
-        (**self).name()
-    }
+/// Implements [`Engine`] for pointers to an engine (a box, a borrow), forwarding every method.
+macro_rules! forward_engine {
+    ($($pointer:ty),*) => {$(
+        impl<E: Engine + ?Sized> Engine for $pointer {
+            fn name(&self) -> &'static str {
+                (**self).name()
+            }
 
-    fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
-        (**self).scan(image, t_ms)
-    }
+            fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
+                (**self).scan(image, t_ms)
+            }
 
-    fn run_scans(&mut self, image: &mut Image, t0: u64, dt: u64, n: u64) -> (u64, ScanStatus) {
-        (**self).run_scans(image, t0, dt, n)
-    }
+            fn run_scans(&mut self, image: &mut Image, t0: u64, dt: u64, n: u64) -> (u64, ScanStatus) {
+                (**self).run_scans(image, t0, dt, n)
+            }
 
-    fn run_scans_watching(
-        &mut self,
-        image: &mut Image,
-        t0: u64,
-        dt: u64,
-        n: u64,
-        watch: &mut ChangeWatch,
-    ) -> (u64, ScanStatus) {
-        (**self).run_scans_watching(image, t0, dt, n, watch)
-    }
+            fn run_scans_watching(
+                &mut self,
+                image: &mut Image,
+                t0: u64,
+                dt: u64,
+                n: u64,
+                watch: &mut ChangeWatch,
+            ) -> (u64, ScanStatus) {
+                (**self).run_scans_watching(image, t0, dt, n, watch)
+            }
+        }
+    )*};
 }
 
-impl<E: Engine + ?Sized> Engine for &mut E {
-    fn name(&self) -> &'static str {
-        (**self).name()
-    }
-
-    fn scan(&mut self, image: &mut Image, t_ms: u64) -> ScanStatus {
-        (**self).scan(image, t_ms)
-    }
-
-    fn run_scans(&mut self, image: &mut Image, t0: u64, dt: u64, n: u64) -> (u64, ScanStatus) {
-        (**self).run_scans(image, t0, dt, n)
-    }
-
-    fn run_scans_watching(
-        &mut self,
-        image: &mut Image,
-        t0: u64,
-        dt: u64,
-        n: u64,
-        watch: &mut ChangeWatch,
-    ) -> (u64, ScanStatus) {
-        (**self).run_scans_watching(image, t0, dt, n, watch)
-    }
-}
+forward_engine!(Box<E>, &mut E);
 
 #[cfg(test)]
 mod tests {
