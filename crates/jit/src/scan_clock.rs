@@ -24,18 +24,20 @@ use stljit_core::Area;
 use stljit_core::ir::Program;
 use stljit_core::layout::{Sched, TimerState};
 use stljit_runtime::block;
-use stljit_runtime::timer::{TimerFields, declared_resolutions, refresh_applies, refresh_rule};
+use stljit_runtime::timer::{TimerFields, refresh_applies, refresh_rule};
 
 // The fast path loads the kind and resolution bytes as one little-endian word.
 const _: () = assert!(TimerState::RES == TimerState::KIND + 1);
 
 /// Emits the clock refresh of `timers` (the plan's, in the runtime's order) at the current
-/// point of `b`, which it leaves at the point after them.
+/// point of `b`, which it leaves at the point after them; `resolutions` are the program's
+/// declared ones (`Env::timer_res`).
 pub(super) fn inline_refresh(
     b: &mut FunctionBuilder<'_>,
     img: &Img<'_>,
     timers: &[u16],
     prog: &Program,
+    resolutions: &[Option<u8>],
 ) {
     if timers.is_empty() {
         return;
@@ -45,7 +47,6 @@ pub(super) fn inline_refresh(
         let d = b.ins().uload32(Img::flags(), img.base, l.sched(f) as i32);
         Rv::R(d)
     });
-    let resolutions = declared_resolutions(prog);
     for &n in timers {
         // Outside the profile: `refresh` skips the timer on the same check.
         if block::object_run(l, Area::TimerBit, n, 1).is_err() {

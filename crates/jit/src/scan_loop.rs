@@ -199,7 +199,7 @@ pub(crate) fn build_run(
         b.switch_to_block(inputs);
     }
     inline_inputs(&mut b, &img, plan.family(), &q);
-    clock::inline_refresh(&mut b, &img, plan.clock_timers(), env.prog);
+    clock::inline_refresh(&mut b, &img, plan.clock_timers(), env.prog, &env.timer_res);
     match steps.filter(|_| fast.instant) {
         Some(steps) => call_steps(&mut b, steps, 1, run),
         None => {

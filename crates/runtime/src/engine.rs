@@ -101,17 +101,15 @@ impl ChangeWatch {
                 _ => merged.push(r),
             }
         }
-        let mut w = ChangeWatch {
-            ranges: merged,
-            seen: Vec::new(),
-        };
-        w.seen = w
-            .ranges
+        let seen = merged
             .iter()
             .flat_map(|r| &image.bytes()[r.clone()])
             .copied()
             .collect();
-        w
+        ChangeWatch {
+            ranges: merged,
+            seen,
+        }
     }
 
     /// Whether a watched byte of `bytes` (an image's) differs from its value last seen; the
@@ -132,11 +130,6 @@ impl ChangeWatch {
             at += r.len();
         }
         changed
-    }
-
-    /// Whether nothing is watched.
-    pub fn is_empty(&self) -> bool {
-        self.ranges.is_empty()
     }
 }
 
@@ -195,7 +188,7 @@ mod tests {
             w.changed(&img.bytes()[..size - 1]),
             "a shorter image is a change"
         );
-        assert!(ChangeWatch::new(&img, []).is_empty());
+        assert!(ChangeWatch::new(&img, []).ranges.is_empty());
     }
 
     /// Counts its scans; a scan writes the count into byte 0 every third scan, and the fifth
