@@ -67,11 +67,25 @@ pub fn bit_addr(layout: &Layout, bit: BitLoc, frame: u32) -> Option<u32> {
 }
 
 /// The flat memory image of one PLC.
-#[derive(Clone, Debug, PartialEq, Eq)]
+///
+/// Two images are equal when their bytes and layouts are; the [`Image::version`] is not part of
+/// the value.
+#[derive(Clone, Debug)]
 pub struct Image {
-    bytes: Vec<u8>,
+    /// The image's `layout.size` bytes, then the engine scratch ([`Image::bytes_and_scratch`]).
+    buf: Vec<u8>,
     layout: Layout,
+    /// See [`Image::version`].
+    version: u64,
 }
+
+impl PartialEq for Image {
+    fn eq(&self, other: &Image) -> bool {
+        self.bytes() == other.bytes() && self.layout == other.layout
+    }
+}
+
+impl Eq for Image {}
 
 impl Image {
     /// A zeroed image for `profile` with the scheduler defaults of a cold start (first scan,
@@ -79,8 +93,9 @@ impl Image {
     pub fn blank(profile: ProfileId) -> Image {
         let layout = Layout::of(profile);
         let mut img = Image {
-            bytes: vec![0; layout.size as usize],
+            buf: vec![0; layout.size as usize],
             layout,
+            version: 0,
         };
         img.set_sched_u8(Sched::FIRST_SCAN, 1);
         img.set_sched_u8(Sched::SCR_ENABLE, 1);
@@ -102,20 +117,20 @@ impl Image {
         for t in &program.timers {
             if t.id.0 < profile.timers {
                 let at = l.timer_state(t.id.0);
-                mem::set_u8(&mut img.bytes, at + TimerState::KIND, t.kind.code());
+                mem::set_u8(img.img_mut(), at + TimerState::KIND, t.kind.code());
                 let res = t.resolution.millis() as u8;
-                mem::set_u8(&mut img.bytes, at + TimerState::RES, res);
+                mem::set_u8(img.img_mut(), at + TimerState::RES, res);
             }
         }
         for c in &program.counters {
             if c.id.0 < profile.counters {
                 let at = l.counter_state(c.id.0) + CounterState::KIND;
-                mem::set_u8(&mut img.bytes, at, c.kind.code());
+                mem::set_u8(img.img_mut(), at, c.kind.code());
             }
         }
         for (slot, e) in program.edges.iter().enumerate() {
             if slot < usize::from(profile.max_edges) {
-                mem::set_u8(&mut img.bytes, l.edges + slot as u32, u8::from(e.init));
+                mem::set_u8(img.img_mut(), l.edges + slot as u32, u8::from(e.init));
             }
         }
         let (v, v_size) = (l.base(Area::V) as usize, l.area_size(Area::V) as usize);
@@ -123,7 +138,7 @@ impl Image {
             // The verifier keeps runs inside V; one that is not is left out, never a panic.
             let start = d.offset as usize;
             if start.saturating_add(d.bytes.len()) <= v_size {
-                img.bytes[v + start..v + start + d.bytes.len()].copy_from_slice(&d.bytes);
+                img.img_mut()[v + start..v + start + d.bytes.len()].copy_from_slice(&d.bytes);
             }
         }
         img
@@ -132,17 +147,45 @@ impl Image {
     /// Sets the date and time the real-time clock shows at t = 0 (before the first scan;
     /// s7-200-more §6.2 `rtc_start`). Nothing on a profile without the clock's state.
     pub fn set_clock_start(&mut self, start: crate::rtc::DateTime) {
-        crate::rtc::set_start(&mut self.bytes, &self.layout, start);
+        self.version = 0;
+        let (b, l) = self.parts_mut();
+        crate::rtc::set_start(b, l, start);
+    }
+
+    /// The image's bytes (`layout.size` of them; the scratch is not part of the image).
+    fn img(&self) -> &[u8] {
+        &self.buf[..self.layout.size as usize]
+    }
+
+    fn img_mut(&mut self) -> &mut [u8] {
+        &mut self.buf[..self.layout.size as usize]
     }
 
     /// The raw bytes.
     pub fn bytes(&self) -> &[u8] {
-        &self.bytes
+        self.img()
     }
 
     /// The raw bytes, mutable (what engines execute on).
     pub fn bytes_mut(&mut self) -> &mut [u8] {
-        &mut self.bytes
+        self.version = 0;
+        self.img_mut()
+    }
+
+    /// A tag an engine may set on the image ([`Image::set_version`]) to recognise it later
+    /// unchanged: every method that may change bytes a program addresses sets it back to 0
+    /// (`bytes_mut`, `split_mut`, `write`, `set_bit` and the harness's stimuli), all but the
+    /// physical input copy ([`Image::set_inputs`], [`Image::phys_in_mut`]), which a program
+    /// only sees through the next scan's input copy, and the scheduler fields. The compiled
+    /// engine tags an image after each run so that the next run on it can keep the bit copies
+    /// it holds (`stljit_jit`'s resident bits) instead of reading them from the bytes again.
+    pub fn version(&self) -> u64 {
+        self.version
+    }
+
+    /// Tags the image (see [`Image::version`]).
+    pub fn set_version(&mut self, version: u64) {
+        self.version = version;
     }
 
     /// The layout the bytes follow.
@@ -152,7 +195,28 @@ impl Image {
 
     /// Both at once, for engines that read the layout while writing the bytes.
     pub fn split_mut(&mut self) -> (&mut [u8], &Layout) {
-        (&mut self.bytes, &self.layout)
+        self.version = 0;
+        self.parts_mut()
+    }
+
+    /// Both, without touching the version (for the methods that set it themselves).
+    fn parts_mut(&mut self) -> (&mut [u8], &Layout) {
+        (&mut self.buf[..self.layout.size as usize], &self.layout)
+    }
+
+    /// The raw bytes followed by at least `scratch` bytes of engine scratch space (zeroed
+    /// when first made): memory an engine keeps with the image between its runs, at a fixed
+    /// distance from the bytes, which nothing else reads or writes and which is no part of
+    /// the image's value (not in [`Image::bytes`], not compared; a clone copies it). The
+    /// compiled engine keeps its resident bits there. Resets the [`Image::version`], like
+    /// [`Image::bytes_mut`].
+    pub fn bytes_and_scratch(&mut self, scratch: usize) -> &mut [u8] {
+        self.version = 0;
+        let want = self.layout.size as usize + scratch;
+        if self.buf.len() < want {
+            self.buf.resize(want, 0);
+        }
+        &mut self.buf
     }
 
     // ---- typed access ----------------------------------------------------------------------
@@ -160,7 +224,7 @@ impl Image {
     /// Reads a big-endian value at `loc` (L: in frame `frame`), zero-extended.
     pub fn read(&self, loc: Loc, width: Width, frame: u32) -> Result<u32, ImageError> {
         let at = self.checked(loc, width, frame)?;
-        Ok(mem::get_be(&self.bytes, at, width))
+        Ok(mem::get_be(self.img(), at, width))
     }
 
     /// Writes the low bits of `value` big-endian at `loc`.
@@ -172,20 +236,22 @@ impl Image {
         value: u32,
     ) -> Result<(), ImageError> {
         let at = self.checked(loc, width, frame)?;
-        mem::set_be(&mut self.bytes, at, width, value);
+        self.version = 0;
+        mem::set_be(self.img_mut(), at, width, value);
         Ok(())
     }
 
     /// Reads a bit.
     pub fn bit(&self, bit: BitLoc, frame: u32) -> Result<bool, ImageError> {
         let at = self.checked_bit(bit, frame)?;
-        Ok(mem::get_bit(&self.bytes, at, bit.bit))
+        Ok(mem::get_bit(self.img(), at, bit.bit))
     }
 
     /// Writes a bit.
     pub fn set_bit(&mut self, bit: BitLoc, frame: u32, value: bool) -> Result<(), ImageError> {
         let at = self.checked_bit(bit, frame)?;
-        mem::set_bit(&mut self.bytes, at, bit.bit, value);
+        self.version = 0;
+        mem::set_bit(self.img_mut(), at, bit.bit, value);
         Ok(())
     }
 
@@ -251,7 +317,7 @@ impl Image {
             self.layout.phys_in as usize,
             self.layout.area_size(Area::I) as usize,
         );
-        self.bytes.get_mut(at..at + n).unwrap_or_default()
+        self.img_mut().get_mut(at..at + n).unwrap_or_default()
     }
 
     /// Copies `inputs` into the physical input copy (extra bytes ignored, missing ones 0).
@@ -277,13 +343,17 @@ impl Image {
     /// §11.2 `hsc_steps`): the harness's stimulus, held until set again
     /// ([`crate::hsc::set_rate`]).
     pub fn set_hsc_rate(&mut self, n: u8, steps: i32) {
-        crate::hsc::set_rate(&mut self.bytes, &self.layout, n, steps);
+        self.version = 0;
+        let (b, l) = self.parts_mut();
+        crate::hsc::set_rate(b, l, n, steps);
     }
 
     /// Queues `bytes` to arrive on serial port `port` during the next scan interval
     /// (s7-200-more §10.4, §11.2 `rx`): [`crate::comm::queue_rx`].
     pub fn queue_rx(&mut self, port: u8, bytes: &[u8]) {
-        crate::comm::queue_rx(&mut self.bytes, &self.layout, port, bytes);
+        self.version = 0;
+        let (b, l) = self.parts_mut();
+        crate::comm::queue_rx(b, l, port, bytes);
     }
 
     /// The physical output copy, as written at the end of the last scan.
@@ -292,31 +362,32 @@ impl Image {
             self.layout.phys_out as usize,
             self.layout.area_size(Area::Q) as usize,
         );
-        self.bytes.get(at..at + n).unwrap_or_default()
+        self.img().get(at..at + n).unwrap_or_default()
     }
 
     // ---- scheduler fields ------------------------------------------------------------------
 
     fn sched_u8(&self, field: u32) -> u8 {
-        mem::sched_u8(&self.bytes, &self.layout, field)
+        mem::sched_u8(self.img(), &self.layout, field)
     }
 
     fn set_sched_u8(&mut self, field: u32, v: u8) {
-        mem::set_sched_u8(&mut self.bytes, &self.layout, field, v);
+        let (b, l) = self.parts_mut();
+        mem::set_sched_u8(b, l, field, v);
     }
 
     fn sched_u16(&self, field: u32) -> u16 {
-        mem::get_u16_ne(&self.bytes, self.layout.sched(field))
+        mem::get_u16_ne(self.img(), self.layout.sched(field))
     }
 
     /// Number of the next scan to run (scans completed so far).
     pub fn scan_no(&self) -> u64 {
-        mem::get_u64_ne(&self.bytes, self.layout.sched(Sched::SCAN_NO))
+        mem::get_u64_ne(self.img(), self.layout.sched(Sched::SCAN_NO))
     }
 
     /// Virtual time at the start of the last scan.
     pub fn t_now(&self) -> u64 {
-        mem::get_u64_ne(&self.bytes, self.layout.sched(Sched::T_NOW))
+        mem::get_u64_ne(self.img(), self.layout.sched(Sched::T_NOW))
     }
 
     /// Whether the next (or current) scan is the first one.
@@ -346,23 +417,24 @@ impl Image {
 
     /// POU and op index of the instruction that raised the last error.
     pub fn error_site(&self) -> (u16, u32) {
-        let op = mem::get_u32_ne(&self.bytes, self.layout.sched(Sched::ERR_OP));
+        let op = mem::get_u32_ne(self.img(), self.layout.sched(Sched::ERR_OP));
         (self.sched_u16(Sched::ERR_POU), op)
     }
 
     /// Loop-budget events counted in the last scan.
     pub fn loop_count(&self) -> u32 {
-        mem::sched_u32(&self.bytes, &self.layout, Sched::LOOP_COUNT)
+        mem::sched_u32(self.img(), &self.layout, Sched::LOOP_COUNT)
     }
 
     /// The loop budget per scan (spec §2.5).
     pub fn loop_limit(&self) -> u32 {
-        mem::sched_u32(&self.bytes, &self.layout, Sched::LOOP_LIMIT)
+        mem::sched_u32(self.img(), &self.layout, Sched::LOOP_LIMIT)
     }
 
     /// Changes the loop budget per scan.
     pub fn set_loop_limit(&mut self, limit: u32) {
-        mem::set_sched_u32(&mut self.bytes, &self.layout, Sched::LOOP_LIMIT, limit);
+        let (b, l) = self.parts_mut();
+        mem::set_sched_u32(b, l, Sched::LOOP_LIMIT, limit);
     }
 
     /// Declares retentive data lost: SM0.2 reads 1 during the first scan (spec §2.3).
@@ -472,5 +544,55 @@ mod tests {
             Ok(8)
         );
         assert!(img.set_bit(BitLoc { bit: 8, ..q }, 0, true).is_err());
+    }
+
+    #[test]
+    fn the_version_falls_to_zero_on_every_write_but_the_input_copy() {
+        let mut img = Image::blank(ProfileId::A5);
+        let m0 = BitLoc {
+            area: Area::M,
+            byte: 0,
+            bit: 0,
+        };
+        let mb1 = Loc {
+            area: Area::M,
+            offset: 1,
+        };
+        let writes: [&dyn Fn(&mut Image); 6] = [
+            &|i| i.bytes_mut()[0] = 1,
+            &|i| i.split_mut().0[0] = 1,
+            &|i| i.set_bit(m0, 0, true).unwrap(),
+            &|i| i.write(mb1, Width::Byte, 0, 7).unwrap(),
+            &|i| i.set_hsc_rate(0, 5),
+            &|i| i.queue_rx(0, b"x"),
+        ];
+        for (k, w) in writes.iter().enumerate() {
+            img.set_version(42);
+            w(&mut img);
+            assert_eq!(img.version(), 0, "write {k}");
+        }
+        img.set_version(42);
+        img.set_inputs(&[1; 16]);
+        img.phys_in_mut()[0] = 3;
+        let _ = (img.bytes(), img.phys_out(), img.bit(m0, 0));
+        assert_eq!(img.version(), 42);
+    }
+
+    #[test]
+    fn the_scratch_is_no_part_of_the_image() {
+        let mut img = Image::blank(ProfileId::A5);
+        let plain = img.clone();
+        let size = img.layout().size as usize;
+        let buf = img.bytes_and_scratch(24);
+        assert!(buf.len() >= size + 24);
+        assert!(buf[size..].iter().all(|&b| b == 0), "zeroed when made");
+        buf[size + 3] = 9;
+        img.set_version(5);
+        assert_eq!(img.bytes().len(), size);
+        assert!(
+            img == plain,
+            "neither the scratch nor the version is compared"
+        );
+        assert_eq!(img.bytes_and_scratch(8)[size + 3], 9, "kept between uses");
     }
 }
