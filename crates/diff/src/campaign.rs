@@ -183,7 +183,12 @@ pub fn campaign_case(
     let seed = program_seed(cfg.seed, index);
     let family = campaign_family(cfg, index);
     let mut c = Choices::from_seed(seed);
-    (seed, family, generate_in(family, &mut c, &cfg.generator))
+    // Every fourth program plain (`GenConfig::plain`), whatever its dialect and engines.
+    let generator = GenConfig {
+        plain: cfg.generator.plain || (index >> 2) & 3 == 3,
+        ..cfg.generator.clone()
+    };
+    (seed, family, generate_in(family, &mut c, &generator))
 }
 
 /// Runs a campaign until `cfg.programs` are done, `keep_going` returns false, or a failure.

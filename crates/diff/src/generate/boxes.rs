@@ -119,10 +119,26 @@ impl Gen<'_, '_> {
     }
 
     fn box_op_raw(&mut self) -> BoxOp {
-        match self
-            .c
-            .weighted(&[10, 1, 2, 1, 10, 2, 2, 1, 3, 1, 2, 1, 3, 5, 1, 1])
-        {
+        // A plain program has no block move, fill or shift register.
+        let (block, fill, shift_register) = if self.cfg.plain { (0, 0, 0) } else { (2, 1, 1) };
+        match self.c.weighted(&[
+            10,
+            1,
+            block,
+            fill,
+            10,
+            2,
+            2,
+            1,
+            3,
+            shift_register,
+            2,
+            1,
+            3,
+            5,
+            1,
+            1,
+        ]) {
             0 => self.move_box(),
             1 => BoxOp::Swap {
                 dst: self.value(Width::Word, Class::OUT),

@@ -53,6 +53,11 @@ pub struct GenConfig {
     pub max_ops_per_pou: usize,
     /// Number of scans of the stimulus.
     pub scans: u32,
+    /// S7: a program without pointers, block moves, fills, shift registers, call parameters,
+    /// string compares and the ops of tables, text, clock, PID, high-speed counters, pulse
+    /// outputs and communication, so that the compiled engine keeps its M and V bits resident
+    /// (`stljit_jit`'s resident bits): campaigns make every fourth S7 program plain.
+    pub plain: bool,
 }
 
 impl Default for GenConfig {
@@ -63,6 +68,7 @@ impl Default for GenConfig {
             max_subroutines: 3,
             max_ops_per_pou: 160,
             scans: 50,
+            plain: false,
         }
     }
 }
@@ -303,6 +309,12 @@ impl<'c, 'a> Gen<'c, 'a> {
         self.hsc_counters = self.plan_hsc();
         self.pulse_channels = self.plan_pulse();
         self.comm = self.plan_comm();
+        if self.cfg.plain {
+            self.params.iter_mut().for_each(Vec::clear);
+            self.hsc_counters.clear();
+            self.pulse_channels.clear();
+            self.comm = false;
+        }
         let mut pous = Vec::with_capacity(self.n_pous as usize);
         self.pou = Program::MAIN;
         self.main_body(&plan);

@@ -315,6 +315,7 @@ impl Gen<'_, '_> {
             return self.real_value(k);
         }
         let can_const = !k.out && !k.no_const;
+        let pointers = !self.cfg.plain;
         // Weights: direct byte area, AC, T/C value, AI, AQ, HC, indirect, constant, address-of.
         let weights = [
             12,
@@ -323,9 +324,9 @@ impl Gen<'_, '_> {
             u32::from(w == Width::Word && !k.out),
             u32::from(w == Width::Word && k.aq),
             u32::from(w == Width::DWord && !k.out),
-            2,
+            u32::from(pointers) * 2,
             if can_const { 6 } else { 0 },
-            u32::from(k.addr) * 4,
+            u32::from(k.addr && pointers) * 4,
         ];
         match self.c.weighted(&weights) {
             0 => Operand::Mem(self.direct(w, k.out)),
@@ -375,10 +376,13 @@ impl Gen<'_, '_> {
 
     fn real_value(&mut self, k: Class) -> Operand {
         let can_const = !k.out && !k.no_const;
-        match self
-            .c
-            .weighted(&[10, if can_const { 4 } else { 0 }, 2, 1, 1])
-        {
+        match self.c.weighted(&[
+            10,
+            if can_const { 4 } else { 0 },
+            2,
+            u32::from(!self.cfg.plain),
+            1,
+        ]) {
             0 => Operand::Mem(self.real_cell()),
             1 => Operand::Const(self.constant(Width::DWord, true)),
             2 => Operand::Mem(self.accumulator(Width::DWord)),

@@ -31,7 +31,7 @@ impl Gen<'_, '_> {
         if !self.int_routines.is_empty() {
             self.interrupt_setup();
         }
-        if self.c.chance(1, 2) {
+        if self.c.chance(1, 2) && !self.cfg.plain {
             self.pointer_setup();
         }
         let targets: Vec<PouId> = plan.iter().filter_map(|s| s.chain_next).collect();
@@ -99,24 +99,24 @@ impl Gen<'_, '_> {
     pub(crate) fn network(&mut self, ctx: Ctx) {
         let structured = ctx.scr.is_none() && ctx.depth < 3;
         let weights = [
-            30,                             // contacts and coils
-            8,                              // timer
-            6,                              // counter
-            14,                             // boxes
-            5,                              // pointers
-            3,                              // deep stack
-            if structured { 4 } else { 0 }, // forward jump
-            if structured { 3 } else { 0 }, // backward loop
+            30,                                 // contacts and coils
+            8,                                  // timer
+            6,                                  // counter
+            14,                                 // boxes
+            if self.cfg.plain { 0 } else { 5 }, // pointers
+            3,                                  // deep stack
+            if structured { 4 } else { 0 },     // forward jump
+            if structured { 3 } else { 0 },     // backward loop
             if structured && ctx.for_depth < self.p.max_for_depth {
                 3
             } else {
                 0
             }, // FOR
             if self.has_callee() { 4 } else { 0 }, // call
-            5,                              // LPS/LRD/LPP
-            3,                              // control
-            3,                              // immediate I/O
-            4,                              // flags
+            5,                                  // LPS/LRD/LPP
+            3,                                  // control
+            3,                                  // immediate I/O
+            4,                                  // flags
             if self.wild_jumps && ctx.scr.is_none() {
                 3
             } else {
@@ -125,8 +125,12 @@ impl Gen<'_, '_> {
             if self.int_routines.is_empty() { 0 } else { 3 }, // interrupt instruction
             if self.hsc_counters.is_empty() { 0 } else { 3 }, // high-speed counter
             if self.pulse_channels.is_empty() { 0 } else { 3 }, // pulse output
-            if self.has_ext() { 6 } else { 0 }, // tables, text, strings, clock, PID
-            if self.comm { 4 } else { 0 },  // communication
+            if self.has_ext() && !self.cfg.plain {
+                6
+            } else {
+                0
+            }, // tables, text, strings, clock, PID
+            if self.comm { 4 } else { 0 },      // communication
         ];
         self.place_wild(ctx);
         match self.c.weighted(&weights) {
@@ -290,7 +294,7 @@ impl Gen<'_, '_> {
 
     /// `op`, or one time in fifty a string compare contact of the same form instead.
     fn maybe_str_compare(&mut self, form: StackForm, op: Op) -> Op {
-        if !self.c.chance(1, 50) {
+        if !self.c.chance(1, 50) || self.cfg.plain {
             return op;
         }
         self.str_compare(form).unwrap_or(op)
