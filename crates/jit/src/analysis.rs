@@ -12,6 +12,7 @@
 //! callee provably returns with gate 1 (computed as a greatest fixpoint over all POUs, which is
 //! sound because call nesting is bounded).
 
+use crate::resident::Resident;
 use stljit_core::ir::{GateEffect, Op, Pou, Program};
 
 /// Facts about one POU.
@@ -43,7 +44,7 @@ pub(crate) struct PouInfo {
 /// at another position costs an alignment (`value::and_parts`); where one operand of a
 /// combination already sits at the position its consumer wants, keeping the result there
 /// saves the consumer's alignment. Only a hint: any answer gives the same bits.
-fn bit_targets(pou: &Pou, leader: &[bool], cut: &[bool]) -> Vec<Option<u8>> {
+fn bit_targets(pou: &Pou, leader: &[bool], cut: &[bool], resident: &Resident) -> Vec<Option<u8>> {
     // Values are numbered as they are made; a value's `into` is the (later) value it is
     // combined into, `direct` the position its first direct consumer wants.
     let mut into: Vec<Option<usize>> = Vec::new();
@@ -93,7 +94,8 @@ fn bit_targets(pou: &Pou, leader: &[bool], cut: &[bool]) -> Vec<Option<u8>> {
             }
             Op::Assign { bit, .. } => {
                 if let Some(t) = top {
-                    direct[t].get_or_insert(bit.bit);
+                    // A resident bit is stored from bit 0 (`crate::resident`).
+                    direct[t].get_or_insert(if resident.holds(*bit) { 0 } else { bit.bit });
                 }
             }
             Op::Edge { .. } => {
@@ -301,7 +303,7 @@ fn gate_flow(pou: &Pou, exits_one: &[bool]) -> (Vec<bool>, bool) {
 }
 
 /// Computes the facts for every POU.
-pub(crate) fn analyse(prog: &Program) -> Vec<PouInfo> {
+pub(crate) fn analyse(prog: &Program, resident: &Resident) -> Vec<PouInfo> {
     let mut exits = vec![true; prog.pous.len()];
     // Greatest fixpoint: start optimistic, lower until stable (monotone, at most #POUs rounds).
     for _ in 0..=prog.pous.len() {
@@ -317,7 +319,7 @@ pub(crate) fn analyse(prog: &Program) -> Vec<PouInfo> {
         .map(|(i, p)| {
             let (gate_one, _) = gate_flow(p, &exits);
             let (leader, cut) = leaders_and_cuts(p);
-            let bit_target = bit_targets(p, &leader, &cut);
+            let bit_target = bit_targets(p, &leader, &cut, resident);
             PouInfo {
                 leader,
                 cut,
@@ -425,7 +427,7 @@ mod tests {
     fn targets(text: &str) -> Vec<Option<u8>> {
         let p = pou(text);
         let (leader, cut) = leaders_and_cuts(&p);
-        bit_targets(&p, &leader, &cut)
+        bit_targets(&p, &leader, &cut, &Resident::default())
     }
 
     #[test]

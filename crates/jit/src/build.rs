@@ -9,6 +9,7 @@ use crate::lower::cache::StoreLog;
 use crate::lower::state::{BlockState, FnState};
 use crate::lower::value::Stack;
 use crate::lower::{Baked, Env, Lower};
+use crate::resident::Resident;
 use crate::{JitError, JitOptions, OptLevel};
 use cranelift_codegen::ir::{
     AbiParam, Function, InstBuilder, Signature, UserFuncName, Value,
@@ -135,6 +136,7 @@ pub(crate) fn build(
     rules: Rules,
     layout: &Layout,
     baked: Baked,
+    resident: &Resident,
     define: bool,
     dump: &mut dyn FnMut(&Function, usize, Part),
 ) -> Result<Built, JitError> {
@@ -142,7 +144,7 @@ pub(crate) fn build(
     let mut module = new_module(opts)?;
     let cc = module.isa().default_call_conv();
     let helpers = HelperIds::declare(&mut module).map_err(cg)?;
-    let info = analysis::analyse(prog);
+    let info = analysis::analyse(prog, resident);
     let plans: Vec<_> = prog
         .pous
         .iter()
@@ -187,6 +189,7 @@ pub(crate) fn build(
         timer_res: stljit_runtime::timer::declared_resolutions(prog),
         rules,
         ext: &ext,
+        resident,
     };
     let mut ctx = module.make_context();
     let mut fbc = FunctionBuilderContext::new();

@@ -153,13 +153,15 @@ fn render(
             failure = Some(e);
         }
     };
-    // The baked addresses only reach shim calls; a dump never runs, so 0 is fine.
+    // The baked addresses only reach shim calls and the shadow; a dump never runs, so 0 is
+    // fine.
     let built = build::build(
         program,
         opts,
         stljit_runtime::rules::Rules::IN_FORCE,
         &layout,
         crate::lower::Baked::default(),
+        &crate::resident::Resident::plan(program, &layout),
         false,
         &mut sink,
     )?;

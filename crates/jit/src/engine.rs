@@ -6,6 +6,7 @@
 
 use crate::build::{self, Built};
 use crate::lower::Baked;
+use crate::resident::Resident;
 use crate::{JitError, JitOptions};
 use cranelift_jit::JITModule;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -36,6 +37,56 @@ pub struct JitProgram {
     _ext: crate::lower::ext::ExtKeep,
     /// The executed-op counter of an instrumented build ([`JitProgram::compile_counting`]).
     counter: Option<Box<AtomicU64>>,
+    /// The shadow of the resident bytes (`crate::resident`), if any byte is resident.
+    shadow: Option<Shadow>,
+    /// How many bytes are resident.
+    resident_bytes: usize,
+}
+
+/// Where the shadow of the resident bytes is and what says whether it still holds an image's.
+struct Shadow {
+    /// The image scratch it takes (`Image::bytes_and_scratch`).
+    scratch: usize,
+    /// The offset of its flag (a `u64`, non-zero: the shadow holds the image's resident bytes).
+    flag: usize,
+    /// This program's key (upper 32 bits of every version it gives an image), unique in the
+    /// process ([`next_key`]).
+    key: u64,
+    /// Runs since the key was taken (lower 32 bits of the versions).
+    runs: u64,
+    /// The version given to the image the last run packed its resident bytes into (0: none).
+    last: u64,
+}
+
+impl Shadow {
+    /// Before a run on `image`: the image's bytes and scratch, with the flag telling the code
+    /// whether the shadow holds its resident bytes, i.e. `image` is the one the last run of
+    /// this program left, unchanged since (`Image::version`).
+    fn enter<'i>(&self, image: &'i mut Image) -> &'i mut [u8] {
+        let held = self.last != 0 && image.version() == self.last;
+        let buf = image.bytes_and_scratch(self.scratch);
+        buf[self.flag..self.flag + 8].copy_from_slice(&u64::from(held).to_ne_bytes());
+        buf
+    }
+
+    /// After a run on `image`, which packed the resident bytes into it: tags it with a version
+    /// no other image has.
+    fn leave(&mut self, image: &mut Image) {
+        if self.runs == u64::from(u32::MAX) {
+            self.key = next_key();
+            self.runs = 0;
+        }
+        self.runs += 1;
+        self.last = self.key | self.runs;
+        image.set_version(self.last);
+    }
+}
+
+/// A key no other shadow of this process has had (keys repeat only after 2^32 of them, and
+/// with them versions).
+fn next_key() -> u64 {
+    static NEXT: AtomicU64 = AtomicU64::new(1);
+    NEXT.fetch_add(1, Ordering::Relaxed) << 32
 }
 
 impl JitProgram {
@@ -90,6 +141,7 @@ impl JitProgram {
         let routines = program
             .has_interrupts()
             .then(|| Box::new(NativeRoutines::new()));
+        let resident = Resident::plan(program, &layout);
         let baked = Baked {
             layout: &*layout as *const Layout as i64,
             scan_plan: &*plan as *const ScanPlan as i64,
@@ -109,6 +161,7 @@ impl JitProgram {
             rules,
             &layout,
             baked,
+            &resident,
             true,
             &mut |_, _, _| {},
         )?;
@@ -140,6 +193,14 @@ impl JitProgram {
             // and lives as long as the table.
             unsafe { table.install(fns) };
         }
+        let resident_bytes = resident.len();
+        let shadow = (resident.len() > 0).then(|| Shadow {
+            scratch: resident.scratch(&layout),
+            flag: resident.flag_offset(),
+            key: next_key(),
+            runs: 0,
+            last: 0,
+        });
         Ok(JitProgram {
             module: Some(module),
             run,
@@ -149,12 +210,20 @@ impl JitProgram {
             op_count: program.op_count(),
             _ext: ext,
             counter,
+            shadow,
+            resident_bytes,
         })
     }
 
     /// Number of IR ops compiled.
     pub fn op_count(&self) -> usize {
         self.op_count
+    }
+
+    /// Number of image bytes the code keeps one byte per bit while it runs (its resident
+    /// bits, ARCHITECTURE.md).
+    pub fn resident_bytes(&self) -> usize {
+        self.resident_bytes
     }
 
     /// Whether `image` has the layout this program was compiled for (anything else is refused:
@@ -186,7 +255,10 @@ impl JitProgram {
             return (0, ScanStatus::Fatal);
         }
         let mut done = 0u64;
-        let bytes = image.bytes_mut().as_mut_ptr();
+        let bytes = match &self.shadow {
+            Some(s) => s.enter(image).as_mut_ptr(),
+            None => image.bytes_mut().as_mut_ptr(),
+        };
         let watch = watch.map_or(std::ptr::null_mut(), |w| w as *mut ChangeWatch);
         // SAFETY: `bytes` points to `layout.size` bytes exclusively borrowed for the call (checked
         // by `fits`), the code only addresses the image within its layout (direct offsets are
@@ -194,6 +266,9 @@ impl JitProgram {
         // live u64, and `watch` is null or a live `ChangeWatch` borrowed for the call, which the
         // code only passes to `stljit_rt_watch_changed`.
         let st = unsafe { (self.run)(bytes, t0_ms, scan_ms, n, &mut done, watch) };
+        if let Some(s) = &mut self.shadow {
+            s.leave(image);
+        }
         (
             done,
             ScanStatus::try_from(st as u8).unwrap_or(ScanStatus::Fatal),

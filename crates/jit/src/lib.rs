@@ -20,6 +20,7 @@ mod helpers;
 mod lower;
 mod midend;
 mod rebase;
+mod resident;
 mod scan_loop;
 #[cfg(test)]
 mod test_fn;

@@ -136,6 +136,10 @@ pub(crate) fn build_run(
         b.append_block_param(fin, I64),
         b.append_block_param(fin, I32),
     );
+    // The resident bytes live in the shadow for the whole call: unpacked here unless the
+    // shadow still holds them, packed at the one exit and before a change watch compares
+    // bytes (`crate::resident`).
+    env.resident.emit_unpack(&mut b, env.layout, image);
     let zero64 = b.ins().iconst(I64, 0);
     let ok = b.ins().iconst(I32, ScanStatus::Ok as i64);
     let before = img.load(&mut b, I64, Sched::T_NOW);
@@ -243,6 +247,7 @@ pub(crate) fn build_run(
     let (check, count) = (b.create_block(), b.create_block());
     b.ins().brif(watch, check, &[], count, &[]);
     b.switch_to_block(check);
+    env.resident.emit_pack(&mut b, env.layout, image);
     let changed = module.declare_func_in_func(env.helpers.id(Helper::WatchChanged), b.func);
     let c = b.ins().call(changed, &[image, layout, watch]);
     let changed = b.inst_results(c)[0];
@@ -260,6 +265,7 @@ pub(crate) fn build_run(
     b.ins().jump(body, &scan_args(i1, &next_q, &next_d));
 
     b.switch_to_block(fin);
+    env.resident.emit_pack(&mut b, env.layout, image);
     b.ins()
         .store(MemFlagsData::new().with_notrap(), fin_i, done, 0);
     b.ins().return_(&[fin_st]);

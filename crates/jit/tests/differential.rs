@@ -28,6 +28,98 @@ fn generated_programs_agree() {
     assert_eq!(compiled, SEEDS, "some generated programs were not compiled");
 }
 
+/// Plain programs (`GenConfig::plain`), whose M and V bits the JIT keeps resident: scan by
+/// scan, each run finding its shadow current (the image is the one it left) or unpacking it
+/// anew (the stimulus wrote the image).
+#[test]
+fn generated_plain_programs_agree() {
+    let cfg = GenConfig {
+        scans: 30,
+        plain: true,
+        ..GenConfig::default()
+    };
+    let mut resident = 0u64;
+    for seed in 0..SEEDS {
+        let case = case_from_seed(seed, &cfg);
+        assert!(check_case(&case), "seed {seed} was not compiled");
+        let jit = stljit_jit::JitProgram::compile(&case.program, &Default::default())
+            .expect("JIT compiles");
+        resident += u64::from(jit.resident_bytes() > 0);
+    }
+    assert!(
+        resident > SEEDS * 9 / 10,
+        "only {resident} with resident bits"
+    );
+}
+
+/// Resident bits follow the image wherever it changes between runs (`Image::version`): a
+/// write through the image's API, a second image run by the same program, a clone, and a
+/// second program on the same image. Expected values: the program copies M0.0..M0.3 to
+/// M1.0..M1.3 and sets V2.0 while M0.0 is 1, counting nothing else (spec §4.1, `=` and `S`).
+#[test]
+fn resident_bits_follow_the_image() {
+    use stljit_core::ir::BitLoc;
+    use stljit_core::{Area, ScanStatus};
+    use stljit_runtime::{Engine, Image};
+    let p = stl(
+        "LD M0.0\n= M1.0\nLD M0.1\n= M1.1\nLD M0.2\n= M1.2\nLD M0.3\n= M1.3\n\
+                 LD M0.0\nS V2.0, 1\n",
+    );
+    let mut jit = stljit_jit::JitProgram::compile(&p, &Default::default()).expect("compiles");
+    assert!(jit.resident_bytes() >= 3, "M0, M1 and V2 are resident");
+    let m = |byte, bit| BitLoc {
+        area: Area::M,
+        byte,
+        bit,
+    };
+    let v20 = BitLoc {
+        area: Area::V,
+        byte: 2,
+        bit: 0,
+    };
+    let mut a = Image::cold_start(&p);
+    let mut b = Image::cold_start(&p);
+    assert_eq!(jit.scan(&mut a, 0), ScanStatus::Ok);
+    a.set_bit(m(0, 2), 0, true).unwrap();
+    assert_eq!(jit.scan(&mut a, 10), ScanStatus::Ok);
+    assert!(a.bit(m(1, 2), 0).unwrap(), "the write reached the shadow");
+    // Another image in between: each run takes that image's bits.
+    b.set_bit(m(0, 0), 0, true).unwrap();
+    assert_eq!(jit.scan(&mut b, 0), ScanStatus::Ok);
+    assert!(b.bit(m(1, 0), 0).unwrap() && b.bit(v20, 0).unwrap());
+    assert!(!b.bit(m(1, 2), 0).unwrap(), "b never had M0.2");
+    assert_eq!(jit.scan(&mut a, 20), ScanStatus::Ok);
+    assert!(a.bit(m(1, 2), 0).unwrap() && !a.bit(m(1, 0), 0).unwrap());
+    assert!(!a.bit(v20, 0).unwrap(), "a never had M0.0");
+    // A clone, changed, then the original again.
+    let mut c = a.clone();
+    c.set_bit(m(0, 3), 0, true).unwrap();
+    assert_eq!(jit.scan(&mut c, 30), ScanStatus::Ok);
+    assert!(c.bit(m(1, 3), 0).unwrap());
+    assert_eq!(jit.scan(&mut a, 30), ScanStatus::Ok);
+    assert!(
+        !a.bit(m(1, 3), 0).unwrap(),
+        "the clone's bit stayed in the clone"
+    );
+    // A second program on the same image, then the first again.
+    let q = stl("LD M0.1\n= M1.1\n");
+    let mut other = stljit_jit::JitProgram::compile(&q, &Default::default()).expect("compiles");
+    a.set_bit(m(0, 1), 0, true).unwrap();
+    assert_eq!(other.scan(&mut a, 40), ScanStatus::Ok);
+    a.set_bit(m(1, 1), 0, false).unwrap();
+    a.set_bit(m(0, 1), 0, false).unwrap();
+    assert_eq!(other.scan(&mut a, 50), ScanStatus::Ok);
+    assert_eq!(jit.scan(&mut a, 60), ScanStatus::Ok);
+    assert!(!a.bit(m(1, 1), 0).unwrap(), "M0.1 is 0 again");
+    // The interpreter agrees with every one of these images.
+    let mut interp = stljit_interp::Interpreter::new(&p).expect("accepts");
+    let mut want = a.clone();
+    want.set_bit(m(0, 0), 0, true).unwrap();
+    let mut got = want.clone();
+    assert_eq!(interp.scan(&mut want, 70), jit.scan(&mut got, 70));
+    assert!(want == got);
+}
+
 #[test]
 fn bit_logic_and_stack() {
     let p = stl(
@@ -260,6 +352,28 @@ fn run_scans_in_stretches_equals_scan_by_scan() {
     assert!(
         watched > SEEDS / 4,
         "only {watched} stretches ended at a watched change"
+    );
+}
+
+/// The same for plain programs, whose M and V bits the native loop keeps resident: it packs
+/// them before each watch compares and at every exit.
+#[test]
+fn plain_programs_in_stretches_equal_scan_by_scan() {
+    let cfg = GenConfig {
+        scans: 40,
+        plain: true,
+        ..GenConfig::default()
+    };
+    let (mut stretches, mut watched) = (0u64, 0u64);
+    for seed in 0..SEEDS / 2 {
+        let (s, w) = stretches_agree(&case_from_seed(seed ^ 0x91A1, &cfg), seed, 200);
+        stretches += s;
+        watched += w;
+    }
+    assert!(stretches > SEEDS, "{stretches} stretches");
+    assert!(
+        watched > SEEDS / 4,
+        "only {watched} ended at a watched change"
     );
 }
 

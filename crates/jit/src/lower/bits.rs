@@ -3,10 +3,10 @@
 //! All of it works on [`B`] booleans and cached bytes, so a run of contacts and coils becomes a
 //! handful of ALU instructions with no memory traffic until the block ends.
 
-use super::Lower;
 use super::cache::Addr;
 use super::mem::OnFail;
 use super::value::B;
+use super::{Lower, mf};
 use cranelift_codegen::ir::{
     InstBuilder, Value,
     condcodes::{FloatCC, IntCC},
@@ -30,12 +30,30 @@ impl Lower<'_, '_> {
         if let Some(k) = stljit_core::omron::SystemBit::constant_at(bit) {
             return B::K(k);
         }
+        if let Some(off) = self.env.resident.slot(bit) {
+            let v = self.b.ins().uload8(I32, mf(), self.func.image, off);
+            return B::Bit { v, pos: 0 };
+        }
         let a = self.bit_byte(bit);
         let (v, at) = self.test_byte(a);
         B::Bit {
             v,
             pos: at + bit.bit,
         }
+    }
+
+    /// Writes a boolean into a resident bit's shadow byte at `off` (`crate::resident`): bit 0
+    /// is the value, the other bits are garbage, so a boolean at bit 0 is stored as it is.
+    fn write_resident(&mut self, off: i32, val: B) {
+        let v = match val {
+            B::K(k) => self.b.ins().iconst(I32, i64::from(k)),
+            B::Bit { v, pos } => super::value::align(&mut self.b, v, pos, 0),
+            B::Not { v, pos } => {
+                let s = super::value::align(&mut self.b, v, pos, 0);
+                self.b.ins().bnot(s)
+            }
+        };
+        self.b.ins().istore8(mf(), v, self.func.image, off);
     }
 
     /// Writes a boolean into bit `pos` of the byte at `a`.
@@ -239,6 +257,11 @@ impl Lower<'_, '_> {
     /// `=`/`=I`: the coil writes PF.
     pub(crate) fn assign(&mut self, bit: BitLoc, immediate: bool) {
         let pf = self.pf();
+        if let Some(off) = self.env.resident.slot(bit) {
+            // Only M and V are resident, which have no physical copy.
+            self.write_resident(off, pf);
+            return;
+        }
         let a = self.bit_byte(bit);
         self.write_bit_at(a, bit.bit, pf);
         if immediate && bit.area == Area::Q && bit.byte < self.env.layout.area_size(Area::Q) {
@@ -364,10 +387,32 @@ impl Lower<'_, '_> {
                 }
             };
             if run.count <= 64 {
-                let bits: Vec<(Addr, u8)> = run
-                    .bits()
-                    .map(|(byte, bit)| (self.area_addr(start.area, byte), bit))
-                    .collect();
+                // Resident bits one by one in the shadow (`old OR PF`, `old AND NOT PF`), the
+                // others by masks on their bytes.
+                let mut bits: Vec<(Addr, u8)> = Vec::new();
+                for (byte, bit) in run.bits() {
+                    let loc = BitLoc {
+                        area: start.area,
+                        byte,
+                        bit,
+                    };
+                    match self.env.resident.slot(loc) {
+                        Some(off) => {
+                            let old = self.b.ins().uload8(I32, mf(), self.func.image, off);
+                            let old = B::Bit { v: old, pos: 0 };
+                            let new = if value {
+                                old.or(&mut self.b, pf)
+                            } else {
+                                old.and_not(&mut self.b, pf)
+                            };
+                            self.write_resident(off, new);
+                        }
+                        None => bits.push((self.area_addr(start.area, byte), bit)),
+                    }
+                }
+                if bits.is_empty() {
+                    return;
+                }
                 let phys = immediate && start.area == Area::Q;
                 let out = self.env.layout.phys_out;
                 let base_q = self.env.layout.base(Area::Q);

@@ -83,6 +83,8 @@ pub(crate) struct Env<'a> {
     pub(crate) rules: Rules,
     /// The payloads of the s7-200-more ops, passed to the runtime by address.
     pub(crate) ext: &'a ext::ExtKeep,
+    /// The image bytes kept one byte per bit in the shadow, in the image's scratch.
+    pub(crate) resident: &'a crate::resident::Resident,
 }
 
 /// Memory flags for every image access: the image is never null and every direct offset is in

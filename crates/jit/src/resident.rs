@@ -1,0 +1,371 @@
+//! Resident bits: image bytes that compiled code keeps one byte per bit while it runs.
+//!
+//! The image packs eight bits into a byte, so a contact on a bit costs a load, an alignment and
+//! the `and`/`or`, and a coil a read-modify-write of its byte (five or six instructions). C
+//! that keeps one byte per boolean (matiec's, `../shared/bench/vs-gcc`) pays one instruction
+//! for either. Packing cannot be given up: the image is what every engine, the driver, the
+//! API and the FMU read. But inside one call of the native loop nothing else reads most of the
+//! bytes that bit logic works on, so the compiled code keeps those in a *shadow*: one byte per
+//! bit (bit 0 holds the value, bits 1–7 are garbage, as in a [`B`](crate::lower::value::B)),
+//! in the image's engine scratch (`Image::bytes_and_scratch`), at a fixed offset from the
+//! image's first byte, so that the code reaches it through the image pointer it already holds.
+//!
+//! **Rule** ([`Resident::plan`]). A byte is resident when
+//! - the program is of the S7 family, every op of every POU has a memory footprint that its
+//!   operands state exactly (no pointers, block moves, tables, strings, communication, pulse
+//!   profiles, shift registers or call parameters: any of these makes no byte resident), and
+//! - the byte is in M or V, some op names one of its bits directly (a contact, a coil, `S`/`R`
+//!   with a constant count), and no op names it as part of a value operand (a byte, word or
+//!   double word, at any width) or may touch it through an `S`/`R` with a count from memory.
+//!
+//! At most [`MAX_BYTES`] bytes are resident (the lowest), so the shadow stays in the L1 cache.
+//!
+//! **Invariant.** While the native loop runs, the shadow holds the resident bytes and their
+//! image bytes are stale; at every point outside it the image holds them. The loop packs the
+//! bytes some op writes on every exit and before a change watch compares bytes (`scan_loop`),
+//! and unpacks all of them on entry unless the shadow still holds them (its flag, which the
+//! engine sets from `Image::version`). Nothing else inside the loop reads or writes M or V but
+//! compiled code and the runtime helpers it calls with its operands' addresses, and the rule
+//! keeps those bytes out; compiled interrupt routines that the runtime calls back run on the
+//! same shadow.
+//!
+//! Packing costs about two instructions per written byte on every call, which a program of a
+//! thousand bit instructions earns back many times over in a scan (`docs/performance.md`).
+
+use cranelift_codegen::ir::{
+    Endianness, InstBuilder, MemFlagsData, Value,
+    types::{I8X16, I16X8, I32, I64},
+};
+use cranelift_frontend::FunctionBuilder;
+use std::collections::{BTreeSet, HashMap};
+use stljit_core::ir::{Access, BitLoc, BoxOp, Op, Operand, Program};
+use stljit_core::layout::Layout;
+use stljit_core::{Area, Family};
+
+/// The areas whose bytes may be resident: the runtime touches them only through operands.
+const AREAS: [Area; 2] = [Area::M, Area::V];
+
+/// At most this many resident bytes (a shadow of 32 KiB).
+pub(crate) const MAX_BYTES: usize = 4096;
+
+/// The resident bytes of a program and where each one's bits sit in the shadow.
+///
+/// The shadow's first `u64` is a flag the engine sets before each run: non-zero when the shadow
+/// still holds the image's resident bytes (the image is the one the last run packed them into,
+/// unchanged since: `Image::version`), so the run need not unpack them.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Resident {
+    /// The resident bytes, those some op writes first, each part in image order; byte `k`'s
+    /// bit `i` is shadow byte `8 (k + 1) + i` (after the flag).
+    bytes: Vec<(Area, u32)>,
+    /// How many of `bytes` some op writes (only those are packed).
+    written: usize,
+    /// The shadow's offset from the image's first byte (in the image's scratch, 8-aligned).
+    start: u32,
+    slot: HashMap<(Area, u32), u32>,
+}
+
+impl Resident {
+    /// Applies the rule (module docs) to `prog`.
+    pub(crate) fn plan(prog: &Program, layout: &Layout) -> Resident {
+        if prog.profile.profile().family != Family::S7 {
+            return Resident::default();
+        }
+        let mut named = BTreeSet::new();
+        let mut written = BTreeSet::new();
+        let mut excluded = BTreeSet::new();
+        let area_end = |area: Area| layout.area_size(area);
+        for op in prog.pous.iter().flat_map(|p| &p.ops) {
+            if !footprint_stated(op) {
+                return Resident::default();
+            }
+            for u in op.operand_uses().iter() {
+                match u.operand {
+                    Operand::Const(_) => {}
+                    Operand::Mem(loc) => {
+                        for off in loc.offset..loc.offset + u.width.bytes() {
+                            excluded.insert((loc.area, off));
+                        }
+                    }
+                    Operand::Indirect(_) | Operand::AddressOf(_) | Operand::Omron(_) => {
+                        return Resident::default();
+                    }
+                }
+            }
+            match op {
+                Op::SetRange { start, count, .. } => match *count {
+                    Operand::Const(k) => {
+                        let bits = (k & 0xFF) + u32::from(start.bit);
+                        let last =
+                            (start.byte + bits.saturating_sub(1) / 8).min(area_end(start.area));
+                        named.extend((start.byte..=last).map(|b| (start.area, b)));
+                        written.extend((start.byte..=last).map(|b| (start.area, b)));
+                    }
+                    _ => {
+                        excluded.extend((start.byte..area_end(start.area)).map(|b| (start.area, b)))
+                    }
+                },
+                _ => {
+                    for (bit, access) in op.bit_uses() {
+                        named.insert((bit.area, bit.byte));
+                        if access != Access::Read {
+                            written.insert((bit.area, bit.byte));
+                        }
+                    }
+                }
+            }
+        }
+        let chosen: Vec<(Area, u32)> = named
+            .into_iter()
+            .filter(|(area, byte)| {
+                AREAS.contains(area)
+                    && *byte < area_end(*area)
+                    && !excluded.contains(&(*area, *byte))
+            })
+            .take(MAX_BYTES)
+            .collect();
+        let (mut bytes, read_only): (Vec<_>, Vec<_>) =
+            chosen.into_iter().partition(|ab| written.contains(ab));
+        let written = bytes.len();
+        bytes.extend(read_only);
+        let start = layout.size.next_multiple_of(8);
+        let slot = bytes
+            .iter()
+            .enumerate()
+            .map(|(k, &ab)| (ab, start + 8 * (k as u32 + 1)))
+            .collect();
+        Resident {
+            bytes,
+            written,
+            start,
+            slot,
+        }
+    }
+
+    /// The number of resident bytes.
+    pub(crate) fn len(&self) -> usize {
+        self.bytes.len()
+    }
+
+    /// The image scratch the shadow needs (`Image::bytes_and_scratch`): the padding to an
+    /// 8-byte boundary, the flag, then eight bytes per resident byte.
+    pub(crate) fn scratch(&self, layout: &Layout) -> usize {
+        (self.start - layout.size) as usize + 8 * (self.bytes.len() + 1)
+    }
+
+    /// The flag's offset from the image's first byte.
+    pub(crate) fn flag_offset(&self) -> usize {
+        self.start as usize
+    }
+
+    /// The shadow offset of `bit`, if its byte is resident.
+    pub(crate) fn slot(&self, bit: BitLoc) -> Option<i32> {
+        self.slot
+            .get(&(bit.area, bit.byte))
+            .map(|s| (s + u32::from(bit.bit)) as i32)
+    }
+
+    /// Whether `bit`'s byte is resident.
+    pub(crate) fn holds(&self, bit: BitLoc) -> bool {
+        self.slot.contains_key(&(bit.area, bit.byte))
+    }
+
+    /// Copies every resident byte from the image into the shadow, unless the shadow's flag
+    /// says it holds them already: byte `b` becomes eight bytes whose bit 0 is bit `i` of `b`
+    /// (`((b · 0x0101…01) AND 0x8040…01) + 0x7F7F…7F` puts bit `i` at bit 7 of byte `i`
+    /// without carries between bytes, then a shift by 7). The builder continues in a new
+    /// block.
+    pub(crate) fn emit_unpack(&self, b: &mut FunctionBuilder<'_>, layout: &Layout, image: Value) {
+        if self.bytes.is_empty() {
+            return;
+        }
+        let (unpack, done) = (b.create_block(), b.create_block());
+        let held = b.ins().load(I64, flags(), image, self.start as i32);
+        b.ins().brif(held, done, &[], unpack, &[]);
+        b.switch_to_block(unpack);
+        for (k, &(area, byte)) in self.bytes.iter().enumerate() {
+            let k = k + 1;
+            let off = (layout.base(area) + byte) as i32;
+            let v = b.ins().uload8(I64, flags(), image, off);
+            let spread = b.ins().imul_imm_s(v, 0x0101_0101_0101_0101);
+            let picked = b.ins().band_imm_s(spread, 0x8040_2010_0804_0201_u64 as i64);
+            let high = b.ins().iadd_imm_s(picked, 0x7F7F_7F7F_7F7F_7F7F);
+            let bits = b.ins().ushr_imm_s(high, 7);
+            b.ins()
+                .store(flags(), bits, image, (self.start as usize + 8 * k) as i32);
+        }
+        b.ins().jump(done, &[]);
+        b.switch_to_block(done);
+    }
+
+    /// Copies every resident byte some op writes from the shadow back into the image (the
+    /// others never change there). Two at a time: their sixteen shadow bytes shifted left by 7
+    /// (bit 0 to the sign bit) and gathered by `pmovmskb`, stored as one 16-bit word where the
+    /// two bytes are neighbours in the image. A last odd one: bit 0 of each of its eight bytes
+    /// gathered into the top byte by one multiplication (`(x AND 0x0101…01) ·
+    /// 0x0102040810204080`, no two partial products meet there).
+    pub(crate) fn emit_pack(&self, b: &mut FunctionBuilder<'_>, layout: &Layout, image: Value) {
+        let at = |k: usize| (self.start as usize + 8 * (k + 1)) as i32;
+        let img_off = |k: usize| {
+            let (area, byte) = self.bytes[k];
+            (layout.base(area) + byte) as i32
+        };
+        let lanes = MemFlagsData::new()
+            .with_notrap()
+            .with_endianness(Endianness::Little);
+        let mut k = 0;
+        while k + 1 < self.written {
+            let v = b.ins().load(I8X16, flags(), image, at(k));
+            let words = b.ins().bitcast(I16X8, lanes, v);
+            let signs = b.ins().ishl_imm_s(words, 7);
+            let bytes = b.ins().bitcast(I8X16, lanes, signs);
+            let mask = b.ins().vhigh_bits(I32, bytes);
+            let (lo, hi) = (img_off(k), img_off(k + 1));
+            if hi == lo + 1 {
+                b.ins().istore16(flags(), mask, image, lo);
+            } else {
+                b.ins().istore8(flags(), mask, image, lo);
+                let upper = b.ins().ushr_imm_s(mask, 8);
+                b.ins().istore8(flags(), upper, image, hi);
+            }
+            k += 2;
+        }
+        if k < self.written {
+            let x = b.ins().load(I64, flags(), image, at(k));
+            let bits = b.ins().band_imm_s(x, 0x0101_0101_0101_0101);
+            let gathered = b.ins().imul_imm_s(bits, 0x0102_0408_1020_4080);
+            let v = b.ins().ushr_imm_s(gathered, 56);
+            b.ins().istore8(flags(), v, image, img_off(k));
+        }
+    }
+}
+
+fn flags() -> MemFlagsData {
+    MemFlagsData::new().with_notrap()
+}
+
+/// Whether everything `op` may read or write in M and V is named by its operands
+/// ([`Op::operand_uses`], [`Op::bit_uses`], an `S`/`R` range).
+fn footprint_stated(op: &Op) -> bool {
+    match op {
+        // A block move, a fill and a shift register reach past their first operand.
+        Op::Box(b) => matches!(
+            b,
+            BoxOp::Move { .. }
+                | BoxOp::Swap { .. }
+                | BoxOp::IntArith { .. }
+                | BoxOp::MulWide { .. }
+                | BoxOp::DivWide { .. }
+                | BoxOp::RealArith { .. }
+                | BoxOp::RealFunc { .. }
+                | BoxOp::Step { .. }
+                | BoxOp::Logic { .. }
+                | BoxOp::Invert { .. }
+                | BoxOp::Shift { .. }
+                | BoxOp::Rotate { .. }
+                | BoxOp::Convert { .. }
+                | BoxOp::ImmediateRead { .. }
+                | BoxOp::ImmediateWrite { .. }
+        ),
+        Op::Load(_)
+        | Op::And(_)
+        | Op::Or(_)
+        | Op::Not
+        | Op::AndBlock
+        | Op::OrBlock
+        | Op::Dup
+        | Op::ReadSecond
+        | Op::Pop
+        | Op::Pick(_)
+        | Op::AndEno
+        | Op::Edge { .. }
+        | Op::Assign { .. }
+        | Op::SetRange { .. }
+        | Op::ResetTimers { .. }
+        | Op::ResetCounters { .. }
+        | Op::Timer { .. }
+        | Op::Counter { .. }
+        | Op::Jump(_)
+        | Op::Label(_)
+        | Op::Call(_)
+        | Op::Return { .. }
+        | Op::End { .. }
+        | Op::Stop
+        | Op::Wdr
+        | Op::Interrupt(_)
+        | Op::Nop
+        | Op::For { .. }
+        | Op::Next { .. }
+        | Op::ScrBegin { .. }
+        | Op::ScrTransition { .. }
+        | Op::ScrCondEnd { .. }
+        | Op::ScrEnd => true,
+        _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plan(text: &str) -> Vec<(Area, u32, bool)> {
+        let c = stljit_front_s7::compile_str("t.stl", text, stljit_core::ProfileId::A5);
+        let prog = c.program.expect("compiles");
+        let r = Resident::plan(&prog, &Layout::of(prog.profile));
+        let written = r.written;
+        r.bytes
+            .iter()
+            .enumerate()
+            .map(|(k, &(area, byte))| (area, byte, k < written))
+            .collect()
+    }
+
+    #[test]
+    fn bits_of_m_and_v_are_resident_written_ones_first() {
+        // Q and I are copied every scan, so they stay in the image.
+        assert_eq!(
+            plan("LD I0.0\nA M3.1\nA V7.0\n= M0.1\n= Q0.0\nLD V9.7\nS V4.6, 3\n"),
+            [
+                (Area::M, 0, true),
+                (Area::V, 4, true),
+                (Area::V, 5, true),
+                (Area::M, 3, false),
+                (Area::V, 7, false),
+                (Area::V, 9, false),
+            ]
+        );
+    }
+
+    #[test]
+    fn bytes_named_as_values_stay_in_the_image() {
+        // VW2 covers V2 and V3, MB0 covers M0, a byte compare VB5.
+        assert_eq!(
+            plan(
+                "LD V2.0\n= V3.1\n= V4.0\nMOVW 1, VW2\nLD M0.0\n= M1.0\nINCB MB0\nLDB= VB5, 1\n= V5.5\n"
+            ),
+            [(Area::M, 1, true), (Area::V, 4, true)]
+        );
+    }
+
+    #[test]
+    fn a_count_from_memory_keeps_the_rest_of_the_area_out() {
+        // M2 up to M31 may be set; M0 and M1 lie before the range.
+        assert_eq!(
+            plan("LD M0.0\n= M1.0\n= M5.0\nS M2.0, MB9\n"),
+            [(Area::M, 1, true), (Area::M, 0, false)]
+        );
+    }
+
+    #[test]
+    fn pointers_and_runs_make_nothing_resident() {
+        for text in [
+            "LD M0.0\n= M1.0\nMOVD &VB0, VD100\n",
+            "LD M0.0\n= M1.0\nMOVB *VD100, MB10\n",
+            "LD M0.0\n= M1.0\nBMB VB0, VB10, 4\n",
+            "LD M0.0\n= M1.0\nFILL 0, VW0, 4\n",
+            "LD M0.0\n= M1.0\nSHRB M0.1, V0.0, 4\n",
+        ] {
+            assert_eq!(plan(text), [], "{text}");
+        }
+    }
+}
