@@ -14,20 +14,23 @@
 //! - the program is of the S7 family, every op of every POU has a memory footprint that its
 //!   operands state exactly (no pointers, block moves, tables, strings, communication, pulse
 //!   profiles, shift registers or call parameters: any of these makes no byte resident), and
-//! - the byte is in M or V, some op names one of its bits directly (a contact, a coil, `S`/`R`
-//!   with a constant count), and no op names it as part of a value operand (a byte, word or
-//!   double word, at any width) or may touch it through an `S`/`R` with a count from memory.
+//! - the byte is in Q, M or V, some op names one of its bits directly (a contact, a coil,
+//!   `S`/`R` with a constant count that is written inline), and no op names it as part of a
+//!   value operand (a byte, word or double word, at any width) or may touch it through an
+//!   `S`/`R` that the runtime runs (a count from memory, a long range).
 //!
 //! At most [`MAX_BYTES`] bytes are resident (the lowest), so the shadow stays in the L1 cache.
 //!
 //! **Invariant.** While the native loop runs, the shadow holds the resident bytes and their
 //! image bytes are stale; at every point outside it the image holds them. The loop packs the
-//! bytes some op writes on every exit and before a change watch compares bytes (`scan_loop`),
-//! and unpacks all of them on entry unless the shadow still holds them (its flag, which the
-//! engine sets from `Image::version`). Nothing else inside the loop reads or writes M or V but
-//! compiled code and the runtime helpers it calls with its operands' addresses, and the rule
-//! keeps those bytes out; compiled interrupt routines that the runtime calls back run on the
-//! same shadow.
+//! bytes of M and V that some op writes on every exit and before a change watch compares bytes
+//! (`scan_loop`), those of Q at the end of every scan (the epilogue copies Q to the physical
+//! outputs, and a scan's end is the only place the runtime reads Q), and unpacks all of them on
+//! entry unless the shadow still holds them (its flag, which the engine sets from
+//! `Image::version`). Nothing else inside the loop reads or writes Q, M or V but compiled code
+//! and the runtime helpers it calls with its operands' addresses, and the rule keeps those
+//! bytes out; compiled interrupt routines that the runtime calls back run on the same shadow.
+//! The runtime writes the physical output copy, never Q itself.
 //!
 //! Packing costs about two instructions per written byte on every call, which a program of a
 //! thousand bit instructions earns back many times over in a scan (`docs/performance.md`).
@@ -42,8 +45,12 @@ use stljit_core::ir::{Access, BitLoc, BoxOp, Op, Operand, Program};
 use stljit_core::layout::Layout;
 use stljit_core::{Area, Family};
 
-/// The areas whose bytes may be resident: the runtime touches them only through operands.
-const AREAS: [Area; 2] = [Area::M, Area::V];
+use crate::lower::bits::MAX_INLINE_RANGE;
+
+/// The areas whose bytes may be resident: the runtime touches them only through operands, but
+/// for Q, which the scan's epilogue reads (`scan::end`, the inline output copy), so the loop
+/// packs Q's written bytes at the end of every scan.
+const AREAS: [Area; 3] = [Area::Q, Area::M, Area::V];
 
 /// At most this many resident bytes (a shadow of 32 KiB).
 pub(crate) const MAX_BYTES: usize = 4096;
@@ -58,8 +65,11 @@ pub(crate) struct Resident {
     /// The resident bytes, those some op writes first, each part in image order; byte `k`'s
     /// bit `i` is shadow byte `8 (k + 1) + i` (after the flag).
     bytes: Vec<(Area, u32)>,
-    /// How many of `bytes` some op writes (only those are packed).
+    /// How many of `bytes` some op writes (only those are packed); the first `outputs` of them
+    /// are Q's.
     written: usize,
+    /// How many written bytes are Q's (packed at the end of every scan).
+    outputs: usize,
     /// The shadow's offset from the image's first byte (in the image's scratch, 8-aligned).
     start: u32,
     slot: HashMap<(Area, u32), u32>,
@@ -94,7 +104,7 @@ impl Resident {
             }
             match op {
                 Op::SetRange { start, count, .. } => match *count {
-                    Operand::Const(k) => {
+                    Operand::Const(k) if k & 0xFF <= MAX_INLINE_RANGE => {
                         let bits = (k & 0xFF) + u32::from(start.bit);
                         let last =
                             (start.byte + bits.saturating_sub(1) / 8).min(area_end(start.area));
@@ -105,6 +115,10 @@ impl Resident {
                         excluded.extend((start.byte..area_end(start.area)).map(|b| (start.area, b)))
                     }
                 },
+                // `BIW` writes its Q byte as well as the physical output.
+                Op::Box(BoxOp::ImmediateWrite { output, .. }) => {
+                    excluded.insert((Area::Q, *output));
+                }
                 _ => {
                     for (bit, access) in op.bit_uses() {
                         named.insert((bit.area, bit.byte));
@@ -127,6 +141,11 @@ impl Resident {
         let (mut bytes, read_only): (Vec<_>, Vec<_>) =
             chosen.into_iter().partition(|ab| written.contains(ab));
         let written = bytes.len();
+        // Areas in image order, so Q's written bytes come first.
+        let outputs = bytes
+            .iter()
+            .take_while(|(area, _)| *area == Area::Q)
+            .count();
         bytes.extend(read_only);
         let start = layout.size.next_multiple_of(8);
         let slot = bytes
@@ -137,6 +156,7 @@ impl Resident {
         Resident {
             bytes,
             written,
+            outputs,
             start,
             slot,
         }
@@ -198,13 +218,34 @@ impl Resident {
         b.switch_to_block(done);
     }
 
-    /// Copies every resident byte some op writes from the shadow back into the image (the
-    /// others never change there). Two at a time: their sixteen shadow bytes shifted left by 7
-    /// (bit 0 to the sign bit) and gathered by `pmovmskb`, stored as one 16-bit word where the
-    /// two bytes are neighbours in the image. A last odd one: bit 0 of each of its eight bytes
+    /// Copies the resident bytes of M and V that some op writes from the shadow back into the
+    /// image (the others never change there), where the loop ends or a watch compares.
+    pub(crate) fn emit_pack(&self, b: &mut FunctionBuilder<'_>, layout: &Layout, image: Value) {
+        self.pack_range(b, layout, image, self.outputs..self.written);
+    }
+
+    /// The same for Q's written resident bytes, before the scan's epilogue copies Q.
+    pub(crate) fn emit_pack_outputs(
+        &self,
+        b: &mut FunctionBuilder<'_>,
+        layout: &Layout,
+        image: Value,
+    ) {
+        self.pack_range(b, layout, image, 0..self.outputs);
+    }
+
+    /// Packs `bytes[range]`. Two at a time: their sixteen shadow bytes shifted left by 7 (bit 0
+    /// to the sign bit) and gathered by `pmovmskb`, stored as one 16-bit word where the two
+    /// bytes are neighbours in the image. A last odd one: bit 0 of each of its eight bytes
     /// gathered into the top byte by one multiplication (`(x AND 0x0101…01) ·
     /// 0x0102040810204080`, no two partial products meet there).
-    pub(crate) fn emit_pack(&self, b: &mut FunctionBuilder<'_>, layout: &Layout, image: Value) {
+    fn pack_range(
+        &self,
+        b: &mut FunctionBuilder<'_>,
+        layout: &Layout,
+        image: Value,
+        range: std::ops::Range<usize>,
+    ) {
         let at = |k: usize| (self.start as usize + 8 * (k + 1)) as i32;
         let img_off = |k: usize| {
             let (area, byte) = self.bytes[k];
@@ -213,8 +254,8 @@ impl Resident {
         let lanes = MemFlagsData::new()
             .with_notrap()
             .with_endianness(Endianness::Little);
-        let mut k = 0;
-        while k + 1 < self.written {
+        let mut k = range.start;
+        while k + 1 < range.end {
             let v = b.ins().load(I8X16, flags(), image, at(k));
             let words = b.ins().bitcast(I16X8, lanes, v);
             let signs = b.ins().ishl_imm_s(words, 7);
@@ -230,7 +271,7 @@ impl Resident {
             }
             k += 2;
         }
-        if k < self.written {
+        if k < range.end {
             let x = b.ins().load(I64, flags(), image, at(k));
             let bits = b.ins().band_imm_s(x, 0x0101_0101_0101_0101);
             let gathered = b.ins().imul_imm_s(bits, 0x0102_0408_1020_4080);
@@ -321,14 +362,16 @@ mod tests {
     }
 
     #[test]
-    fn bits_of_m_and_v_are_resident_written_ones_first() {
-        // Q and I are copied every scan, so they stay in the image.
+    fn bits_of_q_m_and_v_are_resident_written_ones_first() {
+        // I is copied into the image every scan, so it stays there.
         assert_eq!(
-            plan("LD I0.0\nA M3.1\nA V7.0\n= M0.1\n= Q0.0\nLD V9.7\nS V4.6, 3\n"),
+            plan("LD I0.0\nA M3.1\nA V7.0\n= M0.1\n= Q0.0\nLD V9.7\nS V4.6, 3\nA Q1.0\n"),
             [
+                (Area::Q, 0, true),
                 (Area::M, 0, true),
                 (Area::V, 4, true),
                 (Area::V, 5, true),
+                (Area::Q, 1, false),
                 (Area::M, 3, false),
                 (Area::V, 7, false),
                 (Area::V, 9, false),
@@ -367,5 +410,14 @@ mod tests {
         ] {
             assert_eq!(plan(text), [], "{text}");
         }
+    }
+
+    #[test]
+    fn what_the_runtime_writes_stays_in_the_image() {
+        // A range past the inline limit is the runtime's; BIW writes QB7 itself.
+        assert_eq!(
+            plan("LD M0.0\n= M1.0\nS M2.0, 65\n= Q7.0\n= Q6.0\nBIW 18, QB7\n"),
+            [(Area::Q, 6, true), (Area::M, 1, true), (Area::M, 0, false)]
+        );
     }
 }

@@ -233,11 +233,13 @@ pub(crate) fn build_run(
     }
 
     b.switch_to_block(slow_end);
+    env.resident.emit_pack_outputs(&mut b, env.layout, image);
     let c = b.ins().call(end, &[image, layout, end_status]);
     let st = b.inst_results(c)[0];
     b.ins().brif(st, fin, &[i1.into(), st.into()], next, &[]);
 
     b.switch_to_block(fast_end);
+    env.resident.emit_pack_outputs(&mut b, env.layout, image);
     inline_end(&mut b, &img);
     b.ins().jump(next, &[]);
 

@@ -18,6 +18,10 @@ use stljit_core::{Area, FatalCode, Width};
 use stljit_runtime::block::set_range_run;
 use stljit_runtime::rules::GatePolicy;
 
+/// The longest `S`/`R` range written inline; a longer one (or one whose count is read from
+/// memory) is the runtime's `set_range`, which writes the image bytes itself.
+pub(crate) const MAX_INLINE_RANGE: u32 = 64;
+
 impl Lower<'_, '_> {
     /// The cached byte and bit of a bit location.
     pub(crate) fn bit_byte(&self, bit: BitLoc) -> Addr {
@@ -258,12 +262,11 @@ impl Lower<'_, '_> {
     pub(crate) fn assign(&mut self, bit: BitLoc, immediate: bool) {
         let pf = self.pf();
         if let Some(off) = self.env.resident.slot(bit) {
-            // Only M and V are resident, which have no physical copy.
             self.write_resident(off, pf);
-            return;
+        } else {
+            let a = self.bit_byte(bit);
+            self.write_bit_at(a, bit.bit, pf);
         }
-        let a = self.bit_byte(bit);
-        self.write_bit_at(a, bit.bit, pf);
         if immediate && bit.area == Area::Q && bit.byte < self.env.layout.area_size(Area::Q) {
             let a = Addr::img(self.env.layout.phys_out + bit.byte);
             self.write_bit_at(a, bit.bit, pf);
@@ -386,7 +389,7 @@ impl Lower<'_, '_> {
                     return;
                 }
             };
-            if run.count <= 64 {
+            if run.count <= MAX_INLINE_RANGE {
                 // Resident bits one by one in the shadow (`old OR PF`, `old AND NOT PF`), the
                 // others by masks on their bytes.
                 let mut bits: Vec<(Addr, u8)> = Vec::new();
@@ -406,6 +409,18 @@ impl Lower<'_, '_> {
                                 old.and_not(&mut self.b, pf)
                             };
                             self.write_resident(off, new);
+                            if immediate && start.area == Area::Q {
+                                // The physical bit takes the same conditional write.
+                                let pa = Addr::img(self.env.layout.phys_out + byte);
+                                let (v, at) = self.test_byte(pa);
+                                let old = B::Bit { v, pos: at + bit };
+                                let new = if value {
+                                    old.or(&mut self.b, pf)
+                                } else {
+                                    old.and_not(&mut self.b, pf)
+                                };
+                                self.write_bit_at(pa, bit, new);
+                            }
                         }
                         None => bits.push((self.area_addr(start.area, byte), bit)),
                     }
