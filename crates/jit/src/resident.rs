@@ -36,8 +36,9 @@
 //! thousand bit instructions earns back many times over in a scan (`docs/performance.md`).
 
 use cranelift_codegen::ir::{
-    Endianness, InstBuilder, MemFlagsData, Value,
-    types::{I8X16, I16X8, I32, I64},
+    ConstantData, Endianness, InstBuilder, MemFlagsData, Value,
+    condcodes::IntCC,
+    types::{I8X16, I16X8, I32, I32X4, I64},
 };
 use cranelift_frontend::FunctionBuilder;
 use std::collections::{BTreeSet, HashMap};
@@ -50,7 +51,7 @@ use crate::lower::bits::MAX_INLINE_RANGE;
 /// The areas whose bytes may be resident: the runtime touches them only through operands, but
 /// for Q, which the scan's epilogue reads (`scan::end`, the inline output copy), so the loop
 /// packs Q's written bytes at the end of every scan.
-const AREAS: [Area; 3] = [Area::Q, Area::M, Area::V];
+const AREAS: [Area; 4] = [Area::I, Area::Q, Area::M, Area::V];
 
 /// At most this many resident bytes (a shadow of 32 KiB).
 pub(crate) const MAX_BYTES: usize = 4096;
@@ -70,6 +71,8 @@ pub(crate) struct Resident {
     written: usize,
     /// How many written bytes are Q's (packed at the end of every scan).
     outputs: usize,
+    /// How many bytes after the written ones are I's (unpacked at the start of every scan).
+    inputs: usize,
     /// The shadow's offset from the image's first byte (in the image's scratch, 8-aligned).
     start: u32,
     slot: HashMap<(Area, u32), u32>,
@@ -129,12 +132,18 @@ impl Resident {
                 }
             }
         }
+        // I: the prologue copies the inputs into it every scan, so the loop unpacks I's resident
+        // bytes after it, and the program must never write them. In the runtime's prologue
+        // the routines of the instant run after that copy and before the unpack, so a program
+        // with interrupt routines keeps I in the image.
+        let inputs_ok = |byte: u32| !written.contains(&(Area::I, byte)) && !prog.has_interrupts();
         let chosen: Vec<(Area, u32)> = named
             .into_iter()
             .filter(|(area, byte)| {
                 AREAS.contains(area)
                     && *byte < area_end(*area)
                     && !excluded.contains(&(*area, *byte))
+                    && (*area != Area::I || inputs_ok(*byte))
             })
             .take(MAX_BYTES)
             .collect();
@@ -145,6 +154,10 @@ impl Resident {
         let outputs = bytes
             .iter()
             .take_while(|(area, _)| *area == Area::Q)
+            .count();
+        let inputs = read_only
+            .iter()
+            .take_while(|(area, _)| *area == Area::I)
             .count();
         bytes.extend(read_only);
         let start = layout.size.next_multiple_of(8);
@@ -157,6 +170,7 @@ impl Resident {
             bytes,
             written,
             outputs,
+            inputs,
             start,
             slot,
         }
@@ -203,19 +217,66 @@ impl Resident {
         let held = b.ins().load(I64, flags(), image, self.start as i32);
         b.ins().brif(held, done, &[], unpack, &[]);
         b.switch_to_block(unpack);
-        for (k, &(area, byte)) in self.bytes.iter().enumerate() {
-            let k = k + 1;
-            let off = (layout.base(area) + byte) as i32;
-            let v = b.ins().uload8(I64, flags(), image, off);
-            let spread = b.ins().imul_imm_s(v, 0x0101_0101_0101_0101);
-            let picked = b.ins().band_imm_s(spread, 0x8040_2010_0804_0201_u64 as i64);
-            let high = b.ins().iadd_imm_s(picked, 0x7F7F_7F7F_7F7F_7F7F);
-            let bits = b.ins().ushr_imm_s(high, 7);
-            b.ins()
-                .store(flags(), bits, image, (self.start as usize + 8 * k) as i32);
-        }
+        self.unpack_range(b, layout, image, 0..self.bytes.len());
         b.ins().jump(done, &[]);
         b.switch_to_block(done);
+    }
+
+    /// Copies I's resident bytes from the image into the shadow, after the scan's prologue
+    /// copied the inputs into I.
+    pub(crate) fn emit_unpack_inputs(
+        &self,
+        b: &mut FunctionBuilder<'_>,
+        layout: &Layout,
+        image: Value,
+    ) {
+        self.unpack_range(b, layout, image, self.written..self.written + self.inputs);
+    }
+
+    /// Unpacks `bytes[range]` (see [`Resident::emit_unpack`]). Two neighbours in the image at
+    /// a time where they are also neighbours here: their 16-bit word spread over sixteen bytes
+    /// (`pshufb`), each byte's own bit picked and compared with it (0xFF where set).
+    fn unpack_range(
+        &self,
+        b: &mut FunctionBuilder<'_>,
+        layout: &Layout,
+        image: Value,
+        range: std::ops::Range<usize>,
+    ) {
+        let at = |k: usize| (self.start as usize + 8 * (k + 1)) as i32;
+        let img_off = |k: usize| {
+            let (area, byte) = self.bytes[k];
+            (layout.base(area) + byte) as i32
+        };
+        let mut pair_consts = None;
+        let mut k = range.start;
+        while k < range.end {
+            if k + 1 < range.end && img_off(k + 1) == img_off(k) + 1 {
+                let (spread_mask, bit_of) = *pair_consts.get_or_insert_with(|| {
+                    let spread: Vec<u8> = (0..16).map(|i| i / 8).collect();
+                    let bits: Vec<u8> = (0..16).map(|i| 1 << (i % 8)).collect();
+                    let spread = b.func.dfg.immediates.push(ConstantData::from(spread));
+                    let bits = b.func.dfg.constants.insert(ConstantData::from(bits));
+                    (spread, b.ins().vconst(I8X16, bits))
+                });
+                let word = b.ins().uload16(I32, flags(), image, img_off(k));
+                let v = b.ins().scalar_to_vector(I32X4, word);
+                let v = b.ins().bitcast(I8X16, lanes(), v);
+                let spread = b.ins().shuffle(v, v, spread_mask);
+                let picked = b.ins().band(spread, bit_of);
+                let set = b.ins().icmp(IntCC::Equal, picked, bit_of);
+                b.ins().store(flags(), set, image, at(k));
+                k += 2;
+            } else {
+                let v = b.ins().uload8(I64, flags(), image, img_off(k));
+                let spread = b.ins().imul_imm_s(v, 0x0101_0101_0101_0101);
+                let picked = b.ins().band_imm_s(spread, 0x8040_2010_0804_0201_u64 as i64);
+                let high = b.ins().iadd_imm_s(picked, 0x7F7F_7F7F_7F7F_7F7F);
+                let bits = b.ins().ushr_imm_s(high, 7);
+                b.ins().store(flags(), bits, image, at(k));
+                k += 1;
+            }
+        }
     }
 
     /// Copies the resident bytes of M and V that some op writes from the shadow back into the
@@ -251,15 +312,12 @@ impl Resident {
             let (area, byte) = self.bytes[k];
             (layout.base(area) + byte) as i32
         };
-        let lanes = MemFlagsData::new()
-            .with_notrap()
-            .with_endianness(Endianness::Little);
         let mut k = range.start;
         while k + 1 < range.end {
             let v = b.ins().load(I8X16, flags(), image, at(k));
-            let words = b.ins().bitcast(I16X8, lanes, v);
+            let words = b.ins().bitcast(I16X8, lanes(), v);
             let signs = b.ins().ishl_imm_s(words, 7);
-            let bytes = b.ins().bitcast(I8X16, lanes, signs);
+            let bytes = b.ins().bitcast(I8X16, lanes(), signs);
             let mask = b.ins().vhigh_bits(I32, bytes);
             let (lo, hi) = (img_off(k), img_off(k + 1));
             if hi == lo + 1 {
@@ -283,6 +341,11 @@ impl Resident {
 
 fn flags() -> MemFlagsData {
     MemFlagsData::new().with_notrap()
+}
+
+/// Lane order for bitcasts between vector types.
+fn lanes() -> MemFlagsData {
+    MemFlagsData::new().with_endianness(Endianness::Little)
 }
 
 /// Whether everything `op` may read or write in M and V is named by its operands
@@ -362,8 +425,7 @@ mod tests {
     }
 
     #[test]
-    fn bits_of_q_m_and_v_are_resident_written_ones_first() {
-        // I is copied into the image every scan, so it stays there.
+    fn bits_of_i_q_m_and_v_are_resident_written_ones_first() {
         assert_eq!(
             plan("LD I0.0\nA M3.1\nA V7.0\n= M0.1\n= Q0.0\nLD V9.7\nS V4.6, 3\nA Q1.0\n"),
             [
@@ -371,6 +433,7 @@ mod tests {
                 (Area::M, 0, true),
                 (Area::V, 4, true),
                 (Area::V, 5, true),
+                (Area::I, 0, false),
                 (Area::Q, 1, false),
                 (Area::M, 3, false),
                 (Area::V, 7, false),
@@ -410,6 +473,18 @@ mod tests {
         ] {
             assert_eq!(plan(text), [], "{text}");
         }
+    }
+
+    #[test]
+    fn inputs_are_resident_unless_written_or_read_by_interrupt_routines() {
+        // `= I1.0` writes I1 (the next input copy overwrites it).
+        assert_eq!(
+            plan("LD I0.0\n= I1.0\n= M0.0\nLD I1.1\n= M0.1\n"),
+            [(Area::M, 0, true), (Area::I, 0, false)]
+        );
+        let with_routine = "LD I0.0\n= M0.0\nLD SM0.1\nATCH INT_0, 10\nENI\nMEND\n\
+                            INT 0\nLD I0.1\n= M0.1\n";
+        assert_eq!(plan(with_routine), [(Area::M, 0, true)]);
     }
 
     #[test]

@@ -177,6 +177,7 @@ pub(crate) fn build_run(
     // Not in STOP: run the main program, or (a fatal error in an interrupt routine) end the
     // scan as aborted.
     b.switch_to_block(started);
+    env.resident.emit_unpack_inputs(&mut b, env.layout, image);
     let runs = b.ins().icmp_imm_s(IntCC::Equal, begun, Begin::Run as i64);
     let fatal = b.ins().iconst(I32, ScanStatus::Fatal as i64);
     b.ins().brif(runs, run, &[], slow_end, &[fatal.into()]);
@@ -203,6 +204,7 @@ pub(crate) fn build_run(
         b.switch_to_block(inputs);
     }
     inline_inputs(&mut b, &img, plan.family(), &q);
+    env.resident.emit_unpack_inputs(&mut b, env.layout, image);
     clock::inline_refresh(&mut b, &img, plan.clock_timers(), env.prog, &env.timer_res);
     match steps.filter(|_| fast.instant) {
         Some(steps) => call_steps(&mut b, steps, 1, run),
