@@ -295,7 +295,7 @@ fn lower_fn(
         fnrefs: HashMap::new(),
         pou_refs: HashMap::new(),
         stores: StoreLog::new(
-            env.layout.size,
+            env.layout.size.max(env.resident.end()),
             env.layout.area_size(stljit_core::Area::L),
             env.hot_ops,
         ),

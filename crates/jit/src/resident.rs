@@ -182,9 +182,15 @@ impl Resident {
     }
 
     /// The image scratch the shadow needs (`Image::bytes_and_scratch`): the padding to an
-    /// 8-byte boundary, the flag, then eight bytes per resident byte.
+    /// 8-byte boundary, the flag, eight bytes per resident byte, and eight more so that a
+    /// 32-bit load of any shadow byte stays inside ([`crate::lower::bits`]).
     pub(crate) fn scratch(&self, layout: &Layout) -> usize {
-        (self.start - layout.size) as usize + 8 * (self.bytes.len() + 1)
+        (self.end() - layout.size) as usize
+    }
+
+    /// The offset just past the scratch the shadow needs.
+    pub(crate) fn end(&self) -> u32 {
+        self.start + 8 * (self.bytes.len() as u32 + 2)
     }
 
     /// The flag's offset from the image's first byte.

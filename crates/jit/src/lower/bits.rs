@@ -35,7 +35,15 @@ impl Lower<'_, '_> {
             return B::K(k);
         }
         if let Some(off) = self.env.resident.slot(bit) {
-            let v = self.b.ins().uload8(I32, mf(), self.func.image, off);
+            // A 32-bit load where no recent store overlaps its four bytes (the three after
+            // the shadow byte are garbage to a boolean at bit 0): `and`/`or`/`andn` take it as
+            // their memory operand, one instruction for the contact.
+            let a = Addr::img(off as u32);
+            let v = if a.off % 16 <= 12 && self.func.stores.is_cold(a, 4, self.block.cache.now) {
+                self.load_window(a)
+            } else {
+                self.b.ins().uload8(I32, mf(), self.func.image, off)
+            };
             return B::Bit { v, pos: 0 };
         }
         let a = self.bit_byte(bit);
@@ -57,6 +65,9 @@ impl Lower<'_, '_> {
                 self.b.ins().bnot(s)
             }
         };
+        self.func
+            .stores
+            .stored(Addr::img(off as u32), 1, self.block.cache.now);
         self.b.ins().istore8(mf(), v, self.func.image, off);
     }
 
