@@ -19,7 +19,8 @@
 //!   value operand (a byte, word or double word, at any width) or may touch it through an
 //!   `S`/`R` that the runtime runs (a count from memory, a long range).
 //!
-//! At most [`MAX_BYTES`] bytes are resident (the lowest), so the shadow stays in the L1 cache.
+//! A byte named by one op only stays in the image ([`MIN_USES`]), and at most [`MAX_BYTES`]
+//! bytes are resident (the lowest), so the shadow stays in the L1 cache.
 //!
 //! **Invariant.** While the native loop runs, the shadow holds the resident bytes and their
 //! image bytes are stale; at every point outside it the image holds them. The loop packs the
@@ -41,7 +42,7 @@ use cranelift_codegen::ir::{
     types::{I8X16, I16X8, I32, I32X4, I64},
 };
 use cranelift_frontend::FunctionBuilder;
-use std::collections::{BTreeSet, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use stljit_core::ir::{Access, BitLoc, BoxOp, Op, Operand, Program};
 use stljit_core::layout::Layout;
 use stljit_core::{Area, Family};
@@ -52,6 +53,11 @@ use crate::lower::bits::MAX_INLINE_RANGE;
 /// for Q, which the scan's epilogue reads (`scan::end`, the inline output copy), so the loop
 /// packs Q's written bytes at the end of every scan.
 const AREAS: [Area; 4] = [Area::I, Area::Q, Area::M, Area::V];
+
+/// A byte is resident only if at least this many ops name its bits: a resident byte costs a
+/// pack or unpack of a few instructions per scan or run, a single access saves about as much
+/// (the empty program's one coil on Q0 was a nanosecond slower resident).
+const MIN_USES: usize = 2;
 
 /// At most this many resident bytes (a shadow of 32 KiB).
 pub(crate) const MAX_BYTES: usize = 4096;
@@ -81,10 +87,16 @@ pub(crate) struct Resident {
 impl Resident {
     /// Applies the rule (module docs) to `prog`.
     pub(crate) fn plan(prog: &Program, layout: &Layout) -> Resident {
+        Resident::plan_with(prog, layout, MIN_USES)
+    }
+
+    /// [`Resident::plan`] with bytes named by `min_uses` ops or more.
+    fn plan_with(prog: &Program, layout: &Layout, min_uses: usize) -> Resident {
         if prog.profile.profile().family != Family::S7 {
             return Resident::default();
         }
-        let mut named = BTreeSet::new();
+        // How many ops name each byte's bits.
+        let mut named: BTreeMap<(Area, u32), usize> = BTreeMap::new();
         let mut written = BTreeSet::new();
         let mut excluded = BTreeSet::new();
         let area_end = |area: Area| layout.area_size(area);
@@ -111,7 +123,9 @@ impl Resident {
                         let bits = (k & 0xFF) + u32::from(start.bit);
                         let last =
                             (start.byte + bits.saturating_sub(1) / 8).min(area_end(start.area));
-                        named.extend((start.byte..=last).map(|b| (start.area, b)));
+                        for b in start.byte..=last {
+                            *named.entry((start.area, b)).or_default() += 1;
+                        }
                         written.extend((start.byte..=last).map(|b| (start.area, b)));
                     }
                     _ => {
@@ -124,7 +138,7 @@ impl Resident {
                 }
                 _ => {
                     for (bit, access) in op.bit_uses() {
-                        named.insert((bit.area, bit.byte));
+                        *named.entry((bit.area, bit.byte)).or_default() += 1;
                         if access != Access::Read {
                             written.insert((bit.area, bit.byte));
                         }
@@ -139,6 +153,8 @@ impl Resident {
         let inputs_ok = |byte: u32| !written.contains(&(Area::I, byte)) && !prog.has_interrupts();
         let chosen: Vec<(Area, u32)> = named
             .into_iter()
+            .filter(|&(_, uses)| uses >= min_uses)
+            .map(|(ab, _)| ab)
             .filter(|(area, byte)| {
                 AREAS.contains(area)
                     && *byte < area_end(*area)
@@ -418,10 +434,15 @@ fn footprint_stated(op: &Op) -> bool {
 mod tests {
     use super::*;
 
+    /// The resident bytes of `text` (area, byte, written), for bytes named once or more.
     fn plan(text: &str) -> Vec<(Area, u32, bool)> {
+        plan_min(text, 1)
+    }
+
+    fn plan_min(text: &str, min_uses: usize) -> Vec<(Area, u32, bool)> {
         let c = stljit_front_s7::compile_str("t.stl", text, stljit_core::ProfileId::A5);
         let prog = c.program.expect("compiles");
-        let r = Resident::plan(&prog, &Layout::of(prog.profile));
+        let r = Resident::plan_with(&prog, &Layout::of(prog.profile), min_uses);
         let written = r.written;
         r.bytes
             .iter()
@@ -446,6 +467,13 @@ mod tests {
                 (Area::V, 9, false),
             ]
         );
+    }
+
+    #[test]
+    fn a_byte_named_once_stays_in_the_image() {
+        // Q0 once (the coil), M0 twice (the contact and the coil of another bit).
+        let text = "LD M0.0\n= Q0.0\n= M0.1\n";
+        assert_eq!(plan_min(text, MIN_USES), [(Area::M, 0, true)]);
     }
 
     #[test]

