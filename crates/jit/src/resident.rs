@@ -19,8 +19,8 @@
 //!   value operand (a byte, word or double word, at any width) or may touch it through an
 //!   `S`/`R` that the runtime runs (a count from memory, a long range).
 //!
-//! A byte named by one op only stays in the image ([`MIN_USES`]), and at most [`MAX_BYTES`]
-//! bytes are resident (the lowest), so the shadow stays in the L1 cache.
+//! A byte of I or Q named by one op only stays in the image ([`MIN_USES`]), and at most
+//! [`MAX_BYTES`] bytes are resident (the lowest), so the shadow stays in the L1 cache.
 //!
 //! **Invariant.** While the native loop runs, the shadow holds the resident bytes and their
 //! image bytes are stale; at every point outside it the image holds them. The loop packs the
@@ -54,9 +54,10 @@ use crate::lower::bits::MAX_INLINE_RANGE;
 /// packs Q's written bytes at the end of every scan.
 const AREAS: [Area; 4] = [Area::I, Area::Q, Area::M, Area::V];
 
-/// A byte is resident only if at least this many ops name its bits: a resident byte costs a
-/// pack or unpack of a few instructions per scan or run, a single access saves about as much
-/// (the empty program's one coil on Q0 was a nanosecond slower resident).
+/// A byte of I or Q is resident only if at least this many ops name its bits: it costs an
+/// unpack or pack of a few instructions every scan, and a single access saves about as much
+/// (the empty program's one coil on Q0 was a nanosecond slower resident). M and V are packed
+/// once per run, which one access already repays.
 const MIN_USES: usize = 2;
 
 /// At most this many resident bytes (a shadow of 32 KiB).
@@ -153,7 +154,7 @@ impl Resident {
         let inputs_ok = |byte: u32| !written.contains(&(Area::I, byte)) && !prog.has_interrupts();
         let chosen: Vec<(Area, u32)> = named
             .into_iter()
-            .filter(|&(_, uses)| uses >= min_uses)
+            .filter(|&((area, _), uses)| !matches!(area, Area::I | Area::Q) || uses >= min_uses)
             .map(|(ab, _)| ab)
             .filter(|(area, byte)| {
                 AREAS.contains(area)
@@ -470,10 +471,13 @@ mod tests {
     }
 
     #[test]
-    fn a_byte_named_once_stays_in_the_image() {
-        // Q0 once (the coil), M0 twice (the contact and the coil of another bit).
-        let text = "LD M0.0\n= Q0.0\n= M0.1\n";
-        assert_eq!(plan_min(text, MIN_USES), [(Area::M, 0, true)]);
+    fn a_byte_of_i_or_q_named_once_stays_in_the_image() {
+        // Q0 and I0 once each, Q1 twice, M0 and V0 once each.
+        let text = "LD I0.0\n= Q0.0\n= Q1.0\n= Q1.1\nLD V0.0\n= M0.1\n";
+        assert_eq!(
+            plan_min(text, MIN_USES),
+            [(Area::Q, 1, true), (Area::M, 0, true), (Area::V, 0, false)]
+        );
     }
 
     #[test]
