@@ -102,7 +102,7 @@ impl Resident {
         let mut excluded = BTreeSet::new();
         let area_end = |area: Area| layout.area_size(area);
         for op in prog.pous.iter().flat_map(|p| &p.ops) {
-            if !footprint_stated(op) {
+            if !op.footprint_stated() {
                 return Resident::default();
             }
             for u in op.operand_uses().iter() {
@@ -256,6 +256,17 @@ impl Resident {
         self.unpack_range(b, layout, image, self.written..self.written + self.inputs);
     }
 
+    /// The shadow offset of `bytes[k]`'s bit 0 (after the flag).
+    fn shadow_at(&self, k: usize) -> i32 {
+        (self.start as usize + 8 * (k + 1)) as i32
+    }
+
+    /// The image offset of `bytes[k]`.
+    fn image_at(&self, layout: &Layout, k: usize) -> i32 {
+        let (area, byte) = self.bytes[k];
+        (layout.base(area) + byte) as i32
+    }
+
     /// Unpacks `bytes[range]` (see [`Resident::emit_unpack`]). Two neighbours in the image at
     /// a time where they are also neighbours here: their 16-bit word spread over sixteen bytes
     /// (`pshufb`), each byte's own bit picked and compared with it (0xFF where set).
@@ -266,11 +277,8 @@ impl Resident {
         image: Value,
         range: std::ops::Range<usize>,
     ) {
-        let at = |k: usize| (self.start as usize + 8 * (k + 1)) as i32;
-        let img_off = |k: usize| {
-            let (area, byte) = self.bytes[k];
-            (layout.base(area) + byte) as i32
-        };
+        let at = |k: usize| self.shadow_at(k);
+        let img_off = |k: usize| self.image_at(layout, k);
         let mut pair_consts = None;
         let mut k = range.start;
         while k < range.end {
@@ -330,11 +338,8 @@ impl Resident {
         image: Value,
         range: std::ops::Range<usize>,
     ) {
-        let at = |k: usize| (self.start as usize + 8 * (k + 1)) as i32;
-        let img_off = |k: usize| {
-            let (area, byte) = self.bytes[k];
-            (layout.base(area) + byte) as i32
-        };
+        let at = |k: usize| self.shadow_at(k);
+        let img_off = |k: usize| self.image_at(layout, k);
         let mut k = range.start;
         while k + 1 < range.end {
             let v = b.ins().load(I8X16, flags(), image, at(k));
@@ -369,66 +374,6 @@ fn flags() -> MemFlagsData {
 /// Lane order for bitcasts between vector types.
 fn lanes() -> MemFlagsData {
     MemFlagsData::new().with_endianness(Endianness::Little)
-}
-
-/// Whether everything `op` may read or write in M and V is named by its operands
-/// ([`Op::operand_uses`], [`Op::bit_uses`], an `S`/`R` range).
-fn footprint_stated(op: &Op) -> bool {
-    match op {
-        // A block move, a fill and a shift register reach past their first operand.
-        Op::Box(b) => matches!(
-            b,
-            BoxOp::Move { .. }
-                | BoxOp::Swap { .. }
-                | BoxOp::IntArith { .. }
-                | BoxOp::MulWide { .. }
-                | BoxOp::DivWide { .. }
-                | BoxOp::RealArith { .. }
-                | BoxOp::RealFunc { .. }
-                | BoxOp::Step { .. }
-                | BoxOp::Logic { .. }
-                | BoxOp::Invert { .. }
-                | BoxOp::Shift { .. }
-                | BoxOp::Rotate { .. }
-                | BoxOp::Convert { .. }
-                | BoxOp::ImmediateRead { .. }
-                | BoxOp::ImmediateWrite { .. }
-        ),
-        Op::Load(_)
-        | Op::And(_)
-        | Op::Or(_)
-        | Op::Not
-        | Op::AndBlock
-        | Op::OrBlock
-        | Op::Dup
-        | Op::ReadSecond
-        | Op::Pop
-        | Op::Pick(_)
-        | Op::AndEno
-        | Op::Edge { .. }
-        | Op::Assign { .. }
-        | Op::SetRange { .. }
-        | Op::ResetTimers { .. }
-        | Op::ResetCounters { .. }
-        | Op::Timer { .. }
-        | Op::Counter { .. }
-        | Op::Jump(_)
-        | Op::Label(_)
-        | Op::Call(_)
-        | Op::Return { .. }
-        | Op::End { .. }
-        | Op::Stop
-        | Op::Wdr
-        | Op::Interrupt(_)
-        | Op::Nop
-        | Op::For { .. }
-        | Op::Next { .. }
-        | Op::ScrBegin { .. }
-        | Op::ScrTransition { .. }
-        | Op::ScrCondEnd { .. }
-        | Op::ScrEnd => true,
-        _ => false,
-    }
 }
 
 #[cfg(test)]

@@ -371,6 +371,71 @@ impl Op {
         }
     }
 
+    /// Whether everything the op may read or write in the byte-addressed areas is named by
+    /// [`Op::operand_uses`] and [`Op::bit_uses`], apart from an `S`/`R` range (from its first bit
+    /// and count) and `BIW`'s Q byte (`BoxOp::ImmediateWrite::output`): false for an op that
+    /// reaches past its first operand (block moves, fills, shift registers, tables, strings,
+    /// communication buffers, pulse profiles), names call parameters, or compares strings.
+    /// Pointer operands are the caller's to check. The JIT keeps bytes resident only in
+    /// programs all of whose ops answer true (`stljit_jit`'s resident bits).
+    pub fn footprint_stated(&self) -> bool {
+        match self {
+            // A block move, a fill and a shift register reach past their first operand.
+            Op::Box(b) => matches!(
+                b,
+                BoxOp::Move { .. }
+                    | BoxOp::Swap { .. }
+                    | BoxOp::IntArith { .. }
+                    | BoxOp::MulWide { .. }
+                    | BoxOp::DivWide { .. }
+                    | BoxOp::RealArith { .. }
+                    | BoxOp::RealFunc { .. }
+                    | BoxOp::Step { .. }
+                    | BoxOp::Logic { .. }
+                    | BoxOp::Invert { .. }
+                    | BoxOp::Shift { .. }
+                    | BoxOp::Rotate { .. }
+                    | BoxOp::Convert { .. }
+                    | BoxOp::ImmediateRead { .. }
+                    | BoxOp::ImmediateWrite { .. }
+            ),
+            Op::Load(_)
+            | Op::And(_)
+            | Op::Or(_)
+            | Op::Not
+            | Op::AndBlock
+            | Op::OrBlock
+            | Op::Dup
+            | Op::ReadSecond
+            | Op::Pop
+            | Op::Pick(_)
+            | Op::AndEno
+            | Op::Edge { .. }
+            | Op::Assign { .. }
+            | Op::SetRange { .. }
+            | Op::ResetTimers { .. }
+            | Op::ResetCounters { .. }
+            | Op::Timer { .. }
+            | Op::Counter { .. }
+            | Op::Jump(_)
+            | Op::Label(_)
+            | Op::Call(_)
+            | Op::Return { .. }
+            | Op::End { .. }
+            | Op::Stop
+            | Op::Wdr
+            | Op::Interrupt(_)
+            | Op::Nop
+            | Op::For { .. }
+            | Op::Next { .. }
+            | Op::ScrBegin { .. }
+            | Op::ScrTransition { .. }
+            | Op::ScrCondEnd { .. }
+            | Op::ScrEnd => true,
+            _ => false,
+        }
+    }
+
     /// Every bit the op names directly (the first bit of a range for S/R and SHRB).
     pub fn bit_uses(&self) -> Vec<(BitLoc, Access)> {
         match self {
