@@ -413,23 +413,14 @@ impl Lower<'_, '_> {
                     match self.env.resident.slot(loc) {
                         Some(off) => {
                             let old = self.b.ins().uload8(I32, mf(), self.func.image, off);
-                            let old = B::Bit { v: old, pos: 0 };
-                            let new = if value {
-                                old.or(&mut self.b, pf)
-                            } else {
-                                old.and_not(&mut self.b, pf)
-                            };
+                            let new = self.set_or_reset(B::Bit { v: old, pos: 0 }, pf, value);
                             self.write_resident(off, new);
                             if immediate && start.area == Area::Q {
                                 // The physical bit takes the same conditional write.
                                 let pa = Addr::img(self.env.layout.phys_out + byte);
                                 let (v, at) = self.test_byte(pa);
                                 let old = B::Bit { v, pos: at + bit };
-                                let new = if value {
-                                    old.or(&mut self.b, pf)
-                                } else {
-                                    old.and_not(&mut self.b, pf)
-                                };
+                                let new = self.set_or_reset(old, pf, value);
                                 self.write_bit_at(pa, bit, new);
                             }
                         }
@@ -489,6 +480,15 @@ impl Lower<'_, '_> {
             }
         }
         self.set_range_helper(pf, start, count, value, immediate);
+    }
+
+    /// One bit of `S` (`value`) or `R` under power flow `pf`: `old OR PF`, `old AND NOT PF`.
+    fn set_or_reset(&mut self, old: B, pf: B, value: bool) -> B {
+        if value {
+            old.or(&mut self.b, pf)
+        } else {
+            old.and_not(&mut self.b, pf)
+        }
     }
 
     /// Sets (or clears) the bits of `mask` where `spread` (PF as all ones or zero; `None` for
