@@ -277,12 +277,10 @@ impl Resident {
         image: Value,
         range: std::ops::Range<usize>,
     ) {
-        let at = |k: usize| self.shadow_at(k);
-        let img_off = |k: usize| self.image_at(layout, k);
         let mut pair_consts = None;
         let mut k = range.start;
         while k < range.end {
-            if k + 1 < range.end && img_off(k + 1) == img_off(k) + 1 {
+            if k + 1 < range.end && self.image_at(layout, k + 1) == self.image_at(layout, k) + 1 {
                 let (spread_mask, bit_of) = *pair_consts.get_or_insert_with(|| {
                     let spread: Vec<u8> = (0..16).map(|i| i / 8).collect();
                     let bits: Vec<u8> = (0..16).map(|i| 1 << (i % 8)).collect();
@@ -290,21 +288,25 @@ impl Resident {
                     let bits = b.func.dfg.constants.insert(ConstantData::from(bits));
                     (spread, b.ins().vconst(I8X16, bits))
                 });
-                let word = b.ins().uload16(I32, flags(), image, img_off(k));
+                let word = b
+                    .ins()
+                    .uload16(I32, flags(), image, self.image_at(layout, k));
                 let v = b.ins().scalar_to_vector(I32X4, word);
                 let v = b.ins().bitcast(I8X16, lanes(), v);
                 let spread = b.ins().shuffle(v, v, spread_mask);
                 let picked = b.ins().band(spread, bit_of);
                 let set = b.ins().icmp(IntCC::Equal, picked, bit_of);
-                b.ins().store(flags(), set, image, at(k));
+                b.ins().store(flags(), set, image, self.shadow_at(k));
                 k += 2;
             } else {
-                let v = b.ins().uload8(I64, flags(), image, img_off(k));
+                let v = b
+                    .ins()
+                    .uload8(I64, flags(), image, self.image_at(layout, k));
                 let spread = b.ins().imul_imm_s(v, 0x0101_0101_0101_0101);
                 let picked = b.ins().band_imm_s(spread, 0x8040_2010_0804_0201_u64 as i64);
                 let high = b.ins().iadd_imm_s(picked, 0x7F7F_7F7F_7F7F_7F7F);
                 let bits = b.ins().ushr_imm_s(high, 7);
-                b.ins().store(flags(), bits, image, at(k));
+                b.ins().store(flags(), bits, image, self.shadow_at(k));
                 k += 1;
             }
         }
@@ -338,16 +340,14 @@ impl Resident {
         image: Value,
         range: std::ops::Range<usize>,
     ) {
-        let at = |k: usize| self.shadow_at(k);
-        let img_off = |k: usize| self.image_at(layout, k);
         let mut k = range.start;
         while k + 1 < range.end {
-            let v = b.ins().load(I8X16, flags(), image, at(k));
+            let v = b.ins().load(I8X16, flags(), image, self.shadow_at(k));
             let words = b.ins().bitcast(I16X8, lanes(), v);
             let signs = b.ins().ishl_imm_s(words, 7);
             let bytes = b.ins().bitcast(I8X16, lanes(), signs);
             let mask = b.ins().vhigh_bits(I32, bytes);
-            let (lo, hi) = (img_off(k), img_off(k + 1));
+            let (lo, hi) = (self.image_at(layout, k), self.image_at(layout, k + 1));
             if hi == lo + 1 {
                 b.ins().istore16(flags(), mask, image, lo);
             } else {
@@ -358,11 +358,11 @@ impl Resident {
             k += 2;
         }
         if k < range.end {
-            let x = b.ins().load(I64, flags(), image, at(k));
+            let x = b.ins().load(I64, flags(), image, self.shadow_at(k));
             let bits = b.ins().band_imm_s(x, 0x0101_0101_0101_0101);
             let gathered = b.ins().imul_imm_s(bits, 0x0102_0408_1020_4080);
             let v = b.ins().ushr_imm_s(gathered, 56);
-            b.ins().istore8(flags(), v, image, img_off(k));
+            b.ins().istore8(flags(), v, image, self.image_at(layout, k));
         }
     }
 }

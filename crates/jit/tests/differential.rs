@@ -342,12 +342,7 @@ fn run_scans_in_stretches_equals_scan_by_scan() {
         scans: 40,
         ..GenConfig::default()
     };
-    let (mut stretches, mut watched) = (0u64, 0u64);
-    for seed in 0..SEEDS / 2 {
-        let (s, w) = stretches_agree(&case_from_seed(seed ^ 0x5EED, &cfg), seed, 200);
-        stretches += s;
-        watched += w;
-    }
+    let (stretches, watched) = generated_in_stretches(&cfg, 0x5EED);
     assert!(stretches > SEEDS, "{stretches} stretches");
     assert!(
         watched > SEEDS / 4,
@@ -364,12 +359,7 @@ fn plain_programs_in_stretches_equal_scan_by_scan() {
         plain: true,
         ..GenConfig::default()
     };
-    let (mut stretches, mut watched) = (0u64, 0u64);
-    for seed in 0..SEEDS / 2 {
-        let (s, w) = stretches_agree(&case_from_seed(seed ^ 0x91A1, &cfg), seed, 200);
-        stretches += s;
-        watched += w;
-    }
+    let (stretches, watched) = generated_in_stretches(&cfg, 0x91A1);
     assert!(stretches > SEEDS, "{stretches} stretches");
     assert!(
         watched > SEEDS / 4,
@@ -401,6 +391,18 @@ fn omron_run_scans_in_stretches_equals_scan_by_scan() {
     }
     assert!(cases > SEEDS / 4, "only {cases} Omron programs generated");
     assert!(stretches > SEEDS / 2, "{stretches} stretches");
+}
+
+/// [`stretches_agree`] on `SEEDS / 2` programs generated with `cfg` (seeds salted with `salt`):
+/// the stretches run and those a watched change ended.
+fn generated_in_stretches(cfg: &GenConfig, salt: u64) -> (u64, u64) {
+    let (mut stretches, mut watched) = (0u64, 0u64);
+    for seed in 0..SEEDS / 2 {
+        let (s, w) = stretches_agree(&case_from_seed(seed ^ salt, cfg), seed, 200);
+        stretches += s;
+        watched += w;
+    }
+    (stretches, watched)
 }
 
 /// Runs `case` in random stretches (scan times 1..=`max_dt` ms) on the JIT's native loop and
