@@ -39,12 +39,12 @@ pub struct JitProgram {
     counter: Option<Box<AtomicU64>>,
     /// The shadow of the resident bytes (`crate::resident`), if any byte is resident.
     shadow: Option<Shadow>,
-    /// How many bytes are resident.
-    resident_bytes: usize,
 }
 
 /// Where the shadow of the resident bytes is and what says whether it still holds an image's.
 struct Shadow {
+    /// How many bytes are resident (at least one, or there is no shadow).
+    bytes: usize,
     /// The image scratch it takes (`Image::bytes_and_scratch`).
     scratch: usize,
     /// The offset of its flag (a `u64`, non-zero: the shadow holds the image's resident bytes).
@@ -193,8 +193,8 @@ impl JitProgram {
             // and lives as long as the table.
             unsafe { table.install(fns) };
         }
-        let resident_bytes = resident.len();
         let shadow = (resident.len() > 0).then(|| Shadow {
+            bytes: resident.len(),
             scratch: resident.scratch(&layout),
             flag: resident.flag_offset(),
             key: next_key(),
@@ -211,7 +211,6 @@ impl JitProgram {
             _ext: ext,
             counter,
             shadow,
-            resident_bytes,
         })
     }
 
@@ -223,7 +222,7 @@ impl JitProgram {
     /// Number of image bytes the code keeps one byte per bit while it runs (its resident
     /// bits, ARCHITECTURE.md).
     pub fn resident_bytes(&self) -> usize {
-        self.resident_bytes
+        self.shadow.as_ref().map_or(0, |s| s.bytes)
     }
 
     /// Whether `image` has the layout this program was compiled for (anything else is refused:
