@@ -320,7 +320,6 @@ fn lower_fn(
     l.b.finalize(fc);
     crate::lower::value::settle_alignments(&mut ctx.func);
     crate::dse::remove_dead_stores(&mut ctx.func);
-    crate::rebase::shorten_displacements(&mut ctx.func);
     match unsupported {
         Some(what) => Err(JitError::Unsupported(what)),
         None => Ok(()),

@@ -38,6 +38,10 @@
 //! every use on its own was worse for the zeros of Omron programs). A use that takes an
 //! immediate costs nothing either way. At `--opt none` there is no e-graph pass and the pass
 //! does not run: lowering already defines a constant where it uses it.
+//!
+//! **Short displacements** ([`crate::rebase`]) come last, at every level: runs of nearby far
+//! image accesses get a base pointer defined just before them, which the e-graph pass would
+//! merge into one long-lived pointer again.
 
 use crate::{JitError, JitOptions, OptLevel};
 use cranelift_codegen::Context;
@@ -78,6 +82,8 @@ impl Midend {
         if self.egraph.is_some() {
             local_constants(&mut ctx.func);
         }
+        // Last: the e-graph pass would merge its local base pointers into one.
+        crate::rebase::shorten_displacements(&mut ctx.func);
         Ok(())
     }
 }

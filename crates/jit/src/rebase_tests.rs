@@ -1,51 +1,94 @@
 //! Tests of [`super::shorten_displacements`] on hand-built functions: every access still names
-//! the same image byte, far ones get short displacements when a window is dense enough, and
-//! functions with calls are left alone.
+//! the same image byte, far ones get short displacements through a base defined just before
+//! their run, a run never spans a call or leaves the blocks its first block dominates, and
+//! short runs keep long displacements.
 
-use super::{MAX_EXTRA_BASES, MAX_INSTS_PER_ACCESS, MIN_ACCESSES, SHORT, shorten_displacements};
+use super::{LOCAL_REACH, MIN_RUN, SHORT, shorten_displacements};
 use crate::lower::mf;
 use cranelift_codegen::ir::{
-    Function, InstBuilder, InstructionData, Opcode, Signature, Value, ValueDef, types::*,
+    Function, Inst, InstBuilder, InstructionData, Opcode, Signature, Value, ValueDef, types::*,
 };
 use cranelift_codegen::isa::CallConv;
 use cranelift_codegen::settings;
 
-/// Builds `fn(image, callee)` with a byte load at each offset (a word store at every third,
-/// so stores are rewritten too, and a load through an opaque copy of the image at every
-/// fourth, as lowering makes them), in two blocks, and an indirect call at the end if `call`.
-fn build(offsets: &[i32], call: bool) -> Function {
+/// What a hand-built function does, in order.
+#[derive(Clone, Copy)]
+enum Step {
+    /// Accesses the image byte at this offset: a byte load, a word store at every third
+    /// access and a load through an opaque copy of the image at every fourth, as lowering
+    /// makes them.
+    Access(i32),
+    /// This many instructions that touch no memory.
+    Filler(usize),
+    /// An indirect call.
+    Call,
+    /// Ends the block and starts another, which only it jumps to.
+    Block,
+    /// Branches on a loaded value: the steps up to [`Step::Join`] run only if it is not 0.
+    If,
+    /// Where the branch of the last [`Step::If`] joins the other path.
+    Join,
+}
+
+use Step::*;
+
+/// Builds `fn(image, callee)` doing `steps`.
+fn build(steps: &[Step]) -> Function {
     crate::test_fn::build(2, |b, p| {
         let (img, callee) = (p[0], p[1]);
         let pair = b.ins().iconcat(img, img);
         let img_copy = b.ins().isplit(pair).0;
-        for (i, &off) in offsets.iter().enumerate() {
-            if i == offsets.len() / 2 {
-                let next = b.create_block();
-                b.ins().jump(next, &[]);
-                b.switch_to_block(next);
+        let mut i = 0;
+        let mut joins = Vec::new();
+        for &step in steps {
+            match step {
+                Access(off) => {
+                    if i % 3 == 2 {
+                        let v = b.ins().iconst(I16, 1);
+                        b.ins().store(mf(), v, img, off);
+                    } else if i % 4 == 3 {
+                        b.ins().load(I32, mf(), img_copy, off);
+                    } else {
+                        b.ins().uload8(I32, mf(), img, off);
+                    }
+                    i += 1;
+                }
+                Filler(n) => {
+                    for k in 0..n {
+                        b.ins().iconst(I32, k as i64);
+                    }
+                }
+                Call => {
+                    let sig = b.import_signature(Signature::new(CallConv::SystemV));
+                    b.ins().call_indirect(sig, callee, &[]);
+                }
+                Block => {
+                    let next = b.create_block();
+                    b.ins().jump(next, &[]);
+                    b.switch_to_block(next);
+                }
+                If => {
+                    let (then, join) = (b.create_block(), b.create_block());
+                    let c = b.ins().uload8(I32, mf(), img, 0);
+                    b.ins().brif(c, then, &[], join, &[]);
+                    b.switch_to_block(then);
+                    joins.push(join);
+                }
+                Join => {
+                    let join = joins.pop().expect("an If before");
+                    b.ins().jump(join, &[]);
+                    b.switch_to_block(join);
+                }
             }
-            if i % 3 == 2 {
-                let v = b.ins().iconst(I16, 1);
-                b.ins().store(mf(), v, img, off);
-            } else if i % 4 == 3 {
-                b.ins().load(I32, mf(), img_copy, off);
-            } else {
-                b.ins().uload8(I32, mf(), img, off);
-            }
-        }
-        if call {
-            let sig = b.import_signature(Signature::new(CallConv::SystemV));
-            b.ins().call_indirect(sig, callee, &[]);
         }
     })
 }
 
-/// The image offset a base value stands for, and whether it went through an opaque copy
-/// (`isplit(iconcat(x, x))` of a base): 0 for the image, `bias` for an extra base
-/// (`isplit(iconcat(image + bias, …))`).
-fn bias_of(func: &Function, image: Value, v: Value) -> (i64, bool) {
+/// The image offset a base value stands for: 0 for the image and its opaque copies, `bias`
+/// for a base (`isplit(iconcat(image + bias, …))`).
+fn bias_of(func: &Function, image: Value, v: Value) -> i64 {
     if v == image {
-        return (0, false);
+        return 0;
     }
     let ValueDef::Result(inst, 0) = func.dfg.value_def(v) else {
         panic!("a base that is not an instruction result")
@@ -62,10 +105,7 @@ fn bias_of(func: &Function, image: Value, v: Value) -> (i64, bool) {
                 panic!()
             };
             assert_eq!(a, b);
-            let (bias, _) = bias_of(func, image, *a);
-            // A copy of a copy, or of the image: what lowering made or a copy of a new base.
-            let copy = *a == image || is_split(func, *a);
-            (bias, copy)
+            bias_of(func, image, *a)
         }
         // `iadd_imm` builds an `iconst` and an `iadd`.
         InstructionData::Binary {
@@ -79,17 +119,12 @@ fn bias_of(func: &Function, image: Value, v: Value) -> (i64, bool) {
                 InstructionData::UnaryImm {
                     opcode: Opcode::Iconst,
                     imm,
-                } => (imm.bits(), false),
+                } => imm.bits(),
                 ref other => panic!("unexpected bias {other:?}"),
             }
         }
         ref other => panic!("unexpected base {other:?}"),
     }
-}
-
-fn is_split(func: &Function, v: Value) -> bool {
-    matches!(func.dfg.value_def(v), ValueDef::Result(i, 0)
-        if func.dfg.insts[i].opcode() == Opcode::Isplit)
 }
 
 /// One load or store after the pass.
@@ -99,10 +134,12 @@ struct Access {
     at: i64,
     /// Its displacement.
     disp: i64,
+    /// Its base pointer: `None` for the image or a copy of it made by the builder.
+    base: Option<Value>,
     /// The offset of its base pointer into the image.
     bias: i64,
-    /// Whether its base is an opaque copy.
-    copy: bool,
+    /// The instruction.
+    inst: Inst,
 }
 
 /// Every load and store, in layout order.
@@ -121,12 +158,13 @@ fn accesses(func: &Function) -> Vec<Access> {
                 } => (addr, i64::from(offset)),
                 _ => continue,
             };
-            let (bias, copy) = bias_of(func, image, base);
+            let bias = bias_of(func, image, base);
             out.push(Access {
                 at: bias + disp,
                 disp,
+                base: (bias != 0).then_some(base),
                 bias,
-                copy,
+                inst,
             });
         }
     }
@@ -134,105 +172,167 @@ fn accesses(func: &Function) -> Vec<Access> {
 }
 
 /// Runs the pass and checks what holds whatever it did: the same bytes in the same order, a
-/// verifiable function, short displacements for every rewritten access. Returns the accesses
-/// after the pass and how many were rewritten.
-fn run(offsets: &[i32], call: bool) -> (Vec<Access>, usize) {
-    let mut func = build(offsets, call);
+/// verifiable function (so each base dominates its accesses), a short displacement for every
+/// access through a base, and no call between a base's definition and its accesses. Returns
+/// the accesses after the pass and how many bases it defined.
+fn run(steps: &[Step]) -> (Vec<Access>, usize) {
+    let mut func = build(steps);
     let before = accesses(&func);
     let n = shorten_displacements(&mut func);
     let flags = settings::Flags::new(settings::builder());
     cranelift_codegen::verify_function(&func, &flags).expect("verifier");
     let after = accesses(&func);
     assert_eq!(after.len(), before.len());
+    let order: Vec<Inst> = crate::midend::layout_insts(&func).collect();
+    let at = |inst: Inst| order.iter().position(|&i| i == inst).unwrap();
     for (a, b) in after.iter().zip(&before) {
-        // The same byte, through a copy exactly when it was.
-        assert_eq!((a.at, a.copy), (b.at, b.copy), "{after:?}");
-        assert!(a.bias == 0 || SHORT.contains(&a.disp), "{after:?}");
+        assert_eq!(a.at, b.at, "{after:?}");
+        let Some(base) = a.base else { continue };
+        assert!(SHORT.contains(&a.disp), "{after:?}");
+        let def = func.dfg.value_def(base).unwrap_inst();
+        let between = &order[at(def)..at(a.inst)];
+        assert!(
+            between
+                .iter()
+                .all(|&i| !func.dfg.insts[i].opcode().is_call())
+        );
     }
-    assert_eq!(after.iter().filter(|a| a.bias != 0).count(), n);
+    let bases: std::collections::HashSet<Value> = after.iter().filter_map(|a| a.base).collect();
+    assert_eq!(bases.len(), n);
     (after, n)
 }
 
-/// `n` offsets spread over `from..from + 200`.
-fn cluster(from: i32, n: usize) -> Vec<i32> {
-    (0..n).map(|i| from + (i as i32 * 37) % 200).collect()
+/// `n` accesses spread over `from..from + 200`, one instruction apart.
+fn cluster(from: i32, n: usize) -> Vec<Step> {
+    (0..n)
+        .map(|i| Access(from + (i as i32 * 37) % 200))
+        .collect()
+}
+
+/// How many accesses go through a base.
+fn based(after: &[Access]) -> usize {
+    after.iter().filter(|a| a.base.is_some()).count()
 }
 
 #[test]
-fn a_dense_far_window_gets_its_own_base() {
+fn a_run_of_far_accesses_gets_one_base() {
     // V memory of the a5 layout starts at 0x110; its bytes sit at 272 and up.
-    let offs = cluster(272, MIN_ACCESSES);
-    let (after, n) = run(&offs, false);
-    assert_eq!(n, MIN_ACCESSES);
-    // One base for all of them.
-    let biases: std::collections::HashSet<i64> = after.iter().map(|a| a.bias).collect();
-    assert_eq!(biases.len(), 1);
+    let (after, n) = run(&cluster(272, MIN_RUN));
+    assert_eq!(n, 1);
+    assert_eq!(based(&after), MIN_RUN);
 }
 
 #[test]
-fn a_sparse_window_keeps_long_displacements() {
-    let (_, n) = run(&cluster(272, MIN_ACCESSES - 1), false);
+fn a_short_run_keeps_long_displacements_even_through_a_copy() {
+    let (after, n) = run(&cluster(272, MIN_RUN - 1));
     assert_eq!(n, 0);
+    assert!(after.iter().all(|a| a.disp == a.at));
 }
 
 #[test]
 fn near_accesses_stay_on_the_image() {
-    // 0..=127 is already short; the far cluster is rewritten around them.
-    let mut offs: Vec<i32> = (0..40).map(|i| i * 3).collect();
-    offs.extend(cluster(4000, MIN_ACCESSES));
-    let (after, n) = run(&offs, false);
-    assert_eq!(n, MIN_ACCESSES);
+    // 0..=127 is already short; the far run is rewritten among them.
+    let mut steps: Vec<Step> = (0..40).map(|i| Access(i * 3)).collect();
+    steps.extend(cluster(4000, MIN_RUN));
+    let (after, n) = run(&steps);
+    assert_eq!(n, 1);
     assert!(after.iter().all(|a| (a.at < 128) == (a.bias == 0)));
 }
 
 #[test]
-fn the_densest_windows_win_up_to_the_limit() {
-    // Three far clusters of different sizes: the two largest get bases.
-    let mut offs = cluster(300, MIN_ACCESSES + 10);
-    offs.extend(cluster(2000, MIN_ACCESSES));
-    offs.extend(cluster(5000, MIN_ACCESSES + 5));
-    let (after, n) = run(&offs, false);
-    assert_eq!(MAX_EXTRA_BASES, 2);
-    assert_eq!(n, 2 * MIN_ACCESSES + 15);
+fn accesses_far_apart_in_time_take_a_base_each() {
+    let mut steps = cluster(272, MIN_RUN);
+    steps.push(Filler(LOCAL_REACH));
+    steps.extend(cluster(272, MIN_RUN));
+    let (after, n) = run(&steps);
+    assert_eq!((n, based(&after)), (2, 2 * MIN_RUN));
+    // Within the reach they share one.
+    let mut steps = cluster(272, MIN_RUN);
+    steps.push(Filler(LOCAL_REACH - 2));
+    steps.extend(cluster(272, MIN_RUN));
+    assert_eq!(run(&steps).1, 1);
+}
+
+#[test]
+fn a_run_ends_at_a_call() {
+    let mut steps = cluster(272, MIN_RUN);
+    steps.push(Call);
+    steps.extend(cluster(272, MIN_RUN));
+    let (after, n) = run(&steps);
+    assert_eq!((n, based(&after)), (2, 2 * MIN_RUN));
+    // Too few on either side: none.
+    let mut steps = cluster(272, MIN_RUN - 1);
+    steps.push(Call);
+    steps.extend(cluster(272, MIN_RUN - 1));
+    assert_eq!(run(&steps).1, 0);
+}
+
+#[test]
+fn a_run_goes_on_into_the_blocks_its_first_block_dominates() {
+    // Into a block only the run's block jumps to, and past a branch that rejoins.
+    let half = MIN_RUN / 2;
+    let mut steps = cluster(272, half);
+    steps.push(Block);
+    steps.extend(cluster(272, half));
+    steps.extend([If, Access(300), Join]);
+    steps.extend(cluster(272, half));
+    let (after, n) = run(&steps);
+    assert_eq!((n, based(&after)), (1, 3 * half + 1));
+}
+
+#[test]
+fn a_run_that_starts_in_a_branch_ends_where_it_joins() {
+    // Inside the branch a run of its own; after the join another: the branch's base does
+    // not dominate the code after it.
+    let mut steps = vec![If];
+    steps.extend(cluster(272, MIN_RUN));
+    steps.push(Join);
+    steps.extend(cluster(272, MIN_RUN));
+    let (after, n) = run(&steps);
+    assert_eq!((n, based(&after)), (2, 2 * MIN_RUN));
+    // A run too short in the branch keeps long displacements, even though the accesses after
+    // the join are in the same window.
+    let mut steps = vec![If];
+    steps.extend(cluster(272, MIN_RUN - 1));
+    steps.push(Join);
+    steps.extend(cluster(272, MIN_RUN));
+    let (after, n) = run(&steps);
+    assert_eq!((n, based(&after)), (1, MIN_RUN));
+}
+
+#[test]
+fn the_densest_window_goes_first_and_each_dense_window_gets_a_base() {
+    // Interleaved accesses to three windows; the sparse one keeps long displacements.
+    let mut steps = Vec::new();
+    for i in 0..MIN_RUN + 2 {
+        steps.push(Access(300 + i as i32));
+        steps.push(Access(5000 + i as i32));
+        if i < MIN_RUN - 1 {
+            steps.push(Access(2000 + i as i32));
+        }
+    }
+    let (after, n) = run(&steps);
+    assert_eq!(n, 2);
     assert!(
         after
             .iter()
-            .filter(|a| a.bias == 0)
-            .all(|a| (2000..2200).contains(&a.at))
+            .filter(|a| a.base.is_none() && a.at >= 128)
+            .all(|a| (2000..2100).contains(&a.at))
     );
 }
 
 #[test]
 fn a_window_spans_exactly_256_bytes() {
     // 200 and 455 fit one window (bias 328: -128 and 127); 456 does not.
-    let mut offs = vec![200; MIN_ACCESSES / 2];
-    offs.extend(vec![455; MIN_ACCESSES / 2]);
-    offs.push(456);
-    let (after, n) = run(&offs, false);
-    assert_eq!(n, MIN_ACCESSES);
+    let mut steps = vec![Access(200); MIN_RUN / 2];
+    steps.extend(vec![Access(455); MIN_RUN / 2]);
+    steps.push(Access(456));
+    let (after, n) = run(&steps);
+    assert_eq!((n, based(&after)), (1, MIN_RUN));
     assert!(after.iter().any(|a| a.disp == -128) && after.iter().any(|a| a.disp == 127));
 }
 
 #[test]
-fn a_function_that_calls_is_left_alone() {
-    let (_, n) = run(&cluster(272, 4 * MIN_ACCESSES), true);
-    assert_eq!(n, 0);
-}
-
-#[test]
 fn an_empty_function_is_fine() {
-    let (_, n) = run(&[], false);
-    assert_eq!(n, 0);
-}
-
-#[test]
-fn a_window_sparse_in_a_long_function_keeps_long_displacements() {
-    // The same dense window of far accesses, alone and among enough near ones (which need no
-    // base) that it holds fewer than one access per `MAX_INSTS_PER_ACCESS` instructions: a
-    // pointer that long-lived and that little used would be spilled and reloaded.
-    let far = cluster(600, MIN_ACCESSES);
-    assert_eq!(run(&far, false).1, MIN_ACCESSES);
-    let mut long = far.clone();
-    long.extend((0..MIN_ACCESSES * MAX_INSTS_PER_ACCESS).map(|i| (i % 100) as i32));
-    assert_eq!(run(&long, false).1, 0);
+    assert_eq!(run(&[]).1, 0);
 }

@@ -116,8 +116,8 @@ impl Lower<'_, '_> {
         let first = self.load_window(a);
         let diff = self.b.ins().bxor(s, first);
         let diff = self.b.ins().band_imm_s(diff, 1i64 << pos);
-        // `crate::rebase::is_opaque_copy` recognises exactly this form (to give the load a
-        // short displacement): a change here is a change there.
+        // `crate::rebase` recognises exactly this form (to give the load a short
+        // displacement): a change here is a change there.
         let pair = self.b.ins().iconcat(self.func.image, self.func.image);
         let (image, _) = self.b.ins().isplit(pair);
         let second = self.b.ins().load(I32, super::mf(), image, Self::off32(a));
