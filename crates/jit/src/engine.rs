@@ -47,7 +47,7 @@ struct Shadow {
     bytes: usize,
     /// The image scratch it takes (`Image::bytes_and_scratch`).
     scratch: usize,
-    /// The offset of its flag (a `u64`, non-zero: the shadow holds the image's resident bytes).
+    /// The offset of its flag (a `u32`, non-zero: the shadow holds the image's resident bytes).
     flag: usize,
     /// This program's key (upper 32 bits of every version it gives an image), unique in the
     /// process ([`next_key`]).
@@ -65,7 +65,7 @@ impl Shadow {
     fn enter<'i>(&self, image: &'i mut Image) -> &'i mut [u8] {
         let held = self.last != 0 && image.version() == self.last;
         let buf = image.bytes_and_scratch(self.scratch);
-        buf[self.flag..self.flag + 8].copy_from_slice(&u64::from(held).to_ne_bytes());
+        buf[self.flag..self.flag + 4].copy_from_slice(&u32::from(held).to_ne_bytes());
         buf
     }
 

@@ -65,9 +65,10 @@ pub(crate) const MAX_BYTES: usize = 4096;
 
 /// The resident bytes of a program and where each one's bits sit in the shadow.
 ///
-/// The shadow's first `u64` is a flag the engine sets before each run: non-zero when the shadow
-/// still holds the image's resident bytes (the image is the one the last run packed them into,
-/// unchanged since: `Image::version`), so the run need not unpack them.
+/// The shadow's first eight bytes are a `u32` flag the engine sets before each run, non-zero
+/// when the shadow still holds the image's resident bytes (the image is the one the last run
+/// packed them into, unchanged since: `Image::version`), so the run need not unpack them; and
+/// the first-scan mask ([`Resident::first_scan_mask`]).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Resident {
     /// The resident bytes, those some op writes first, each part in image order; byte `k`'s
@@ -83,6 +84,8 @@ pub(crate) struct Resident {
     /// The shadow's offset from the image's first byte (in the image's scratch, 8-aligned).
     start: u32,
     slot: HashMap<(Area, u32), u32>,
+    /// Whether the shadow keeps the first-scan mask ([`Resident::first_scan_mask`]).
+    mask: bool,
 }
 
 impl Resident {
@@ -183,6 +186,9 @@ impl Resident {
             .enumerate()
             .map(|(k, &ab)| (ab, start + 8 * (k as u32 + 1)))
             .collect();
+        // Interrupt routines may run inside the runtime's prologue, before the loop sets the
+        // mask, and call subroutines that main calls too.
+        let mask = !bytes.is_empty() && !prog.has_interrupts();
         Resident {
             bytes,
             written,
@@ -190,6 +196,7 @@ impl Resident {
             inputs,
             start,
             slot,
+            mask,
         }
     }
 
@@ -215,6 +222,15 @@ impl Resident {
         self.start as usize
     }
 
+    /// The offset of the first-scan mask, if the shadow keeps one: an `i32` beside the flag,
+    /// all ones in every scan but the first after entering RUN, 0 in that one (spec §2.2). The
+    /// loop sets it before each scan's program runs; an edge ANDs it in with one instruction
+    /// where reading `Sched::FIRST_SCAN` and clearing with it take two. Only in programs
+    /// without interrupt routines, which the runtime's prologue runs before the loop sets it.
+    pub(crate) fn first_scan_mask(&self) -> Option<i32> {
+        self.mask.then_some(self.start as i32 + 4)
+    }
+
     /// The shadow offset of `bit`, if its byte is resident.
     pub(crate) fn slot(&self, bit: BitLoc) -> Option<i32> {
         self.slot
@@ -237,7 +253,7 @@ impl Resident {
             return;
         }
         let (unpack, done) = (b.create_block(), b.create_block());
-        let held = b.ins().load(I64, flags(), image, self.start as i32);
+        let held = b.ins().load(I32, flags(), image, self.start as i32);
         b.ins().brif(held, done, &[], unpack, &[]);
         b.switch_to_block(unpack);
         self.unpack_range(b, layout, image, 0..self.bytes.len());
@@ -468,6 +484,33 @@ mod tests {
         let with_routine = "LD I0.0\n= M0.0\nLD SM0.1\nATCH INT_0, 10\nENI\nMEND\n\
                             INT 0\nLD I0.1\n= M0.1\n";
         assert_eq!(plan(with_routine), [(Area::M, 0, true)]);
+    }
+
+    #[test]
+    fn the_first_scan_mask_is_kept_with_a_shadow_and_no_interrupt_routine() {
+        let mask = |text: &str| {
+            let c = stljit_front_s7::compile_str("t.stl", text, stljit_core::ProfileId::A5);
+            let prog = c.program.expect("compiles");
+            Resident::plan(&prog, &Layout::of(prog.profile)).first_scan_mask()
+        };
+        let r = {
+            let c = stljit_front_s7::compile_str(
+                "t.stl",
+                "LD M0.0\nEU\n= M1.0\n",
+                stljit_core::ProfileId::A5,
+            );
+            let prog = c.program.expect("compiles");
+            Resident::plan(&prog, &Layout::of(prog.profile))
+        };
+        // Beside the flag, inside the scratch the shadow asks for.
+        assert_eq!(r.first_scan_mask(), Some(r.flag_offset() as i32 + 4));
+        assert!(r.first_scan_mask().unwrap() as u32 + 4 <= r.end());
+        // No resident byte (I0 is named once): no shadow, no mask.
+        assert_eq!(mask("LD I0.0\nEU\nMOVB 1, MB1\n"), None);
+        // The runtime's prologue may run a routine with an edge before the loop sets it.
+        let with_routine = "LD M0.0\nEU\n= M1.0\nLD SM0.1\nATCH INT_0, 10\nENI\nMEND\n\
+                            INT 0\nLD M0.1\nEU\n= M1.1\n";
+        assert_eq!(mask(with_routine), None);
     }
 
     #[test]

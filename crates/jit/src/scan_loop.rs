@@ -214,6 +214,14 @@ pub(crate) fn build_run(
     }
 
     b.switch_to_block(run);
+    if let Some(at) = env.resident.first_scan_mask() {
+        // All ones unless this is the first scan (`FIRST_SCAN` is 0 or 1).
+        let first = img.load(&mut b, I8, Sched::FIRST_SCAN);
+        let first = b.ins().uextend(I32, first);
+        let mask = b.ins().iadd_imm_s(first, -1);
+        b.ins()
+            .store(MemFlagsData::new().with_notrap(), mask, image, at);
+    }
     let zero32 = b.ins().iconst(I32, 0);
     let c = b.ins().call(mainf, &[image, zero32]);
     let s = b.inst_results(c)[0];

@@ -362,9 +362,10 @@ impl Lower<'_, '_> {
         } else {
             v.and_not(&mut self.b, memb)
         };
-        if self.env.rules.first_scan_suppresses() {
-            let fa = self.sched(Sched::FIRST_SCAN);
-            let first = self.byte(fa);
+        let suppress = self.env.rules.first_scan_suppresses();
+        let mask = self.env.resident.first_scan_mask().filter(|_| suppress);
+        if suppress && mask.is_none() {
+            let first = self.byte(self.sched(Sched::FIRST_SCAN));
             out = out.and_not(&mut self.b, B::Bit { v: first, pos: 0 });
         }
         let new_mem = match frozen_unless {
@@ -376,6 +377,17 @@ impl Lower<'_, '_> {
             }
         };
         self.set_byte(at, new_mem);
+        if let Some(at) = mask.filter(|_| out != B::K(false)) {
+            // Loaded after the edge byte's store, so that x86 folds the load into the `and`
+            // (a load does not move past a store). All its bits are alike: it applies at
+            // whatever bit `out` is.
+            let mask = self.b.ins().load(I32, super::mf(), self.func.image, at);
+            let pos = match out {
+                B::Bit { pos, .. } | B::Not { pos, .. } => pos,
+                B::K(_) => 0,
+            };
+            out = out.and(&mut self.b, B::Bit { v: mask, pos });
+        }
         self.block.stack.set_top(out);
     }
 
