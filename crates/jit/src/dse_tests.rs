@@ -3,8 +3,7 @@
 
 use super::remove_dead_stores;
 use crate::lower::mf;
-use cranelift_codegen::ir::{InstBuilder, Signature, types::*};
-use cranelift_codegen::isa::CallConv;
+use cranelift_codegen::ir::{InstBuilder, types::*};
 
 /// One event of a test function `fn(image, other, callee)`.
 #[derive(Clone, Copy)]
@@ -57,15 +56,8 @@ fn run(events: &[Ev]) -> (usize, usize) {
                 LdOther => {
                     b.ins().uload8(I32, mf(), other, 0);
                 }
-                Call => {
-                    let sig = b.import_signature(Signature::new(CallConv::SystemV));
-                    b.ins().call_indirect(sig, callee, &[]);
-                }
-                NewBlock => {
-                    let next = b.create_block();
-                    b.ins().jump(next, &[]);
-                    b.switch_to_block(next);
-                }
+                Call => crate::test_fn::call(b, callee),
+                NewBlock => crate::test_fn::next_block(b),
             }
         }
     });

@@ -6,9 +6,8 @@
 use super::{LOCAL_REACH, MIN_RUN, SHORT, shorten_displacements};
 use crate::lower::mf;
 use cranelift_codegen::ir::{
-    Function, Inst, InstBuilder, InstructionData, Opcode, Signature, Value, ValueDef, types::*,
+    Function, Inst, InstBuilder, InstructionData, Opcode, Value, ValueDef, types::*,
 };
-use cranelift_codegen::isa::CallConv;
 use cranelift_codegen::settings;
 
 /// What a hand-built function does, in order.
@@ -58,15 +57,8 @@ fn build(steps: &[Step]) -> Function {
                         b.ins().iconst(I32, k as i64);
                     }
                 }
-                Call => {
-                    let sig = b.import_signature(Signature::new(CallConv::SystemV));
-                    b.ins().call_indirect(sig, callee, &[]);
-                }
-                Block => {
-                    let next = b.create_block();
-                    b.ins().jump(next, &[]);
-                    b.switch_to_block(next);
-                }
+                Call => crate::test_fn::call(b, callee),
+                Block => crate::test_fn::next_block(b),
                 If => {
                     let (then, join) = (b.create_block(), b.create_block());
                     let c = b.ins().uload8(I32, mf(), img, 0);

@@ -29,3 +29,16 @@ pub(crate) fn build(params: usize, body: impl FnOnce(&mut FunctionBuilder, &[Val
     });
     func
 }
+
+/// Emits an indirect call of `callee` with no arguments (a call the passes must respect).
+pub(crate) fn call(b: &mut FunctionBuilder, callee: Value) {
+    let sig = b.import_signature(Signature::new(CallConv::SystemV));
+    b.ins().call_indirect(sig, callee, &[]);
+}
+
+/// Ends the current block with a jump to a new one, which it continues in.
+pub(crate) fn next_block(b: &mut FunctionBuilder) {
+    let next = b.create_block();
+    b.ins().jump(next, &[]);
+    b.switch_to_block(next);
+}
