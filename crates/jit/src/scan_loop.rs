@@ -216,11 +216,9 @@ pub(crate) fn build_run(
     b.switch_to_block(run);
     if let Some(at) = env.resident.first_scan_mask() {
         // All ones unless this is the first scan (`FIRST_SCAN` is 0 or 1).
-        let first = img.load(&mut b, I8, Sched::FIRST_SCAN);
-        let first = b.ins().uextend(I32, first);
+        let first = img.byte_at(&mut b, env.layout.sched(Sched::FIRST_SCAN));
         let mask = b.ins().iadd_imm_s(first, -1);
-        b.ins()
-            .store(MemFlagsData::new().with_notrap(), mask, image, at);
+        img.store_at(&mut b, mask, at as u32);
     }
     let zero32 = b.ins().iconst(I32, 0);
     let c = b.ins().call(mainf, &[image, zero32]);
